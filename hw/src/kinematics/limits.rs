@@ -1,0 +1,116 @@
+//! Joint identifiers and joint limits, shared by the kinematics and the rig loader.
+
+use std::f64::consts::TAU;
+use std::fmt;
+
+/// Slack allowed when testing a computed angle against a limit; values within it are clamped onto the
+/// limit. Far below any tolerance the kinematics promises (1e-6), far above round-off (1e-15).
+pub const LIMIT_SLACK_RAD: f64 = 1e-12;
+
+/// Names one joint of an arm and its tool.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum JointId {
+    /// Arm axis 1..=6 of the RV-6SL.
+    Arm(u8),
+    /// Instrument roll about the shaft.
+    Roll,
+    /// Instrument wrist pitch.
+    WristPitch,
+    /// Instrument wrist yaw.
+    WristYaw,
+    /// Instrument jaw opening (both jaws together).
+    Jaw,
+}
+
+impl fmt::Display for JointId {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            JointId::Arm(i) => write!(f, "joint{i}"),
+            JointId::Roll => f.write_str("roll"),
+            JointId::WristPitch => f.write_str("wrist_pitch"),
+            JointId::WristYaw => f.write_str("wrist_yaw"),
+            JointId::Jaw => f.write_str("jaw"),
+        }
+    }
+}
+
+/// Position and velocity limits of one joint, radians and radians per second.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct JointLimit {
+    /// Lowest position, rad.
+    pub lower_rad: f64,
+    /// Highest position, rad.
+    pub upper_rad: f64,
+    /// Largest speed, rad/s.
+    pub max_velocity_rad_s: f64,
+}
+
+impl JointLimit {
+    /// A limit from bounds and a speed.
+    pub const fn new(lower_rad: f64, upper_rad: f64, max_velocity_rad_s: f64) -> Self {
+        Self { lower_rad, upper_rad, max_velocity_rad_s }
+    }
+
+    /// Whether `q_rad` lies inside the limit (with [`LIMIT_SLACK_RAD`]).
+    pub fn contains(&self, q_rad: f64) -> bool {
+        q_rad >= self.lower_rad - LIMIT_SLACK_RAD && q_rad <= self.upper_rad + LIMIT_SLACK_RAD
+    }
+
+    /// How far `q_rad` lies outside the limit; zero inside.
+    pub fn violation(&self, q_rad: f64) -> f64 {
+        (self.lower_rad - q_rad).max(q_rad - self.upper_rad).max(0.0)
+    }
+
+    /// Among the angles `q_rad + 2 pi k`, the one inside the limit nearest to `near_rad`, if any.
+    pub fn nearest_equivalent(&self, q_rad: f64, near_rad: f64) -> Option<f64> {
+        let mut best: Option<f64> = None;
+        // Lift q to the turn nearest `near`, then look one turn either side; limits wider than
+        // three turns do not occur on this rig.
+        let base = q_rad + TAU * ((near_rad - q_rad) / TAU).round();
+        for k in -2..=2 {
+            let candidate = base + TAU * f64::from(k);
+            if self.contains(candidate) {
+                let c = candidate.clamp(self.lower_rad, self.upper_rad);
+                if best.is_none_or(|b| (c - near_rad).abs() < (b - near_rad).abs()) {
+                    best = Some(c);
+                }
+            }
+        }
+        best
+    }
+}
+
+/// Wraps an angle into (-pi, pi].
+pub fn wrap_angle(q_rad: f64) -> f64 {
+    let w = q_rad - TAU * (q_rad / TAU).round();
+    if w <= -std::f64::consts::PI { w + TAU } else { w }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::f64::consts::PI;
+
+    #[test]
+    fn nearest_equivalent_prefers_the_turn_near_the_reference() {
+        let wide = JointLimit::new(-2.0 * PI, 2.0 * PI, 1.0);
+        let q = wide.nearest_equivalent(0.1, 6.0).unwrap();
+        assert!((q - (0.1 + TAU)).abs() < 1e-12, "{q}");
+        let q = wide.nearest_equivalent(0.1, -0.2).unwrap();
+        assert!((q - 0.1).abs() < 1e-12, "{q}");
+    }
+
+    #[test]
+    fn nearest_equivalent_rejects_angles_outside_a_narrow_limit() {
+        let narrow = JointLimit::new(-1.0, 1.0, 1.0);
+        assert_eq!(narrow.nearest_equivalent(2.0, 0.0), None);
+        assert_eq!(narrow.nearest_equivalent(-1.0 - 1e-13, 0.0), Some(-1.0));
+    }
+
+    #[test]
+    fn wrap_angle_lands_in_half_open_interval() {
+        assert!((wrap_angle(3.0 * PI) - PI).abs() < 1e-12);
+        assert!((wrap_angle(-PI) - PI).abs() < 1e-12);
+        assert!((wrap_angle(0.5 + 4.0 * PI) - 0.5).abs() < 1e-12);
+    }
+}

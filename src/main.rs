@@ -1,0 +1,2 @@
+//! knotlab command line.
+fn main() {}
