@@ -13,8 +13,8 @@ use super::limits::{JointId, JointLimit, wrap_angle};
 use super::rv6sl::Rv6slGeometry;
 
 /// Below this sine the wrist (or shoulder) is treated as singular and the free angle is kept at its
-/// current value.
-const SINGULAR_EPS: f64 = 1e-9;
+/// current value; the orientation error this leaves is below this value times pi.
+const SINGULAR_EPS: f64 = 1e-10;
 
 /// The geometric branches for one flange pose, with axes 1-5 inside their limits. Axis 6 is left as
 /// an angle in (-pi, pi]: callers pick its turn (and, for instruments, split it with the roll).
@@ -93,21 +93,18 @@ pub fn arm_branches(
                 -r36.column(2),
             ]);
             let sb = m[(0, 2)].hypot(m[(1, 2)]);
-            let cb = m[(2, 2)];
-            let wrist_solutions: [(f64, f64, f64); 2] = if sb < SINGULAR_EPS {
-                // Axes 4 and 6 in line: keep axis 4 where it is, axis 6 takes the rest.
-                let sum = (-m[(0, 1)]).atan2(m[(1, 1)]);
-                let t4 = current_rad[3];
-                let b = if cb > 0.0 { 0.0 } else { PI };
-                // b = 0: M = Rz(t4 + c); b = pi: M = Rz(t4 - c) Ry(pi).
-                let c = if cb > 0.0 { sum - t4 } else { t4 - sum };
-                [(t4, b, c), (t4, b, c)]
-            } else {
-                let a = m[(1, 2)].atan2(m[(0, 2)]);
-                let b = sb.atan2(cb);
-                let c = m[(2, 1)].atan2(-m[(2, 0)]);
-                [(a, b, c), (a + PI, -b, c + PI)]
-            };
+            let b = sb.atan2(m[(2, 2)]);
+            // Axis 4 from the approach direction; when axes 4 and 6 are (nearly) in line it is free
+            // and stays where it is. Axis 6 then comes from what is left, `Ry(b)^T Rz(a)^T M`, so
+            // any error in axis 4 is absorbed rather than doubled.
+            let a = if sb < SINGULAR_EPS { current_rad[3] } else { m[(1, 2)].atan2(m[(0, 2)]) };
+            let (sa, ca) = a.sin_cos();
+            let (sbb, cbb) = b.sin_cos();
+            let n00 = cbb * (ca * m[(0, 0)] + sa * m[(1, 0)]) - sbb * m[(2, 0)];
+            let n10 = -sa * m[(0, 0)] + ca * m[(1, 0)];
+            let c = n10.atan2(n00);
+            // The flipped wrist: Rz(a + pi) Ry(-b) Rz(c + pi) is the same rotation.
+            let wrist_solutions = [(a, b, c), (a + PI, -b, c + PI)];
             let n_wrist = if sb < SINGULAR_EPS { 1 } else { 2 };
             for &(a, b, c) in &wrist_solutions[..n_wrist] {
                 let raw = [t1, q2, q3, a, -b - PI, -c];

@@ -94,8 +94,11 @@ mod tests {
     #[test]
     fn nearest_equivalent_prefers_the_turn_near_the_reference() {
         let wide = JointLimit::new(-2.0 * PI, 2.0 * PI, 1.0);
-        let q = wide.nearest_equivalent(0.1, 6.0).unwrap();
-        assert!((q - (0.1 + TAU)).abs() < 1e-12, "{q}");
+        let q = wide.nearest_equivalent(-0.1, 6.0).unwrap();
+        assert!((q - (TAU - 0.1)).abs() < 1e-12, "{q}");
+        // 0.1 + 2 pi would be nearer 6.3 but lies outside the limit.
+        let q = wide.nearest_equivalent(0.1, 6.3).unwrap();
+        assert!((q - 0.1).abs() < 1e-12, "{q}");
         let q = wide.nearest_equivalent(0.1, -0.2).unwrap();
         assert!((q - 0.1).abs() < 1e-12, "{q}");
     }
