@@ -4,6 +4,7 @@
 //! apart unnoticed. Trocar points are not part of the rig: they belong to the scene.
 
 mod arm_name;
+mod diagnose;
 mod error;
 mod tree;
 
@@ -90,9 +91,18 @@ impl Rig {
 
     /// Reads a rig from URDF text; `source` names it in errors.
     pub fn from_urdf_str(text: &str, source: &str) -> Result<Self, RigError> {
-        let robot = urdf_rs::read_from_string(text)
-            .map_err(|e| RigError::Parse { file: source.to_owned(), reason: e.to_string() })?;
         let invalid = |problems| RigError::Invalid { file: source.to_owned(), problems };
+        let robot = match urdf_rs::read_from_string(text) {
+            Ok(robot) => robot,
+            Err(e) => {
+                let problems = diagnose::diagnose(text);
+                return Err(if problems.is_empty() {
+                    RigError::Parse { file: source.to_owned(), reason: e.to_string() }
+                } else {
+                    invalid(problems)
+                });
+            }
+        };
         let tree = JointTree::from_urdf(&robot).map_err(invalid)?;
         let mut problems = Vec::new();
         let mut arms = Vec::new();

@@ -1,0 +1,65 @@
+//! When urdf-rs refuses a document, find which element is at fault: urdf-rs reports a missing field
+//! without saying where, so the document is walked once more with roxmltree to name the element and
+//! its line.
+
+use super::error::Problem;
+
+/// Attributes and children each element must have, as urdf-rs requires them.
+fn required(tag: &str) -> (&'static [&'static str], &'static [&'static str]) {
+    match tag {
+        "robot" => (&["name"], &[]),
+        "link" => (&["name"], &[]),
+        "joint" => (&["name", "type"], &["parent", "child"]),
+        "parent" | "child" => (&["link"], &[]),
+        "box" => (&["size"], &[]),
+        "capsule" | "cylinder" => (&["radius", "length"], &[]),
+        "sphere" => (&["radius"], &[]),
+        "mesh" => (&["filename"], &[]),
+        "mass" => (&["value"], &[]),
+        "limit" => (&["velocity"], &[]),
+        "visual" | "collision" => (&[], &["geometry"]),
+        _ => (&[], &[]),
+    }
+}
+
+/// Problems that explain why urdf-rs refused `text`; empty when none is found.
+pub fn diagnose(text: &str) -> Vec<Problem> {
+    let doc = match roxmltree::Document::parse(text) {
+        Ok(doc) => doc,
+        Err(e) => return vec![Problem::new("document", "xml", e.to_string())],
+    };
+    let mut problems = Vec::new();
+    let root = doc.root_element();
+    if root.tag_name().name() != "robot" {
+        problems.push(Problem::new("document", "root", format!("must be <robot>, found <{}>", root.tag_name().name())));
+    }
+    for node in root.descendants().filter(|n| n.is_element()) {
+        let tag = node.tag_name().name();
+        let line = doc.text_pos_at(node.range().start).row;
+        // Name the element by its own name, or by the named element it sits in.
+        let owner = node
+            .ancestors()
+            .find(|a| a.is_element() && a.attribute("name").is_some() && matches!(a.tag_name().name(), "link" | "joint"));
+        let element = match (node.attribute("name"), owner) {
+            (Some(name), _) if matches!(tag, "link" | "joint" | "robot") => format!("{tag} '{name}' (line {line})"),
+            (_, Some(o)) => format!(
+                "{} '{}' <{tag}> (line {line})",
+                o.tag_name().name(),
+                o.attribute("name").unwrap_or_default()
+            ),
+            _ => format!("<{tag}> (line {line})"),
+        };
+        let (attributes, children) = required(tag);
+        for attribute in attributes {
+            if node.attribute(*attribute).is_none() {
+                problems.push(Problem::new(&element, *attribute, "missing attribute"));
+            }
+        }
+        for child in children {
+            if !node.children().any(|c| c.is_element() && c.tag_name().name() == *child) {
+                problems.push(Problem::new(&element, *child, "missing element"));
+            }
+        }
+    }
+    problems
+}
