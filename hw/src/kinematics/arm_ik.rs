@@ -5,7 +5,7 @@
 //! its azimuth or that plus pi, then a planar two-link problem). Axes 4-6 follow from
 //! `R36 = Rz(t4) Rx(90) Rz(t5) Rx(90) Rz(t6) = Rz(t4) Ry(-t5) Rz(-t6) Rx(180)`, a ZYZ decomposition.
 
-use nalgebra::{IsometryMatrix3, Matrix3, Vector3};
+use nalgebra::{IsometryMatrix3, Vector3};
 use std::f64::consts::PI;
 
 use super::error::IkError;
@@ -35,14 +35,34 @@ impl ArmBranches {
     }
 }
 
-/// `Rz(t1) Rx(-90) Rz(t23) Rx(-90)`: the orientation of DH frame 3 for axis 1 and `t23 = q2 + q3 - pi`.
-fn base_rot_frame3(s1: f64, c1: f64, s23: f64, c23: f64) -> Matrix3<f64> {
-    // Rz(t1) Rx(-90) = [[c1, 0, -s1], [s1, 0, c1], [0, -1, 0]]
-    // Rz(t23) Rx(-90) = [[c23, 0, -s23], [s23, 0, c23], [0, -1, 0]]
-    Matrix3::new(c1 * c23, s1, -c1 * s23, s1 * c23, -c1, -s1 * s23, -s23, 0.0, -c23)
+/// Records the least-violating limit failure seen so far.
+struct FailureLog {
+    best_violation: f64,
+    failure: Option<IkError>,
+}
+
+impl FailureLog {
+    fn limit(&mut self, limits: &[JointLimit; 6], joint: usize, raw: f64) {
+        let value = wrap_angle(raw);
+        let excess = limits[joint].violation(value);
+        if excess < self.best_violation {
+            self.best_violation = excess;
+            self.failure = Some(IkError::JointLimit {
+                joint: JointId::Arm(joint as u8 + 1),
+                value_rad: value,
+                lower_rad: limits[joint].lower_rad,
+                upper_rad: limits[joint].upper_rad,
+            });
+        }
+    }
 }
 
 /// All limit-respecting branches for `base_from_flange`. `current_rad` resolves singular free angles.
+///
+/// Written for speed (about 20 transcendental calls for eight branches): sines and cosines come from
+/// ratios and angle sums rather than from `sin_cos` of computed angles, branches whose axes 1-3 break
+/// their limits are dropped before the wrist is solved, and only the two needed columns of `R36` are
+/// formed.
 pub fn arm_branches(
     geometry: &Rv6slGeometry,
     limits: &[JointLimit; 6],
@@ -50,102 +70,108 @@ pub fn arm_branches(
     current_rad: &[f64; 6],
 ) -> ArmBranches {
     let mut out = ArmBranches { joints_rad: [[0.0; 6]; 8], count: 0, failure: None };
+    let mut log = FailureLog { best_violation: f64::INFINITY, failure: None };
+    let mut reach: Option<IkError> = None;
     let g = geometry;
-    let r_flange = base_from_flange.rotation.matrix();
-    let approach = r_flange.column(2).into_owned();
-    let wrist: Vector3<f64> = base_from_flange.translation.vector - g.d6_m * approach;
+    let f = base_from_flange.rotation.matrix();
+    let wrist: Vector3<f64> = base_from_flange.translation.vector - g.d6_m * f.column(2);
 
     let l3 = g.forearm_m();
     let gamma = g.a3_m.atan2(g.d4_m);
+    let (sg, cg) = (g.a3_m / l3, g.d4_m / l3);
     let (reach_min, reach_max) = g.reach_m();
 
-    let radial = wrist.x.hypot(wrist.y);
-    let azimuth = if radial < SINGULAR_EPS { current_rad[0] } else { wrist.y.atan2(wrist.x) };
+    let radial = (wrist.x * wrist.x + wrist.y * wrist.y).sqrt();
+    let (azimuth, s1a, c1a) = if radial < SINGULAR_EPS {
+        let (s, c) = current_rad[0].sin_cos();
+        (current_rad[0], s, c)
+    } else {
+        (wrist.y.atan2(wrist.x), wrist.y / radial, wrist.x / radial)
+    };
 
-    let mut best_violation = f64::INFINITY;
-    let mut nearest_reach: Option<IkError> = None;
-
-    for t1 in [azimuth, azimuth + PI] {
-        let (s1, c1) = t1.sin_cos();
+    for (t1, s1, c1) in [(azimuth, s1a, c1a), (azimuth + PI, -s1a, -c1a)] {
+        let Some(q1) = limits[0].nearest_equivalent(t1, current_rad[0]) else {
+            log.limit(limits, 0, t1);
+            continue;
+        };
         let r = wrist.x * c1 + wrist.y * s1 - g.a1_m;
         let s = wrist.z - g.d1_m;
-        let dist = r.hypot(s);
+        let dist = (r * r + s * s).sqrt();
         let cos_elbow = (dist * dist - g.a2_m * g.a2_m - l3 * l3) / (2.0 * g.a2_m * l3);
-        if !(-1.0 - 1e-12..=1.0 + 1e-12).contains(&cos_elbow) {
-            if nearest_reach.is_none() || t1 == azimuth {
-                nearest_reach =
-                    Some(IkError::OutOfReach { distance_m: dist, min_m: reach_min, max_m: reach_max });
+        if !(-1.0 - 1e-12..=1.0 + 1e-12).contains(&cos_elbow) || dist < SINGULAR_EPS {
+            if reach.is_none() || t1 == azimuth {
+                reach = Some(IkError::OutOfReach { distance_m: dist, min_m: reach_min, max_m: reach_max });
             }
             continue;
         }
-        let elbow = cos_elbow.clamp(-1.0, 1.0).acos();
-        let heading = r.atan2(s);
-        for delta in [elbow, -elbow] {
-            let q3 = gamma + delta;
-            let q2 = heading - (l3 * delta.sin()).atan2(g.a2_m + l3 * delta.cos());
-            let (s23, c23) = (q2 + q3 - PI).sin_cos();
-            let r03 = base_rot_frame3(s1, c1, s23, c23);
-            // M = R36 Rx(180) = Rz(t4) Ry(-t5) Rz(-t6): negate columns y and z of R36.
-            let r36 = r03.transpose() * r_flange;
-            let m = Matrix3::from_columns(&[
-                r36.column(0).into_owned(),
-                -r36.column(1),
-                -r36.column(2),
-            ]);
-            let sb = m[(0, 2)].hypot(m[(1, 2)]);
-            let b = sb.atan2(m[(2, 2)]);
+        let cd = cos_elbow.clamp(-1.0, 1.0);
+        let sin_elbow = (1.0 - cd * cd).max(0.0).sqrt();
+        let elbow = sin_elbow.atan2(cd);
+        // heading as a unit complex number (cos, sin); the law of cosines makes |k| = dist below.
+        let (ch, sh) = (s / dist, r / dist);
+        for sign in [1.0, -1.0] {
+            let (delta, sd) = (sign * elbow, sign * sin_elbow);
+            let (ky, kx) = (l3 * sd, g.a2_m + l3 * cd);
+            // q2 = heading - angle(k), as a unit complex number, then one atan2.
+            let (ck, sk) = (kx / dist, ky / dist);
+            let (c_a, s_a) = (ch * ck + sh * sk, sh * ck - ch * sk);
+            let q2_raw = s_a.atan2(c_a);
+            let q3_raw = gamma + delta;
+            let Some(q2) = limits[1].nearest_equivalent(q2_raw, current_rad[1]) else {
+                log.limit(limits, 1, q2_raw);
+                continue;
+            };
+            let Some(q3) = limits[2].nearest_equivalent(q3_raw, current_rad[2]) else {
+                log.limit(limits, 2, q3_raw);
+                continue;
+            };
+            // q2 + q3 = (heading - angle(k)) + (gamma + delta), summed as unit complex numbers.
+            let (c_b, s_b) = (cg * cd - sg * sd, sg * cd + cg * sd); // gamma + delta
+            let (c_sum, s_sum) = (c_a * c_b - s_a * s_b, s_a * c_b + c_a * s_b);
+            // t23 = q2 + q3 - pi
+            let (s23, c23) = (-s_sum, -c_sum);
+            // R03 = Rz(t1) Rx(-90) Rz(t23) Rx(-90), by columns.
+            let r0 = Vector3::new(c1 * c23, s1 * c23, -s23);
+            let r1 = Vector3::new(s1, -c1, 0.0);
+            let r2 = Vector3::new(-c1 * s23, -s1 * s23, -c23);
+            // M = R36 Rx(180): columns 0 and 2 of R36 = R03^T F, the second negated.
+            let f0 = f.column(0);
+            let f2 = f.column(2);
+            let (m00, m10, m20) = (r0.dot(&f0), r1.dot(&f0), r2.dot(&f0));
+            let (m02, m12, m22) = (-r0.dot(&f2), -r1.dot(&f2), -r2.dot(&f2));
+            let sb = (m02 * m02 + m12 * m12).sqrt();
+            let b = sb.atan2(m22);
             // Axis 4 from the approach direction; when axes 4 and 6 are (nearly) in line it is free
             // and stays where it is. Axis 6 then comes from what is left, `Ry(b)^T Rz(a)^T M`, so
             // any error in axis 4 is absorbed rather than doubled.
-            let a = if sb < SINGULAR_EPS { current_rad[3] } else { m[(1, 2)].atan2(m[(0, 2)]) };
-            let (sa, ca) = a.sin_cos();
-            let (sbb, cbb) = b.sin_cos();
-            let n00 = cbb * (ca * m[(0, 0)] + sa * m[(1, 0)]) - sbb * m[(2, 0)];
-            let n10 = -sa * m[(0, 0)] + ca * m[(1, 0)];
+            let (a, sa, ca) = if sb < SINGULAR_EPS {
+                let (sa, ca) = current_rad[3].sin_cos();
+                (current_rad[3], sa, ca)
+            } else {
+                (m12.atan2(m02), m12 / sb, m02 / sb)
+            };
+            let n00 = m22 * (ca * m00 + sa * m10) - sb * m20;
+            let n10 = -sa * m00 + ca * m10;
             let c = n10.atan2(n00);
             // The flipped wrist: Rz(a + pi) Ry(-b) Rz(c + pi) is the same rotation.
-            let wrist_solutions = [(a, b, c), (a + PI, -b, c + PI)];
             let n_wrist = if sb < SINGULAR_EPS { 1 } else { 2 };
-            for &(a, b, c) in &wrist_solutions[..n_wrist] {
-                let raw = [t1, q2, q3, a, -b - PI, -c];
-                let mut q = [0.0; 6];
-                let mut ok = true;
-                let mut violation = 0.0;
-                let mut worst: Option<(usize, f64, f64)> = None;
-                for j in 0..5 {
-                    match limits[j].nearest_equivalent(raw[j], current_rad[j]) {
-                        Some(v) => q[j] = v,
-                        None => {
-                            ok = false;
-                            let v = wrap_angle(raw[j]);
-                            let excess = limits[j].violation(v);
-                            violation += excess;
-                            if worst.is_none_or(|(_, _, e)| excess > e) {
-                                worst = Some((j, v, excess));
-                            }
-                        }
-                    }
-                }
-                q[5] = wrap_angle(raw[5]);
-                if ok {
-                    out.joints_rad[out.count] = q;
-                    out.count += 1;
-                } else if let Some((j, v, _)) = worst
-                    && violation < best_violation
-                {
-                    best_violation = violation;
-                    out.failure = Some(IkError::JointLimit {
-                        joint: JointId::Arm(j as u8 + 1),
-                        value_rad: v,
-                        lower_rad: limits[j].lower_rad,
-                        upper_rad: limits[j].upper_rad,
-                    });
-                }
+            for &(a, b, c) in [(a, b, c), (a + PI, -b, c + PI)].iter().take(n_wrist) {
+                let q5_raw = -b - PI;
+                let Some(q4) = limits[3].nearest_equivalent(a, current_rad[3]) else {
+                    log.limit(limits, 3, a);
+                    continue;
+                };
+                let Some(q5) = limits[4].nearest_equivalent(q5_raw, current_rad[4]) else {
+                    log.limit(limits, 4, q5_raw);
+                    continue;
+                };
+                out.joints_rad[out.count] = [q1, q2, q3, q4, q5, wrap_angle(-c)];
+                out.count += 1;
             }
         }
     }
-    if out.count == 0 && out.failure.is_none() {
-        out.failure = nearest_reach;
+    if out.count == 0 {
+        out.failure = log.failure.or(reach);
     }
     out
 }

@@ -62,27 +62,36 @@ impl JointLimit {
     }
 
     /// Among the angles `q_rad + 2 pi k`, the one inside the limit nearest to `near_rad`, if any.
+    /// (Limits up to two turns wide, as on this rig: candidates further out are not looked at.)
+    #[inline]
     pub fn nearest_equivalent(&self, q_rad: f64, near_rad: f64) -> Option<f64> {
-        let mut best: Option<f64> = None;
-        // Lift q to the turn nearest `near`, then look one turn either side; limits wider than
-        // three turns do not occur on this rig.
-        let base = q_rad + TAU * ((near_rad - q_rad) / TAU).round();
-        for k in -2..=2 {
-            let candidate = base + TAU * f64::from(k);
-            if self.contains(candidate) {
-                let c = candidate.clamp(self.lower_rad, self.upper_rad);
-                if best.is_none_or(|b| (c - near_rad).abs() < (b - near_rad).abs()) {
-                    best = Some(c);
-                }
-            }
+        // The equivalent nearest `near` is the answer whenever it is inside the limit.
+        let base = q_rad + TAU * round_small((near_rad - q_rad) / TAU);
+        if self.contains(base) {
+            return Some(base.clamp(self.lower_rad, self.upper_rad));
         }
-        best
+        let (up, down) = (base + TAU, base - TAU);
+        let pick = match (self.contains(up), self.contains(down)) {
+            (true, true) => Some(if (up - near_rad).abs() <= (down - near_rad).abs() { up } else { down }),
+            (true, false) => Some(up),
+            (false, true) => Some(down),
+            (false, false) => None,
+        };
+        pick.map(|q| q.clamp(self.lower_rad, self.upper_rad))
     }
 }
 
+/// Rounds to the nearest integer, for the small values (turn counts) of the kinematics: a cast the
+/// compiler inlines, where `f64::round` is a library call on baseline x86-64. Exact for |x| < 2^52.
+#[inline]
+pub fn round_small(x: f64) -> f64 {
+    (x + 0.5_f64.copysign(x)) as i64 as f64
+}
+
 /// Wraps an angle into (-pi, pi].
+#[inline]
 pub fn wrap_angle(q_rad: f64) -> f64 {
-    let w = q_rad - TAU * (q_rad / TAU).round();
+    let w = q_rad - TAU * round_small(q_rad / TAU);
     if w <= -std::f64::consts::PI { w + TAU } else { w }
 }
 
@@ -108,6 +117,13 @@ mod tests {
         let narrow = JointLimit::new(-1.0, 1.0, 1.0);
         assert_eq!(narrow.nearest_equivalent(2.0, 0.0), None);
         assert_eq!(narrow.nearest_equivalent(-1.0 - 1e-13, 0.0), Some(-1.0));
+    }
+
+    #[test]
+    fn round_small_matches_round() {
+        for x in [-2.5, -1.5, -0.6, -0.4, 0.0, 0.4, 0.5, 0.6, 1.49, 2.5, 1e9 + 0.3] {
+            assert_eq!(round_small(x), f64::round(x), "{x}");
+        }
     }
 
     #[test]

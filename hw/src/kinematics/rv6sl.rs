@@ -93,7 +93,7 @@ impl Rv6slGeometry {
 
     /// Elbow-to-wrist-centre distance, m.
     pub fn forearm_m(&self) -> f64 {
-        self.a3_m.hypot(self.d4_m)
+        (self.a3_m * self.a3_m + self.d4_m * self.d4_m).sqrt()
     }
 
     /// Shortest and longest shoulder-to-wrist-centre distances, m.

@@ -17,12 +17,12 @@
 //! (a straight wrist) the yaw axis keeps the current one. Everything is allocation-free.
 
 use nalgebra::{IsometryMatrix3, Matrix3, Rotation3, Translation3, Vector3};
-use std::f64::consts::TAU;
+use std::f64::consts::{PI, TAU};
 
 use super::arm_ik::{arm_branches, joint_distance_sq};
 use super::error::IkError;
 use super::joints::{ArmJoints, ToolJoints};
-use super::limits::{JointId, JointLimit};
+use super::limits::{JointId, JointLimit, wrap_angle};
 use super::model::ArmModel;
 use super::tool::{EndoscopeGeometry, InstrumentGeometry, InstrumentLimits, MIN_TROCAR_DISTANCE_M, Tool};
 
@@ -73,21 +73,29 @@ pub fn split_shaft_rotation(
     q6_now: f64,
     roll_now: f64,
 ) -> Option<(f64, f64, f64)> {
-    let mut best: Option<(f64, f64, f64)> = None;
-    let base = total_rad - q6_now - roll_now;
-    let k0 = (-base / TAU).round();
-    for k in -3..=3 {
-        // Move both joints by (t, e - t) from where they are; e is the change of the sum.
-        let e = base + TAU * (k0 + f64::from(k));
+    // Move both joints by (t, e - t) from where they are; e, the change of the sum, is `base` plus
+    // whole turns. Unconstrained, the best t is e / 2 at cost e^2 / 2, so the turn giving the smallest
+    // |e| wins outright when its optimum is feasible: every other turn costs at least pi^2 / 2 more.
+    let base = wrap_angle(total_rad - q6_now - roll_now);
+    let candidate = |e: f64| {
         let t_lo = (q6_limit.lower_rad - q6_now).max(e - (roll_limit.upper_rad - roll_now));
         let t_hi = (q6_limit.upper_rad - q6_now).min(e - (roll_limit.lower_rad - roll_now));
-        if t_lo > t_hi {
-            continue;
-        }
-        let t = (0.5 * e).clamp(t_lo, t_hi);
-        let cost = t * t + (e - t) * (e - t);
-        if best.is_none_or(|(_, _, c)| cost < c) {
-            best = Some((q6_now + t, roll_now + (e - t), cost));
+        (t_lo <= t_hi).then(|| {
+            let t = (0.5 * e).clamp(t_lo, t_hi);
+            (q6_now + t, roll_now + (e - t), t * t + (e - t) * (e - t))
+        })
+    };
+    if let Some(best) = candidate(base)
+        && (best.2 - 0.5 * base * base).abs() <= 1e-12
+    {
+        return Some(best);
+    }
+    let mut best: Option<(f64, f64, f64)> = None;
+    for k in -3..=3 {
+        if let Some(c) = candidate(base + TAU * f64::from(k))
+            && best.is_none_or(|(_, _, b)| c.2 < b)
+        {
+            best = Some(c);
         }
     }
     best
@@ -121,8 +129,8 @@ impl ArmModel {
             }
             Tool::Instrument { geometry, limits } => (geometry, limits),
         };
-        let solve = |jaw: &Vector3<f64>, yaw_axis: &Vector3<f64>| {
-            self.solve_instrument(geometry, limits, &p, jaw, yaw_axis, &c, current)
+        let solve = |jaw: &Vector3<f64>, yaw_axis: &Vector3<f64>, either_sign: bool| {
+            self.solve_instrument(geometry, limits, &p, jaw, yaw_axis, either_sign, &c, current)
         };
         match target.orientation {
             TipOrientation::Frame(rotation) => {
@@ -130,11 +138,11 @@ impl ArmModel {
                 if !m.iter().all(|x| x.is_finite()) {
                     return Err(IkError::NonFiniteTarget);
                 }
-                solve(&m.column(2).into_owned(), &m.column(1).into_owned()).map(|(q, _)| q)
+                solve(&m.column(2).into_owned(), &m.column(1).into_owned(), false)
             }
             TipOrientation::AlongShaft => {
                 let jaw = to_tip / distance_m;
-                solve(&jaw, &self.current_yaw_axis(&jaw, current)).map(|(q, _)| q)
+                solve(&jaw, &self.current_yaw_axis(&jaw, current), false)
             }
             TipOrientation::JawDirection(direction) => {
                 if !is_finite(&direction) {
@@ -148,14 +156,9 @@ impl ArmModel {
                 let normal = jaw.cross(&to_tip);
                 let n = normal.norm();
                 if n <= STRAIGHT_WRIST_SIN * distance_m {
-                    return solve(&jaw, &self.current_yaw_axis(&jaw, current)).map(|(q, _)| q);
+                    return solve(&jaw, &self.current_yaw_axis(&jaw, current), false);
                 }
-                let yaw_axis = normal / n;
-                match (solve(&jaw, &yaw_axis), solve(&jaw, &-yaw_axis)) {
-                    (Ok(a), Ok(b)) => Ok(if a.1 <= b.1 { a.0 } else { b.0 }),
-                    (Ok(a), Err(_)) | (Err(_), Ok(a)) => Ok(a.0),
-                    (Err(e), Err(_)) => Err(e),
-                }
+                solve(&jaw, &(normal / n), true)
             }
         }
     }
@@ -168,8 +171,9 @@ impl ArmModel {
         if n > 1e-6 { perp / n } else { any_perpendicular(jaw) }
     }
 
-    /// Decoupling and arm branches for a full jaw frame; returns the joints and their squared distance
-    /// from `current`.
+    /// Decoupling and arm branches for a jaw frame (jaw direction and yaw axis), the solution nearest
+    /// to `current`. With `either_sign` the opposite yaw axis is allowed too: it is the same shaft and
+    /// arm branch with pitch and yaw negated and the roll turned by pi, so it costs no second solve.
     #[allow(clippy::too_many_arguments)]
     fn solve_instrument(
         &self,
@@ -178,9 +182,10 @@ impl ArmModel {
         tip: &Vector3<f64>,
         jaw: &Vector3<f64>,
         yaw_axis: &Vector3<f64>,
+        either_sign: bool,
         trocar: &Vector3<f64>,
         current: &ArmJoints,
-    ) -> Result<(ArmJoints, f64), IkError> {
+    ) -> Result<ArmJoints, IkError> {
         let yaw_point = tip - geometry.jaw_m * jaw;
         let d = yaw_point - trocar;
         let d_perp = d - yaw_axis * yaw_axis.dot(&d);
@@ -207,11 +212,16 @@ impl ArmModel {
         let y_roll = shaft.cross(&x_roll);
         let pitch = (-wrist.dot(&y_roll)).atan2(wrist.dot(&shaft));
         let yaw = jaw.dot(&x_roll).atan2(jaw.dot(&wrist));
-        if !limits.pitch.contains(pitch) {
-            return Err(limit_error(JointId::WristPitch, pitch, &limits.pitch));
-        }
-        if !limits.yaw.contains(yaw) {
-            return Err(limit_error(JointId::WristYaw, yaw, &limits.yaw));
+        // (pitch, yaw, extra turn about the shaft) for the asked yaw axis and, maybe, its opposite.
+        let wrists = [(pitch, yaw, 0.0), (-pitch, -yaw, PI)];
+        let wrist_ok = |(p, y, _): &(f64, f64, f64)| limits.pitch.contains(*p) && limits.yaw.contains(*y);
+        let n_wrists = if either_sign { 2 } else { 1 };
+        if !wrists[..n_wrists].iter().any(wrist_ok) {
+            return Err(if limits.pitch.contains(pitch) {
+                limit_error(JointId::WristYaw, yaw, &limits.yaw)
+            } else {
+                limit_error(JointId::WristPitch, pitch, &limits.pitch)
+            });
         }
         // The flange as it would be with zero roll.
         let flange_m = pitch_point - (geometry.coupling_m + geometry.shaft_m) * shaft;
@@ -224,24 +234,29 @@ impl ArmModel {
         let now = current.tool;
         let mut best: Option<(ArmJoints, f64)> = None;
         for branch in branches.as_slice() {
-            let Some((q6, roll, split_cost)) =
-                split_shaft_rotation(branch[5], &self.limits[5], &limits.roll, current.arm_rad[5], now.roll_rad)
-            else {
-                continue;
-            };
             let mut arm = *branch;
             arm[5] = current.arm_rad[5];
-            let cost = joint_distance_sq(&arm, &current.arm_rad)
-                + split_cost
-                + (pitch - now.pitch_rad).powi(2)
-                + (yaw - now.yaw_rad).powi(2);
-            arm[5] = q6;
-            if best.as_ref().is_none_or(|(_, c)| cost < *c) {
-                let tool = ToolJoints { roll_rad: roll, pitch_rad: pitch, yaw_rad: yaw, jaw_rad: now.jaw_rad };
-                best = Some((ArmJoints { arm_rad: arm, tool }, cost));
+            let arm_cost = joint_distance_sq(&arm, &current.arm_rad);
+            for (pitch, yaw, turn) in wrists[..n_wrists].iter().filter(|w| wrist_ok(w)) {
+                let Some((q6, roll, split_cost)) = split_shaft_rotation(
+                    branch[5] + turn,
+                    &self.limits[5],
+                    &limits.roll,
+                    current.arm_rad[5],
+                    now.roll_rad,
+                ) else {
+                    continue;
+                };
+                let cost =
+                    arm_cost + split_cost + (pitch - now.pitch_rad).powi(2) + (yaw - now.yaw_rad).powi(2);
+                if best.as_ref().is_none_or(|(_, c)| cost < *c) {
+                    arm[5] = q6;
+                    let tool = ToolJoints { roll_rad: roll, pitch_rad: *pitch, yaw_rad: *yaw, jaw_rad: now.jaw_rad };
+                    best = Some((ArmJoints { arm_rad: arm, tool }, cost));
+                }
             }
         }
-        best.ok_or_else(|| {
+        best.map(|(joints, _)| joints).ok_or_else(|| {
             branches.failure.unwrap_or(limit_error(JointId::Roll, now.roll_rad, &limits.roll))
         })
     }

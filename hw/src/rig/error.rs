@@ -30,12 +30,12 @@ impl fmt::Display for Problem {
 #[derive(Debug, thiserror::Error)]
 pub enum RigError {
     /// The file could not be read.
-    #[error("{file}: cannot read: {source}")]
+    #[error("{file}: cannot read: {error}")]
     Read {
         /// The file.
         file: String,
-        /// The I/O error.
-        source: std::io::Error,
+        /// The I/O error (part of this message, so not chained as a source).
+        error: std::io::Error,
     },
     /// The file is not a URDF document urdf-rs can parse.
     #[error("{file}: not a valid URDF document: {reason}")]

@@ -85,7 +85,7 @@ impl Rig {
     /// Reads a rig from a URDF file.
     pub fn from_file(path: &Path) -> Result<Self, RigError> {
         let file = path.display().to_string();
-        let text = std::fs::read_to_string(path).map_err(|source| RigError::Read { file: file.clone(), source })?;
+        let text = std::fs::read_to_string(path).map_err(|error| RigError::Read { file: file.clone(), error })?;
         Self::from_urdf_str(&text, &file)
     }
 

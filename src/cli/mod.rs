@@ -1,0 +1,32 @@
+//! Command-line parsing and dispatch; each command group lives in its own file.
+
+mod numbers;
+mod output;
+mod rig;
+
+use std::process::ExitCode;
+
+use clap::{Parser, Subcommand};
+
+/// knotlab: surgical knot tying learned from one demonstration, in simulation and on robots.
+#[derive(Debug, Parser)]
+#[command(name = "knotlab", version, about)]
+pub struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Debug, Subcommand)]
+enum Command {
+    /// The robots: validate the rig, forward and inverse kinematics.
+    #[command(subcommand)]
+    Rig(rig::RigCommand),
+}
+
+/// Runs a parsed command line.
+pub fn run(cli: Cli) -> anyhow::Result<ExitCode> {
+    let mut out = output::Output::stdout();
+    match cli.command {
+        Command::Rig(command) => rig::run(command, &mut out),
+    }
+}
