@@ -26,11 +26,16 @@ fn cases(model: &ArmModel, name: ArmName, jaw_only: bool, rng: &mut ChaCha8Rng) 
     let draw = |rng: &mut ChaCha8Rng, lo: f64, hi: f64| rng.random_range(lo..=hi);
     (0..TARGETS)
         .map(|_| {
-            let arm_rad = std::array::from_fn(|i| draw(rng, model.limits[i].lower_rad, model.limits[i].upper_rad));
+            let arm_rad =
+                std::array::from_fn(|i| draw(rng, model.limits[i].lower_rad, model.limits[i].upper_rad));
             let tool = match &model.tool {
                 Tool::Instrument { limits, .. } => ToolJoints {
                     roll_rad: draw(rng, limits.roll.lower_rad, limits.roll.upper_rad),
-                    pitch_rad: if jaw_only { 0.0 } else { draw(rng, limits.pitch.lower_rad, limits.pitch.upper_rad) },
+                    pitch_rad: if jaw_only {
+                        0.0
+                    } else {
+                        draw(rng, limits.pitch.lower_rad, limits.pitch.upper_rad)
+                    },
                     yaw_rad: draw(rng, limits.yaw.lower_rad, limits.yaw.upper_rad),
                     jaw_rad: 0.0,
                 },
@@ -49,7 +54,11 @@ fn cases(model: &ArmModel, name: ArmName, jaw_only: bool, rng: &mut ChaCha8Rng) 
             } else {
                 TipOrientation::Frame(tip.rotation)
             };
-            Case { target: TipTarget { world_position_m: tip.translation.vector, orientation }, trocar, seed: name.ready_joints() }
+            Case {
+                target: TipTarget { world_position_m: tip.translation.vector, orientation },
+                trocar,
+                seed: name.ready_joints(),
+            }
         })
         .collect()
 }
@@ -64,7 +73,11 @@ fn time(model: &ArmModel, cases: &[Case]) -> (f64, f64, f64, usize) {
         .map(|_| {
             let start = Instant::now();
             for c in cases {
-                let _ = black_box(model.solve_tip(black_box(&c.target), black_box(&c.trocar), black_box(&c.seed)));
+                let _ = black_box(model.solve_tip(
+                    black_box(&c.target),
+                    black_box(&c.trocar),
+                    black_box(&c.seed),
+                ));
             }
             start.elapsed().as_nanos() as f64 / cases.len() as f64
         })
@@ -80,8 +93,11 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     println!("trocar-constrained IK, {TARGETS} reachable targets per row, median over {BATCHES} batches");
     for name in ArmName::ALL {
         let model = rig.arm(name).model;
-        let kinds: &[(&str, bool)] =
-            if name.carries_instrument() { &[("tip frame", false), ("jaw direction", true)] } else { &[("tip position", true)] };
+        let kinds: &[(&str, bool)] = if name.carries_instrument() {
+            &[("tip frame", false), ("jaw direction", true)]
+        } else {
+            &[("tip position", true)]
+        };
         for (kind, jaw_only) in kinds {
             let mut cs = cases(&model, name, *jaw_only, &mut rng);
             if !name.carries_instrument() {

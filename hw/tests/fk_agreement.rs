@@ -3,8 +3,8 @@
 
 mod common;
 
-use knotlab_hw::kinematics::residuals::rotation_distance_rad;
 use knotlab_hw::kinematics::ArmJoints;
+use knotlab_hw::kinematics::residuals::rotation_distance_rad;
 use knotlab_hw::rig::{ArmName, Rig};
 use nalgebra::{IsometryMatrix3, Rotation3, Vector3};
 use rand::{Rng, SeedableRng};
@@ -67,7 +67,10 @@ fn a_urdf_that_drifts_from_the_model_is_refused() {
     let end = origin_at + text[origin_at..].find("\" rpy").unwrap();
     let drifted = format!("{}xyz=\"0.0 -0.381 0.0{}", &text[..origin_at], &text[end..]);
     let err = Rig::from_urdf_str(&drifted, "drifted.urdf").unwrap_err().to_string();
-    assert!(err.contains("drifted.urdf") && err.contains("arm 'right'") && err.contains("kinematics"), "{err}");
+    assert!(
+        err.contains("drifted.urdf") && err.contains("arm 'right'") && err.contains("kinematics"),
+        "{err}"
+    );
     assert!(!err.contains("arm 'left'"), "only the drifted arm is named: {err}");
 }
 

@@ -35,15 +35,35 @@ fn full_frame_targets_round_trip_on_every_instrument_arm() {
                     .unwrap_or_else(|e| panic!("{name} target {i}: {e} (joints {:?})", truth.to_array()));
                 let r = IkResiduals::measure(&model, &solved, &target, &trocar);
                 assert!(r.tip_error_m < TOL, "{name} target {i}: tip error {} m", r.tip_error_m);
-                assert!(r.orientation_error_rad < TOL, "{name} target {i}: orientation error {} rad", r.orientation_error_rad);
-                assert!(r.trocar_distance_m < TOL, "{name} target {i}: shaft {} m from trocar", r.trocar_distance_m);
-                assert!(common::inside_limits(&model, &solved), "{name} target {i}: {:?} outside limits", solved.to_array());
+                assert!(
+                    r.orientation_error_rad < TOL,
+                    "{name} target {i}: orientation error {} rad",
+                    r.orientation_error_rad
+                );
+                assert!(
+                    r.trocar_distance_m < TOL,
+                    "{name} target {i}: shaft {} m from trocar",
+                    r.trocar_distance_m
+                );
+                assert!(
+                    common::inside_limits(&model, &solved),
+                    "{name} target {i}: {:?} outside limits",
+                    solved.to_array()
+                );
                 worst.tip_error_m = worst.tip_error_m.max(r.tip_error_m);
                 worst.orientation_error_rad = worst.orientation_error_rad.max(r.orientation_error_rad);
                 worst.trocar_distance_m = worst.trocar_distance_m.max(r.trocar_distance_m);
                 if seed == truth {
-                    let gap = solved.to_array().iter().zip(truth.to_array()).map(|(a, b)| (a - b).abs()).fold(0.0, f64::max);
-                    assert!(gap < TOL, "{name} target {i}: seeded with the true joints, returned another branch (gap {gap} rad)");
+                    let gap = solved
+                        .to_array()
+                        .iter()
+                        .zip(truth.to_array())
+                        .map(|(a, b)| (a - b).abs())
+                        .fold(0.0, f64::max);
+                    assert!(
+                        gap < TOL,
+                        "{name} target {i}: seeded with the true joints, returned another branch (gap {gap} rad)"
+                    );
                     same_branch += 1;
                 }
             }
@@ -73,12 +93,18 @@ fn jaw_direction_targets_round_trip() {
             let trocar = common::trocar_on_shaft(&mut rng, &model, &truth);
             let tip = model.world_from_tip(&truth);
             let jaw = tip.rotation * nalgebra::Vector3::z();
-            let target = TipTarget { world_position_m: tip.translation.vector, orientation: TipOrientation::JawDirection(jaw) };
+            let target = TipTarget {
+                world_position_m: tip.translation.vector,
+                orientation: TipOrientation::JawDirection(jaw),
+            };
             let solved = model
                 .solve_tip(&target, &trocar, &truth)
                 .unwrap_or_else(|e| panic!("{name} target {i}: {e}"));
             let r = IkResiduals::measure(&model, &solved, &target, &trocar);
-            assert!(r.tip_error_m < TOL && r.orientation_error_rad < TOL && r.trocar_distance_m < TOL, "{name} {i}: {r:?}");
+            assert!(
+                r.tip_error_m < TOL && r.orientation_error_rad < TOL && r.trocar_distance_m < TOL,
+                "{name} {i}: {r:?}"
+            );
             assert!(common::inside_limits(&model, &solved));
             reached += 1;
         }
@@ -101,7 +127,10 @@ fn endoscope_tip_targets_round_trip() {
         };
         let solved = model.solve_tip(&target, &trocar, &truth).unwrap_or_else(|e| panic!("camera {i}: {e}"));
         let r = IkResiduals::measure(&model, &solved, &target, &trocar);
-        assert!(r.tip_error_m < TOL && r.orientation_error_rad < TOL && r.trocar_distance_m < TOL, "camera {i}: {r:?}");
+        assert!(
+            r.tip_error_m < TOL && r.orientation_error_rad < TOL && r.trocar_distance_m < TOL,
+            "camera {i}: {r:?}"
+        );
         assert!(common::inside_limits(&model, &solved));
     }
 }
@@ -117,9 +146,18 @@ fn workspace_around_the_site_is_mostly_reachable() {
         let mut rng = ChaCha8Rng::seed_from_u64(5 + name as u64);
         let (mut ok, total) = (0, 2_000);
         for _ in 0..total {
-            let p = nalgebra::Vector3::new(rng.random_range(-0.06..0.06), rng.random_range(-0.06..0.06), rng.random_range(0.90..0.98));
+            let p = nalgebra::Vector3::new(
+                rng.random_range(-0.06..0.06),
+                rng.random_range(-0.06..0.06),
+                rng.random_range(0.90..0.98),
+            );
             let to_site = p - trocar;
-            let jaw = to_site.normalize() + nalgebra::Vector3::new(rng.random_range(-0.5..0.5), rng.random_range(-0.5..0.5), rng.random_range(-0.5..0.5));
+            let jaw = to_site.normalize()
+                + nalgebra::Vector3::new(
+                    rng.random_range(-0.5..0.5),
+                    rng.random_range(-0.5..0.5),
+                    rng.random_range(-0.5..0.5),
+                );
             let target = TipTarget { world_position_m: p, orientation: TipOrientation::JawDirection(jaw) };
             if let Ok(solved) = model.solve_tip(&target, &trocar, &name.ready_joints()) {
                 let r = IkResiduals::measure(&model, &solved, &target, &trocar);

@@ -1,6 +1,6 @@
 //! Broken rigs give errors that name the file, the element, the field and the reason; never a panic.
 
-use knotlab_hw::rig::{Rig, RigError, DEFAULT_URDF};
+use knotlab_hw::rig::{DEFAULT_URDF, Rig, RigError};
 
 /// The shipped URDF with one substring replaced (which must occur).
 fn broken(from: &str, to: &str) -> String {
@@ -27,7 +27,10 @@ fn a_joint_naming_a_missing_parent_link_is_named() {
     let text = broken("<parent link=\"left_link1\"/>", "<parent link=\"left_link9\"/>");
     let err = load_err(&text);
     assert!(err.starts_with("broken.urdf:"), "{err}");
-    assert!(err.contains("joint 'left_joint2', parent: names link 'left_link9', which does not exist"), "{err}");
+    assert!(
+        err.contains("joint 'left_joint2', parent: names link 'left_link9', which does not exist"),
+        "{err}"
+    );
 }
 
 #[test]
@@ -55,7 +58,8 @@ fn malformed_xml_gives_the_position() {
 
 #[test]
 fn a_limit_with_lower_above_upper_is_named() {
-    let text = broken("lower=\"-2.0943951023931953\" upper=\"2.0943951023931953\"", "lower=\"2.5\" upper=\"1.0\"");
+    let text =
+        broken("lower=\"-2.0943951023931953\" upper=\"2.0943951023931953\"", "lower=\"2.5\" upper=\"1.0\"");
     let err = load_err(&text);
     assert!(err.contains("joint 'left_joint5', limit: lower 2.5 must be below upper 1"), "{err}");
 }
@@ -88,7 +92,10 @@ fn an_unsupported_collision_shape_is_named() {
 #[test]
 fn a_cycle_is_refused() {
     // Hang the gantry from the left arm's tip: the gantry gets two parents.
-    let text = broken("<parent link=\"world\"/>\n    <child link=\"gantry\"/>", "<parent link=\"left_tip\"/>\n    <child link=\"gantry\"/>");
+    let text = broken(
+        "<parent link=\"world\"/>\n    <child link=\"gantry\"/>",
+        "<parent link=\"left_tip\"/>\n    <child link=\"gantry\"/>",
+    );
     let err = load_err(&text);
     assert!(err.contains("cycle") || err.contains("more than one root"), "{err}");
 }
@@ -102,8 +109,15 @@ fn an_unreadable_file_names_the_file() {
 
 #[test]
 fn garbage_is_a_parse_error() {
-    for text in ["", "not xml", "<robot name=\"x\"><link name=\"a\"><collision><geometry><box size=\"1 1\"/></geometry></collision></link></robot>", "<urdf/>"] {
-        assert!(Rig::from_urdf_str(text, "junk.urdf").unwrap_err().to_string().starts_with("junk.urdf: "), "{text}");
+    for text in [
+        "",
+        "not xml",
+        "<robot name=\"x\"><link name=\"a\"><collision><geometry><box size=\"1 1\"/></geometry></collision></link></robot>",
+        "<urdf/>",
+    ] {
+        assert!(
+            Rig::from_urdf_str(text, "junk.urdf").unwrap_err().to_string().starts_with("junk.urdf: "),
+            "{text}"
+        );
     }
 }
-

@@ -165,7 +165,18 @@ fn check(common: &Common, out: &mut Output) -> anyhow::Result<ExitCode> {
         .arms
         .iter()
         .map(|arm| {
-            let names = ["joint1", "joint2", "joint3", "joint4", "joint5", "joint6", "roll", "wrist_pitch", "wrist_yaw", "jaw"];
+            let names = [
+                "joint1",
+                "joint2",
+                "joint3",
+                "joint4",
+                "joint5",
+                "joint6",
+                "roll",
+                "wrist_pitch",
+                "wrist_yaw",
+                "jaw",
+            ];
             let joints = arm
                 .tree_joints
                 .iter()
@@ -173,7 +184,9 @@ fn check(common: &Common, out: &mut Output) -> anyhow::Result<ExitCode> {
                 .zip(names)
                 .map(|(&j, name)| (name, &rig.tree.joints[j].name, rig.tree.joints[j].limit))
                 .chain(match &arm.model.tool {
-                    Tool::Instrument { limits, .. } => Some(("jaw", &rig.tree.joints[arm.tree_joints[9]].name, Some(limits.jaw))),
+                    Tool::Instrument { limits, .. } => {
+                        Some(("jaw", &rig.tree.joints[arm.tree_joints[9]].name, Some(limits.jaw)))
+                    }
                     Tool::Endoscope { .. } => None,
                 })
                 .filter_map(|(name, urdf, limit)| {
@@ -218,7 +231,8 @@ fn check(common: &Common, out: &mut Output) -> anyhow::Result<ExitCode> {
         let p = arm.world_from_base.position_m;
         outln!(out, "\narm {} ({}), base at ({:.3}, {:.3}, {:.3}) m", arm.name, arm.tool, p[0], p[1], p[2]);
         for j in &arm.joints {
-            outln!(out, 
+            outln!(
+                out,
                 "  {:<12} {:<20} {:>8.1} .. {:>6.1} deg  {:>6.1} deg/s",
                 j.name,
                 j.urdf_joint,
@@ -228,7 +242,8 @@ fn check(common: &Common, out: &mut Output) -> anyhow::Result<ExitCode> {
             );
         }
     }
-    outln!(out, 
+    outln!(
+        out,
         "\nclosed-form model vs URDF walk: worst {:.1e} (m or rad) over {SAMPLES} joint vectors per arm",
         report.model_agreement
     );
@@ -239,7 +254,9 @@ fn joints_from(values: &[f64], arm: ArmName, what: &str) -> anyhow::Result<ArmJo
     match (values.len(), arm.carries_instrument()) {
         (6, _) => Ok(ArmJoints::from_arm(std::array::from_fn(|i| values[i]))),
         (10, true) => Ok(ArmJoints::from_array(std::array::from_fn(|i| values[i]))),
-        (n, true) => anyhow::bail!("{what}: the {arm} arm takes 6 values (axes 1-6) or 10 (with roll, pitch, yaw, jaw), got {n}"),
+        (n, true) => anyhow::bail!(
+            "{what}: the {arm} arm takes 6 values (axes 1-6) or 10 (with roll, pitch, yaw, jaw), got {n}"
+        ),
         (n, false) => anyhow::bail!("{what}: the camera arm takes 6 values (axes 1-6), got {n}"),
     }
 }
@@ -283,7 +300,17 @@ fn fk(common: &Common, arm: ArmName, values: &[f64], out: &mut Output) -> anyhow
         print_json(out, &report)?;
         return Ok(ExitCode::SUCCESS);
     }
-    outln!(out, "{:<24} {:>9} {:>9} {:>9}   {:>8} {:>8} {:>8}", "link", "x m", "y m", "z m", "roll", "pitch", "yaw");
+    outln!(
+        out,
+        "{:<24} {:>9} {:>9} {:>9}   {:>8} {:>8} {:>8}",
+        "link",
+        "x m",
+        "y m",
+        "z m",
+        "roll",
+        "pitch",
+        "yaw"
+    );
     let row = |out: &mut Output, name: &str, p: &Pose| {
         let [x, y, z] = p.position_m;
         let [r, pi, ya] = p.rpy_rad;
@@ -326,7 +353,9 @@ fn ik(
 ) -> anyhow::Result<ExitCode> {
     let rig = load(common)?;
     if jaw_dir.is_some() && !arm.carries_instrument() {
-        anyhow::bail!("--jaw-dir: the camera arm's endoscope looks along its shaft; only its tip can be placed");
+        anyhow::bail!(
+            "--jaw-dir: the camera arm's endoscope looks along its shaft; only its tip can be placed"
+        );
     }
     let seed = match current {
         Some(values) => joints_from(values, arm, "--current")?,
@@ -358,7 +387,13 @@ fn ik(
                 error: None,
             }
         }
-        Err(e) => IkReport { ok: false, arm: arm.to_string(), joints_rad: None, residuals: None, error: Some(e.to_string()) },
+        Err(e) => IkReport {
+            ok: false,
+            arm: arm.to_string(),
+            joints_rad: None,
+            residuals: None,
+            error: Some(e.to_string()),
+        },
     };
     if common.json {
         print_json(out, &report)?;

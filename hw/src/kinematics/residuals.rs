@@ -10,7 +10,8 @@ use super::trocar_ik::{TipOrientation, TipTarget};
 /// cosine parts, where `acos` of the trace would lose half the digits).
 pub fn rotation_distance_rad(a: &Rotation3<f64>, b: &Rotation3<f64>) -> f64 {
     let r = a.matrix().transpose() * b.matrix();
-    let sin_part = Vector3::new(r[(2, 1)] - r[(1, 2)], r[(0, 2)] - r[(2, 0)], r[(1, 0)] - r[(0, 1)]).norm() * 0.5;
+    let sin_part =
+        Vector3::new(r[(2, 1)] - r[(1, 2)], r[(0, 2)] - r[(2, 0)], r[(1, 0)] - r[(0, 1)]).norm() * 0.5;
     let cos_part = (r.trace() - 1.0) * 0.5;
     sin_part.atan2(cos_part)
 }

@@ -251,14 +251,14 @@ impl ArmModel {
                     arm_cost + split_cost + (pitch - now.pitch_rad).powi(2) + (yaw - now.yaw_rad).powi(2);
                 if best.as_ref().is_none_or(|(_, c)| cost < *c) {
                     arm[5] = q6;
-                    let tool = ToolJoints { roll_rad: roll, pitch_rad: *pitch, yaw_rad: *yaw, jaw_rad: now.jaw_rad };
+                    let tool =
+                        ToolJoints { roll_rad: roll, pitch_rad: *pitch, yaw_rad: *yaw, jaw_rad: now.jaw_rad };
                     best = Some((ArmJoints { arm_rad: arm, tool }, cost));
                 }
             }
         }
-        best.map(|(joints, _)| joints).ok_or_else(|| {
-            branches.failure.unwrap_or(limit_error(JointId::Roll, now.roll_rad, &limits.roll))
-        })
+        best.map(|(joints, _)| joints)
+            .ok_or_else(|| branches.failure.unwrap_or(limit_error(JointId::Roll, now.roll_rad, &limits.roll)))
     }
 
     /// The endoscope: the shaft from the trocar to the tip fixes everything but the turn about the

@@ -31,17 +31,23 @@ pub fn diagnose(text: &str) -> Vec<Problem> {
     let mut problems = Vec::new();
     let root = doc.root_element();
     if root.tag_name().name() != "robot" {
-        problems.push(Problem::new("document", "root", format!("must be <robot>, found <{}>", root.tag_name().name())));
+        problems.push(Problem::new(
+            "document",
+            "root",
+            format!("must be <robot>, found <{}>", root.tag_name().name()),
+        ));
     }
     for node in root.descendants().filter(|n| n.is_element()) {
         let tag = node.tag_name().name();
         let line = doc.text_pos_at(node.range().start).row;
         // Name the element by its own name, or by the named element it sits in.
-        let owner = node
-            .ancestors()
-            .find(|a| a.is_element() && a.attribute("name").is_some() && matches!(a.tag_name().name(), "link" | "joint"));
+        let owner = node.ancestors().find(|a| {
+            a.is_element() && a.attribute("name").is_some() && matches!(a.tag_name().name(), "link" | "joint")
+        });
         let element = match (node.attribute("name"), owner) {
-            (Some(name), _) if matches!(tag, "link" | "joint" | "robot") => format!("{tag} '{name}' (line {line})"),
+            (Some(name), _) if matches!(tag, "link" | "joint" | "robot") => {
+                format!("{tag} '{name}' (line {line})")
+            }
             (_, Some(o)) => format!(
                 "{} '{}' <{tag}> (line {line})",
                 o.tag_name().name(),

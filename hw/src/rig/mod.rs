@@ -19,8 +19,8 @@ use nalgebra::IsometryMatrix3;
 use crate::kinematics::residuals::rotation_distance_rad;
 
 use crate::kinematics::{
-    ArmJoints, ArmModel, EndoscopeGeometry, InstrumentGeometry, InstrumentLimits, JointLimit,
-    Rv6slGeometry, Tool,
+    ArmJoints, ArmModel, EndoscopeGeometry, InstrumentGeometry, InstrumentLimits, JointLimit, Rv6slGeometry,
+    Tool,
 };
 
 /// The rig shipped with knotlab.
@@ -85,7 +85,8 @@ impl Rig {
     /// Reads a rig from a URDF file.
     pub fn from_file(path: &Path) -> Result<Self, RigError> {
         let file = path.display().to_string();
-        let text = std::fs::read_to_string(path).map_err(|error| RigError::Read { file: file.clone(), error })?;
+        let text =
+            std::fs::read_to_string(path).map_err(|error| RigError::Read { file: file.clone(), error })?;
         Self::from_urdf_str(&text, &file)
     }
 
@@ -162,7 +163,9 @@ impl Rig {
                 (walked[arm.tip_link], arm.model.world_from_tip(joints)),
             ];
             for (a, b) in pairs {
-                let d = (a.translation.vector - b.translation.vector).norm().max(rotation_distance_rad(&a.rotation, &b.rotation));
+                let d = (a.translation.vector - b.translation.vector)
+                    .norm()
+                    .max(rotation_distance_rad(&a.rotation, &b.rotation));
                 if d > worst.0 || d.is_nan() {
                     worst = (if d.is_nan() { f64::INFINITY } else { d }, *joints);
                 }
@@ -240,7 +243,11 @@ fn extract_arm(tree: &JointTree, name: ArmName, problems: &mut Vec<Problem>) -> 
     }
     let flange = link("flange", problems)?;
     if tree.links[flange].parent_joint.map(|j| tree.joints[j].parent) != Some(parent) {
-        problems.push(Problem::new(format!("link '{name}_flange'"), "parent", format!("must hang from link '{}'", tree.links[parent].name)));
+        problems.push(Problem::new(
+            format!("link '{name}_flange'"),
+            "parent",
+            format!("must hang from link '{}'", tree.links[parent].name),
+        ));
     }
     let tip_link = link("tip", problems)?;
 
@@ -249,7 +256,11 @@ fn extract_arm(tree: &JointTree, name: ArmName, problems: &mut Vec<Problem>) -> 
             let j = joint(suffix, problems)?;
             tree_joints.push(j);
             tree.joints[j].limit.or_else(|| {
-                problems.push(Problem::new(format!("joint '{name}_{suffix}'"), "limit", "must be a revolute joint with limits"));
+                problems.push(Problem::new(
+                    format!("joint '{name}_{suffix}'"),
+                    "limit",
+                    "must be a revolute joint with limits",
+                ));
                 None
             })
         };
@@ -259,7 +270,8 @@ fn extract_arm(tree: &JointTree, name: ArmName, problems: &mut Vec<Problem>) -> 
         let jaw_1 = tool_limit("jaw_1", problems);
         let jaw_2 = tool_limit("jaw_2", problems);
         let (roll, pitch, yaw, jaw_1, _) = (roll?, pitch?, yaw?, jaw_1?, jaw_2?);
-        let jaw = JointLimit::new(2.0 * jaw_1.lower_rad, 2.0 * jaw_1.upper_rad, 2.0 * jaw_1.max_velocity_rad_s);
+        let jaw =
+            JointLimit::new(2.0 * jaw_1.lower_rad, 2.0 * jaw_1.upper_rad, 2.0 * jaw_1.max_velocity_rad_s);
         Tool::Instrument {
             geometry: InstrumentGeometry::LARGE_NEEDLE_DRIVER,
             limits: InstrumentLimits { roll, pitch, yaw, jaw },

@@ -150,7 +150,11 @@ fn shape_of(element: &str, geometry: &urdf_rs::Geometry, problems: &mut Vec<Prob
             if positive(*radius) {
                 Some(Shape::Sphere { radius_m: *radius })
             } else {
-                problems.push(Problem::new(element, "geometry.sphere.radius", format!("must be positive, got {radius}")));
+                problems.push(Problem::new(
+                    element,
+                    "geometry.sphere.radius",
+                    format!("must be positive, got {radius}"),
+                ));
                 None
             }
         }
@@ -168,7 +172,8 @@ fn shape_of(element: &str, geometry: &urdf_rs::Geometry, problems: &mut Vec<Prob
 fn limit_of(element: &str, joint: &urdf_rs::Joint, problems: &mut Vec<Problem>) -> Option<JointLimit> {
     let l = &joint.limit;
     let before = problems.len();
-    for (field, value) in [("limit.lower", l.lower), ("limit.upper", l.upper), ("limit.velocity", l.velocity)] {
+    for (field, value) in [("limit.lower", l.lower), ("limit.upper", l.upper), ("limit.velocity", l.velocity)]
+    {
         if !value.is_finite() {
             problems.push(Problem::new(element, field, format!("not finite: {value}")));
         }
@@ -182,7 +187,11 @@ fn limit_of(element: &str, joint: &urdf_rs::Joint, problems: &mut Vec<Problem>) 
             ));
         }
         if l.velocity <= 0.0 {
-            problems.push(Problem::new(element, "limit.velocity", format!("must be positive, got {}", l.velocity)));
+            problems.push(Problem::new(
+                element,
+                "limit.velocity",
+                format!("must be positive, got {}", l.velocity),
+            ));
         }
     }
     (problems.len() == before).then(|| JointLimit::new(l.lower, l.upper, l.velocity))
@@ -220,7 +229,11 @@ impl JointTree {
             let mut endpoint = |field: &str, name: &str| match link_index.get(name) {
                 Some(&i) => Some(i),
                 None => {
-                    problems.push(Problem::new(&element, field, format!("names link '{name}', which does not exist")));
+                    problems.push(Problem::new(
+                        &element,
+                        field,
+                        format!("names link '{name}', which does not exist"),
+                    ));
                     None
                 }
             };
@@ -233,7 +246,11 @@ impl JointTree {
                 urdf_rs::JointType::Continuous => Some(JointKind::Continuous),
                 urdf_rs::JointType::Prismatic => Some(JointKind::Prismatic),
                 ref other => {
-                    problems.push(Problem::new(&element, "type", format!("{other:?} joints are not supported")));
+                    problems.push(Problem::new(
+                        &element,
+                        "type",
+                        format!("{other:?} joints are not supported"),
+                    ));
                     None
                 }
             };
@@ -241,7 +258,11 @@ impl JointTree {
             let axis = if kind == Some(JointKind::Fixed) {
                 Some(Vector3::z_axis())
             } else if !axis_xyz.iter().all(|x| x.is_finite()) || axis_xyz.norm() < 1e-9 {
-                problems.push(Problem::new(&element, "axis.xyz", format!("must be finite and non-zero, got {:?}", *joint.axis.xyz)));
+                problems.push(Problem::new(
+                    &element,
+                    "axis.xyz",
+                    format!("must be finite and non-zero, got {:?}", *joint.axis.xyz),
+                ));
                 None
             } else {
                 Some(Unit::new_normalize(axis_xyz))
@@ -252,7 +273,11 @@ impl JointTree {
             };
             if let (Some(parent), Some(child), Some(kind), Some(axis)) = (parent, child, kind, axis) {
                 if links[child].parent_joint.is_some() {
-                    problems.push(Problem::new(&element, "child", format!("link '{}' already has a parent joint", joint.child.link)));
+                    problems.push(Problem::new(
+                        &element,
+                        "child",
+                        format!("link '{}' already has a parent joint", joint.child.link),
+                    ));
                 }
                 links[child].parent_joint = Some(joints.len());
                 joints.push(TreeJoint {
@@ -273,7 +298,13 @@ impl JointTree {
         let roots: Vec<usize> = (0..links.len()).filter(|&i| links[i].parent_joint.is_none()).collect();
         let root = match roots.as_slice() {
             [r] => *r,
-            [] => return Err(vec![Problem::new(format!("robot '{}'", robot.name), "links", "no root link: the joints form a cycle")]),
+            [] => {
+                return Err(vec![Problem::new(
+                    format!("robot '{}'", robot.name),
+                    "links",
+                    "no root link: the joints form a cycle",
+                )]);
+            }
             many => {
                 let names: Vec<&str> = many.iter().map(|&i| links[i].name.as_str()).collect();
                 return Err(vec![Problem::new(
@@ -303,7 +334,11 @@ impl JointTree {
             return Err(vec![Problem::new(
                 format!("robot '{}'", robot.name),
                 "joints",
-                format!("joints on a cycle, unreachable from root '{}': {}", links[root].name, stray.join(", ")),
+                format!(
+                    "joints on a cycle, unreachable from root '{}': {}",
+                    links[root].name,
+                    stray.join(", ")
+                ),
             )]);
         }
         Ok(Self { name: robot.name.clone(), links, joints, root, order, link_index, joint_index })
@@ -328,9 +363,10 @@ impl JointTree {
             let q = positions.get(j).copied().unwrap_or(0.0);
             let motion = match joint.kind {
                 JointKind::Fixed => IsometryMatrix3::identity(),
-                JointKind::Revolute | JointKind::Continuous => {
-                    IsometryMatrix3::from_parts(Translation3::identity(), Rotation3::from_axis_angle(&joint.axis, q))
-                }
+                JointKind::Revolute | JointKind::Continuous => IsometryMatrix3::from_parts(
+                    Translation3::identity(),
+                    Rotation3::from_axis_angle(&joint.axis, q),
+                ),
                 JointKind::Prismatic => IsometryMatrix3::from_parts(
                     Translation3::from(joint.axis.into_inner() * q),
                     Rotation3::identity(),
