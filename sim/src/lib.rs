@@ -1,3 +1,6 @@
 //! knotlab's simulated operating scene: the Rapier world (gantry, arms, instruments, suture, needle,
-//! tissue) that implements the `knotlab-hw` device traits. It grows with the scene issue; today it only
-//! fixes the crate's place in the workspace (`hw` <- `sim`).
+//! tissue) that implements the `knotlab-hw` device traits, and knot evaluation.
+//!
+//! - [`knot`]: which knot a thread's centreline holds, whether it is down, the verdict.
+
+pub mod knot;
