@@ -2,5 +2,11 @@
 //! tissue) that implements the `knotlab-hw` device traits, and knot evaluation.
 //!
 //! - [`knot`]: which knot a thread's centreline holds, whether it is down, the verdict.
+//! - [`physics`]: the Rapier sets of a scene, its step and health check.
+//! - [`thread`]: the suture as a chain of capsules.
+//! - [`tunnelling`]: detecting one capsule passing through another.
 
 pub mod knot;
+pub mod physics;
+pub mod thread;
+pub mod tunnelling;

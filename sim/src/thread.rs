@@ -1,0 +1,179 @@
+//! The suture: a chain of capsules joined by spherical joints, with bending stiffness and damping,
+//! friction, and collisions between all non-adjacent segments.
+//!
+//! Discretisation chosen by measurement (`cargo bench -p knotlab-bench --bench thread` prints the full
+//! curve). Rapier's impulse joints are solved by projected Gauss-Seidel, whose error along a chain grows
+//! about as segments^2 / (substeps x sweeps): a 0.25 m thread held at one end and pulled with 2 N, dt
+//! 1 ms, on one core of the 2-core reference machine (worst joint gap / segment length, ms per step):
+//!
+//! | segments | 4 x 4 | 8 x 1 | 8 x 4 | 16 x 1 | 16 x 4 |
+//! |---|---|---|---|---|---|
+//! | 40 | 4.0 %, 0.16 | 4.0 %, 0.19 | 1.0 %, 0.29 | 1.0 %, 0.37 | 0.25 %, 0.61 |
+//! | 60 | 9.3 %, 0.24 | 9.5 %, 0.29 | 2.3 %, 0.44 | 2.3 %, 0.55 | 0.57 %, 0.86 |
+//! | 80 | explodes | 19 %, 0.41 | 4.1 %, 0.60 | 4.2 %, 0.74 | 1.0 %, 1.15 |
+//! | 100 | explodes | 30 %, 0.52 | 7.2 %, 0.79 | 7.5 %, 0.92 | 1.6 %, 1.49 |
+//!
+//! (columns: solver iterations x Gauss-Seidel sweeps per iteration). Halving dt equals doubling the
+//! iterations; the thread's mass does not matter. Default: 40 segments of 6.25 mm, 8 x 4: 1.0 % stretch
+//! at 3.4x real time for the thread alone. Finer threads knot more faithfully but cost quadratically;
+//! revisit when the first knot is tied (the scripted-expert issue).
+
+use rapier3d::prelude::*;
+
+use crate::physics::Physics;
+
+/// Collision group of thread segments.
+pub const THREAD_GROUP: Group = Group::GROUP_1;
+
+/// The suture's material and discretisation.
+#[derive(Clone, Copy, Debug, PartialEq, serde::Deserialize, serde::Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct ThreadParams {
+    /// Total length, m.
+    pub length_m: f64,
+    /// Number of capsule segments.
+    pub segments: usize,
+    /// Collision radius, m (a 3-0 suture is 0.2-0.25 mm thick; the radius may exceed half of it).
+    pub radius_m: f64,
+    /// Mass of the whole thread, kg (heavier than real nylon for solver conditioning).
+    pub mass_kg: f64,
+    /// Bending stiffness of each joint, N m/rad.
+    pub bend_stiffness_n_m_per_rad: f64,
+    /// Bending damping of each joint, N m s/rad.
+    pub bend_damping_n_m_s_per_rad: f64,
+    /// Coulomb friction coefficient of the thread surface.
+    pub friction: f64,
+    /// Linear velocity damping of each segment, 1/s (air and tissue drag).
+    pub linear_damping_per_s: f64,
+}
+
+impl Default for ThreadParams {
+    fn default() -> Self {
+        Self {
+            length_m: 0.25,
+            segments: 40,
+            radius_m: 0.0004,
+            mass_kg: 0.01,
+            bend_stiffness_n_m_per_rad: 2e-5,
+            bend_damping_n_m_s_per_rad: 2e-7,
+            friction: 0.3,
+            linear_damping_per_s: 1.0,
+        }
+    }
+}
+
+impl ThreadParams {
+    /// Length of one segment, m.
+    pub fn segment_length_m(&self) -> f64 {
+        self.length_m / self.segments as f64
+    }
+}
+
+/// A thread in a [`Physics`] world.
+pub struct Thread {
+    /// Segment bodies from the needle end to the tail end.
+    pub segments: Vec<RigidBodyHandle>,
+    /// Joint i links segment i to segment i + 1.
+    pub links: Vec<ImpulseJointHandle>,
+    /// Segment length, m.
+    pub segment_length_m: f64,
+}
+
+fn to_vec(p: &nalgebra::Vector3<f64>) -> Vector {
+    Vector::new(p.x, p.y, p.z)
+}
+
+impl Thread {
+    /// Lays a straight thread from `start_m` along `direction` in `physics`.
+    pub fn build(
+        physics: &mut Physics,
+        params: &ThreadParams,
+        start_m: &nalgebra::Vector3<f64>,
+        direction: &nalgebra::Vector3<f64>,
+    ) -> Self {
+        let seg = params.segment_length_m();
+        let dir = direction.normalize();
+        let half = 0.5 * seg;
+        // Segment frames: x along the thread.
+        let rotation = Rotation::from_rotation_arc(Vector::X, to_vec(&dir));
+        let segment_mass = params.mass_kg / params.segments as f64;
+        // The capsule's cylinder spans the segment minus its caps, so neighbours just touch.
+        let cylinder_half = (half - params.radius_m).max(0.25 * half);
+        let mut segments = Vec::with_capacity(params.segments);
+        for i in 0..params.segments {
+            let centre = start_m + dir * (seg * (i as f64 + 0.5));
+            let body = RigidBodyBuilder::dynamic()
+                .pose(Pose::from_parts(to_vec(&centre), rotation))
+                .linear_damping(params.linear_damping_per_s)
+                .can_sleep(false)
+                .build();
+            let handle = physics.bodies.insert(body);
+            let collider = ColliderBuilder::capsule_x(cylinder_half, params.radius_m)
+                .mass(segment_mass)
+                .friction(params.friction)
+                .collision_groups(InteractionGroups::new(THREAD_GROUP, Group::ALL, InteractionTestMode::And))
+                .build();
+            physics.colliders.insert_with_parent(collider, handle, &mut physics.bodies);
+            segments.push(handle);
+        }
+        let mut links = Vec::with_capacity(params.segments.saturating_sub(1));
+        let k = params.bend_stiffness_n_m_per_rad;
+        let c = params.bend_damping_n_m_s_per_rad;
+        for pair in segments.windows(2) {
+            let mut joint = SphericalJointBuilder::new()
+                .local_anchor1(Vector::new(half, 0.0, 0.0))
+                .local_anchor2(Vector::new(-half, 0.0, 0.0))
+                .contacts_enabled(false);
+            for axis in [JointAxis::AngX, JointAxis::AngY, JointAxis::AngZ] {
+                joint = joint.motor_position(axis, 0.0, k, c);
+            }
+            links.push(physics.impulse_joints.insert(pair[0], pair[1], joint, true));
+        }
+        Self { segments, links, segment_length_m: seg }
+    }
+
+    /// The centreline: both ends of every segment's axis, needle end first (segments + 1 points).
+    pub fn centreline(&self, physics: &Physics) -> Vec<nalgebra::Vector3<f64>> {
+        let half = 0.5 * self.segment_length_m;
+        let mut points = Vec::with_capacity(self.segments.len() + 1);
+        for (i, h) in self.segments.iter().enumerate() {
+            let pose = physics.bodies[*h].position();
+            if i == 0 {
+                points.push(to_na(pose.transform_point(Vector::new(-half, 0.0, 0.0))));
+            }
+            points.push(to_na(pose.transform_point(Vector::new(half, 0.0, 0.0))));
+        }
+        points
+    }
+
+    /// The largest gap between the two anchors of a link, as a fraction of the segment length.
+    pub fn max_stretch_ratio(&self, physics: &Physics) -> f64 {
+        let half = 0.5 * self.segment_length_m;
+        self.segments
+            .windows(2)
+            .map(|pair| {
+                let a = physics.bodies[pair[0]].position().transform_point(Vector::new(half, 0.0, 0.0));
+                let b = physics.bodies[pair[1]].position().transform_point(Vector::new(-half, 0.0, 0.0));
+                (a - b).length() / self.segment_length_m
+            })
+            .fold(0.0, f64::max)
+    }
+
+    /// The segments as capsules (axis ends and collision radius), needle end first.
+    pub fn capsules(&self, physics: &Physics, radius_m: f64) -> Vec<crate::tunnelling::Capsule> {
+        self.centreline(physics)
+            .windows(2)
+            .map(|w| crate::tunnelling::Capsule { a_m: w[0], b_m: w[1], radius_m })
+            .collect()
+    }
+
+    /// The index of a body in the chain, if it is a segment.
+    pub fn segment_index(&self, body: RigidBodyHandle) -> Option<usize> {
+        self.segments.iter().position(|h| *h == body)
+    }
+}
+
+/// A Rapier vector as nalgebra f64.
+pub fn to_na(v: Vector) -> nalgebra::Vector3<f64> {
+    nalgebra::Vector3::new(v.x, v.y, v.z)
+}
