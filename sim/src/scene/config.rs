@@ -1,0 +1,238 @@
+//! The scene file's contents, with the range checks that name each key.
+
+use serde::{Deserialize, Serialize};
+
+use crate::physics::SolverParams;
+use crate::thread::ThreadParams;
+
+/// A whole scene.
+#[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct SceneConfig {
+    /// A line saying what the scene is.
+    pub description: String,
+    /// Physics integration.
+    pub solver: SolverParams,
+    /// The suture.
+    pub thread: ThreadParams,
+    /// The needle at the thread's first segment.
+    pub needle: NeedleParams,
+    /// The tissue pad with its wound.
+    pub tissue: TissueParams,
+    /// Where the suture passes through the flaps.
+    pub stitch: StitchParams,
+    /// Trocar points, world frame, m.
+    pub trocars: Trocars,
+    /// Joint servos of the arms and instruments.
+    pub servo: ServoParams,
+    /// Extra boxes in the workspace.
+    #[serde(default)]
+    pub obstacles: Vec<Obstacle>,
+}
+
+/// The half-circle needle.
+#[derive(Clone, Copy, Debug, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct NeedleParams {
+    /// Length along the arc, m (a "26 mm half circle": radius = arc / pi).
+    pub arc_length_m: f64,
+    /// Wire radius, m.
+    pub wire_radius_m: f64,
+    /// Mass, kg.
+    pub mass_kg: f64,
+}
+
+/// The tissue pad on the chest: two flaps either side of a wound along the pad's x axis, pulled apart
+/// by an elastic load.
+#[derive(Clone, Copy, Debug, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct TissueParams {
+    /// Centre of the pad's top surface, world frame, m.
+    pub centre_m: [f64; 3],
+    /// Rotation of the pad about the world z axis, rad (the wound runs along the rotated x).
+    pub yaw_rad: f64,
+    /// Size of each flap: along the wound, across it, thickness, m.
+    pub flap_size_m: [f64; 3],
+    /// Wound gap at rest, m.
+    pub rest_gap_m: f64,
+    /// Stiffness of the load that pulls each flap away from the wound, N/m.
+    pub opening_stiffness_n_per_m: f64,
+    /// Damping of the flaps' motion, N s/m.
+    pub opening_damping_n_s_per_m: f64,
+    /// Mass of each flap, kg.
+    pub flap_mass_kg: f64,
+}
+
+/// Where the suture passes through the flaps, in the tissue frame (x along the wound, y across it,
+/// z up, origin at the wound's centre on the surface).
+#[derive(Clone, Copy, Debug, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct StitchParams {
+    /// Distance of the entry and exit points from the wound's centre line, m.
+    pub bite_m: f64,
+    /// Depth below the surface at which the suture crosses the wound, m.
+    pub depth_m: f64,
+    /// Position along the wound, m.
+    pub along_m: f64,
+    /// Friction force resisting the thread sliding through each flap, N.
+    pub slide_friction_n: f64,
+}
+
+/// Trocar points for the four arms, world frame, m.
+#[derive(Clone, Copy, Debug, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct Trocars {
+    /// Left instrument.
+    pub left: [f64; 3],
+    /// Right instrument.
+    pub right: [f64; 3],
+    /// Assisting instrument.
+    pub assist: [f64; 3],
+    /// Endoscope.
+    pub camera: [f64; 3],
+}
+
+/// How every joint follows its command (the knobs Monte Carlo turns: play and calibration).
+#[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct ServoParams {
+    /// First-order lag time constant, s.
+    pub time_constant_s: f64,
+    /// Largest acceleration, rad/s^2 (speed limits come from the URDF).
+    pub max_acceleration_rad_s2: f64,
+    /// Backlash: dead band between motor and link, rad.
+    pub play_rad: f64,
+    /// Calibration offsets of the six arm axes, per arm, rad: the link sits at command + offset.
+    #[serde(default)]
+    pub calibration_offset_rad: CalibrationOffsets,
+}
+
+/// Per-arm calibration offsets of axes 1-6, rad.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct CalibrationOffsets {
+    /// Left arm.
+    #[serde(default)]
+    pub left: [f64; 6],
+    /// Right arm.
+    #[serde(default)]
+    pub right: [f64; 6],
+    /// Assisting arm.
+    #[serde(default)]
+    pub assist: [f64; 6],
+    /// Camera arm.
+    #[serde(default)]
+    pub camera: [f64; 6],
+}
+
+/// A box obstacle.
+#[derive(Clone, Copy, Debug, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct Obstacle {
+    /// Centre, world frame, m.
+    pub centre_m: [f64; 3],
+    /// Half sizes along the world axes, m.
+    pub half_extents_m: [f64; 3],
+}
+
+/// One value out of its range: the key and why.
+pub(crate) type RangeProblem = (String, String);
+
+struct Check<'a>(&'a mut Vec<RangeProblem>);
+
+impl Check<'_> {
+    fn range(&mut self, key: &str, value: f64, lo: f64, hi: f64) {
+        if !(value.is_finite() && value >= lo && value <= hi) {
+            self.0.push((key.to_owned(), format!("must be within {lo}..{hi}, got {value}")));
+        }
+    }
+
+    fn count(&mut self, key: &str, value: usize, lo: usize, hi: usize) {
+        if value < lo || value > hi {
+            self.0.push((key.to_owned(), format!("must be within {lo}..{hi}, got {value}")));
+        }
+    }
+
+    fn point(&mut self, key: &str, p: &[f64; 3]) {
+        for (axis, v) in ["x", "y", "z"].iter().zip(p) {
+            self.range(&format!("{key}.{axis}"), *v, -5.0, 5.0);
+        }
+    }
+}
+
+impl SceneConfig {
+    /// Every value out of its range, with its key.
+    pub(crate) fn range_problems(&self) -> Vec<RangeProblem> {
+        let mut problems = Vec::new();
+        let mut c = Check(&mut problems);
+        let s = &self.solver;
+        c.range("solver.dt_s", s.dt_s, 1e-5, 0.01);
+        c.count("solver.solver_iterations", s.solver_iterations, 1, 256);
+        c.count("solver.pgs_iterations_per_substep", s.pgs_iterations_per_substep, 1, 64);
+        c.range("solver.length_unit_m", s.length_unit_m, 1e-5, 1.0);
+        c.range("solver.prediction_distance_m", s.prediction_distance_m, 0.0, 0.05);
+        c.range("solver.contact_frequency_hz", s.contact_frequency_hz, 1.0, 1e5);
+        c.range("solver.contact_damping_ratio", s.contact_damping_ratio, 0.0, 100.0);
+        c.range("solver.max_corrective_speed_m_s", s.max_corrective_speed_m_s, 0.0, 10.0);
+        c.range("solver.max_speed_m_s", s.max_speed_m_s, 0.1, 1000.0);
+        let t = &self.thread;
+        c.range("thread.length_m", t.length_m, 0.01, 2.0);
+        c.count("thread.segments", t.segments, 4, 1000);
+        c.range("thread.radius_m", t.radius_m, 1e-5, 0.005);
+        c.range("thread.mass_kg", t.mass_kg, 1e-6, 1.0);
+        c.range("thread.bend_stiffness_n_m_per_rad", t.bend_stiffness_n_m_per_rad, 0.0, 1.0);
+        c.range("thread.bend_damping_n_m_s_per_rad", t.bend_damping_n_m_s_per_rad, 0.0, 1.0);
+        c.range("thread.friction", t.friction, 0.0, 2.0);
+        c.range("thread.linear_damping_per_s", t.linear_damping_per_s, 0.0, 100.0);
+        if t.radius_m * 2.0 >= t.length_m / t.segments.max(1) as f64 {
+            c.0.push((
+                "thread.radius_m".to_owned(),
+                "the thread's diameter must be shorter than a segment (length_m / segments)".to_owned(),
+            ));
+        }
+        let n = &self.needle;
+        c.range("needle.arc_length_m", n.arc_length_m, 0.005, 0.1);
+        c.range("needle.wire_radius_m", n.wire_radius_m, 1e-5, 0.002);
+        c.range("needle.mass_kg", n.mass_kg, 1e-6, 0.1);
+        let ti = &self.tissue;
+        c.point("tissue.centre_m", &ti.centre_m);
+        c.range("tissue.yaw_rad", ti.yaw_rad, -7.0, 7.0);
+        for (axis, v) in ["along", "across", "thickness"].iter().zip(&ti.flap_size_m) {
+            c.range(&format!("tissue.flap_size_m.{axis}"), *v, 0.002, 0.3);
+        }
+        c.range("tissue.rest_gap_m", ti.rest_gap_m, 0.0, 0.05);
+        c.range("tissue.opening_stiffness_n_per_m", ti.opening_stiffness_n_per_m, 0.0, 1e5);
+        c.range("tissue.opening_damping_n_s_per_m", ti.opening_damping_n_s_per_m, 0.0, 1e3);
+        c.range("tissue.flap_mass_kg", ti.flap_mass_kg, 1e-4, 10.0);
+        let st = &self.stitch;
+        c.range("stitch.bite_m", st.bite_m, 0.001, 0.05);
+        c.range("stitch.depth_m", st.depth_m, 0.0, ti.flap_size_m[2]);
+        c.range("stitch.along_m", st.along_m, -0.5 * ti.flap_size_m[0], 0.5 * ti.flap_size_m[0]);
+        c.range("stitch.slide_friction_n", st.slide_friction_n, 0.0, 10.0);
+        let tr = &self.trocars;
+        for (name, p) in
+            [("left", &tr.left), ("right", &tr.right), ("assist", &tr.assist), ("camera", &tr.camera)]
+        {
+            c.point(&format!("trocars.{name}"), p);
+        }
+        let sv = &self.servo;
+        c.range("servo.time_constant_s", sv.time_constant_s, 0.0, 1.0);
+        c.range("servo.max_acceleration_rad_s2", sv.max_acceleration_rad_s2, 0.1, 1e4);
+        c.range("servo.play_rad", sv.play_rad, 0.0, 0.1);
+        let o = &sv.calibration_offset_rad;
+        for (name, offsets) in
+            [("left", &o.left), ("right", &o.right), ("assist", &o.assist), ("camera", &o.camera)]
+        {
+            for (i, v) in offsets.iter().enumerate() {
+                c.range(&format!("servo.calibration_offset_rad.{name}[{i}]"), *v, -0.2, 0.2);
+            }
+        }
+        for (i, obstacle) in self.obstacles.iter().enumerate() {
+            c.point(&format!("obstacles[{i}].centre_m"), &obstacle.centre_m);
+            for (axis, v) in ["x", "y", "z"].iter().zip(&obstacle.half_extents_m) {
+                c.range(&format!("obstacles[{i}].half_extents_m.{axis}"), *v, 1e-4, 2.0);
+            }
+        }
+        problems
+    }
+}

@@ -1,0 +1,8 @@
+//! A scene file (TOML): where the stitch, the tissue and the trocars are, and how the thread, the
+//! servos and the solver behave. Unknown keys and out-of-range values are errors naming the key.
+
+mod config;
+mod load;
+
+pub use config::{NeedleParams, Obstacle, SceneConfig, ServoParams, StitchParams, TissueParams, Trocars};
+pub use load::{SceneError, load_scene, parse_scene};

@@ -1,0 +1,70 @@
+//! (g) Scene files: the shipped one loads; malformed ones give errors naming the key (and line).
+
+use knotlab_sim::scene::{SceneError, load_scene, parse_scene};
+
+const DEFAULT: &str = include_str!("../../scenarios/default.toml");
+
+fn err(text: &str) -> String {
+    match parse_scene(text, "bad.toml") {
+        Ok(_) => panic!("a malformed scene loaded"),
+        Err(e) => e.to_string(),
+    }
+}
+
+#[test]
+fn the_shipped_scene_loads() {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenarios/default.toml");
+    let scene = load_scene(&path).unwrap();
+    assert_eq!(scene.thread.segments, 40);
+    assert_eq!(scene.trocars.left, [-0.08, 0.12, 1.02]);
+}
+
+#[test]
+fn an_unknown_key_is_named_with_its_path_and_line() {
+    let text = DEFAULT.replace("segments = 40", "segments = 40\nsegmnets = 41");
+    let e = err(&text);
+    let line = text.lines().position(|l| l.starts_with("segmnets")).unwrap() + 1;
+    assert!(e.starts_with(&format!("bad.toml:{line}: thread.segmnets: unknown field `segmnets`")), "{e}");
+}
+
+#[test]
+fn a_wrong_type_is_named_with_its_path() {
+    let e = err(&DEFAULT.replace("segments = 40", "segments = \"forty\""));
+    assert!(e.contains("thread.segments:"), "{e}");
+}
+
+#[test]
+fn a_missing_key_is_named() {
+    let e = err(&DEFAULT.replace("friction = 0.3\n", ""));
+    assert!(e.contains("thread") && e.contains("missing field `friction`"), "{e}");
+}
+
+#[test]
+fn out_of_range_values_are_all_named() {
+    let text = DEFAULT.replace("dt_s = 0.001", "dt_s = 0.5").replace("segments = 40", "segments = 2");
+    let text =
+        text.replacen("left = [0.0, 0.0, 0.0, 0.0, 0.0, 0.0]", "left = [0.0, 0.0, 0.3, 0.0, 0.0, 0.0]", 1);
+    match parse_scene(&text, "bad.toml") {
+        Err(SceneError::Range { problems, .. }) => {
+            let keys: Vec<&str> = problems.iter().map(|(k, _)| k.as_str()).collect();
+            assert!(keys.contains(&"solver.dt_s"), "{keys:?}");
+            assert!(keys.contains(&"thread.segments"), "{keys:?}");
+            assert!(keys.contains(&"servo.calibration_offset_rad.left[2]"), "{keys:?}");
+        }
+        other => panic!("expected range errors, got {other:?}"),
+    }
+}
+
+#[test]
+fn broken_toml_gives_the_line() {
+    let text = DEFAULT.replace("[stitch]", "[stitch");
+    let line = text.lines().position(|l| l == "[stitch").unwrap() + 1;
+    let e = err(&text);
+    assert!(e.starts_with(&format!("bad.toml:{line}: (syntax)")), "{e}");
+}
+
+#[test]
+fn an_unreadable_file_is_named() {
+    let e = load_scene(std::path::Path::new("/nonexistent/scene.toml")).unwrap_err().to_string();
+    assert!(e.starts_with("/nonexistent/scene.toml: cannot read"), "{e}");
+}
