@@ -1,0 +1,201 @@
+//! Tightness: where the knot sits (the span of its crossings along the thread and in space), and how
+//! far it is from the tissue surface and the stitch, for the "knot down" test.
+
+use nalgebra::{Unit, Vector3};
+
+use super::crossings::Crossing;
+use super::error::KnotError;
+
+/// Where a knot's crossings sit.
+#[derive(Debug, Clone, PartialEq)]
+pub struct KnotSpan {
+    /// Arc length from the needle end to the first passage through a crossing, m.
+    pub start_m: f64,
+    /// Arc length from the needle end to the last passage through a crossing, m.
+    pub end_m: f64,
+    /// The whole thread's length, m.
+    pub thread_length_m: f64,
+    /// The thread's points where it passes through the crossings (both strands of each), m.
+    pub points_m: Vec<Vector3<f64>>,
+    /// Mean of `points_m`, m.
+    pub centre_m: Vector3<f64>,
+    /// Largest distance from `centre_m` to a point of `points_m`, m.
+    pub radius_m: f64,
+}
+
+impl KnotSpan {
+    /// The span of the given crossings (by index into `crossings`) of a closed picture of `points`
+    /// (whose cumulative arc lengths are `arc_m`); passages on the closure are left out. `None` when
+    /// no passage lies on the thread.
+    pub fn from_crossings(
+        points: &[Vector3<f64>],
+        arc_m: &[f64],
+        crossings: &[Crossing],
+        ids: &[u32],
+    ) -> Option<Self> {
+        let segments = points.len().saturating_sub(1);
+        let mut located: Vec<(f64, Vector3<f64>)> = Vec::with_capacity(2 * ids.len());
+        for &id in ids {
+            let c = crossings.get(id as usize)?;
+            for at in [c.over_at, c.under_at] {
+                let seg = at.floor() as usize;
+                if seg < segments {
+                    let t = at - seg as f64;
+                    let p = points[seg] + (points[seg + 1] - points[seg]) * t;
+                    located.push((arc_m[seg] + t * (arc_m[seg + 1] - arc_m[seg]), p));
+                }
+            }
+        }
+        if located.is_empty() {
+            return None;
+        }
+        let start_m = located.iter().map(|l| l.0).fold(f64::INFINITY, f64::min);
+        let end_m = located.iter().map(|l| l.0).fold(f64::NEG_INFINITY, f64::max);
+        let points_m: Vec<Vector3<f64>> = located.into_iter().map(|l| l.1).collect();
+        let centre_m = points_m.iter().sum::<Vector3<f64>>() / points_m.len() as f64;
+        let radius_m = points_m.iter().map(|p| (p - centre_m).norm()).fold(0.0, f64::max);
+        Some(Self {
+            start_m,
+            end_m,
+            thread_length_m: arc_m.last().copied().unwrap_or(0.0),
+            points_m,
+            centre_m,
+            radius_m,
+        })
+    }
+
+    /// Thread length taken up between the first and last crossing, m: small for a tight knot.
+    pub fn length_m(&self) -> f64 {
+        self.end_m - self.start_m
+    }
+}
+
+/// The tissue's surface near the stitch, as a plane.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TissueSurface {
+    /// A point on the surface, m.
+    pub point_m: Vector3<f64>,
+    /// Unit normal pointing out of the tissue (towards where the knot is tied).
+    pub normal: Unit<Vector3<f64>>,
+}
+
+impl TissueSurface {
+    /// A surface through `point_m` with outward normal `normal` (any length but zero).
+    pub fn new(point_m: Vector3<f64>, normal: Vector3<f64>) -> Result<Self, KnotError> {
+        let bad = KnotError::BadNormal { normal: [normal.x, normal.y, normal.z] };
+        if !normal.iter().all(|c| c.is_finite()) || !point_m.iter().all(|c| c.is_finite()) {
+            return Err(bad);
+        }
+        let normal = Unit::try_new(normal, 1e-12).ok_or(bad)?;
+        Ok(Self { point_m, normal })
+    }
+
+    /// Signed height of a point above the surface, m (negative inside the tissue).
+    pub fn height_m(&self, p: &Vector3<f64>) -> f64 {
+        (p - self.point_m).dot(&self.normal)
+    }
+}
+
+/// Where the knot is, relative to the tissue and the stitch.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct KnotPlacement {
+    /// Height of the knot's lowest crossing point above the tissue, m.
+    pub height_m: f64,
+    /// Height of its highest crossing point, m.
+    pub top_height_m: f64,
+    /// Distance from the stitch to the nearest crossing point of the knot, m.
+    pub stitch_distance_m: f64,
+    /// Distance from the stitch to the knot's centre, m.
+    pub centre_stitch_distance_m: f64,
+}
+
+/// How close "down" is.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct DownLimits {
+    /// Largest height of the knot's lowest crossing above the tissue, m.
+    pub max_height_m: f64,
+    /// Largest distance from the stitch to the knot's nearest crossing, m.
+    pub max_stitch_distance_m: f64,
+}
+
+impl Default for DownLimits {
+    /// 2 mm above the tissue (a few thread diameters of a 3-0 suture), within 6 mm of the stitch
+    /// (a bite's width); scenes with other sutures set their own.
+    fn default() -> Self {
+        Self { max_height_m: 0.002, max_stitch_distance_m: 0.006 }
+    }
+}
+
+impl KnotPlacement {
+    /// Measures a knot's span against the tissue surface and the stitch point.
+    pub fn measure(span: &KnotSpan, surface: &TissueSurface, stitch_m: &Vector3<f64>) -> Self {
+        let heights = span.points_m.iter().map(|p| surface.height_m(p));
+        let height_m = heights.clone().fold(f64::INFINITY, f64::min);
+        let top_height_m = heights.fold(f64::NEG_INFINITY, f64::max);
+        let stitch_distance_m =
+            span.points_m.iter().map(|p| (p - stitch_m).norm()).fold(f64::INFINITY, f64::min);
+        Self {
+            height_m,
+            top_height_m,
+            stitch_distance_m,
+            centre_stitch_distance_m: (span.centre_m - stitch_m).norm(),
+        }
+    }
+
+    /// Whether the knot is down: its lowest crossing near the tissue, its nearest crossing near the
+    /// stitch.
+    pub fn is_down(&self, limits: &DownLimits) -> bool {
+        self.height_m <= limits.max_height_m && self.stitch_distance_m <= limits.max_stitch_distance_m
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn span_at(points: &[Vector3<f64>]) -> KnotSpan {
+        let centre_m = points.iter().sum::<Vector3<f64>>() / points.len() as f64;
+        KnotSpan {
+            start_m: 0.1,
+            end_m: 0.12,
+            thread_length_m: 0.3,
+            points_m: points.to_vec(),
+            centre_m,
+            radius_m: 0.0,
+        }
+    }
+
+    #[test]
+    fn placement_against_a_tilted_surface() {
+        let surface =
+            TissueSurface::new(Vector3::new(0.0, 0.0, 0.8), Vector3::new(0.0, 0.0, 2.0)).expect("normal");
+        let stitch = Vector3::new(0.0, 0.0, 0.8);
+        let low = span_at(&[Vector3::new(0.001, 0.0, 0.801), Vector3::new(0.002, 0.0, 0.804)]);
+        let p = KnotPlacement::measure(&low, &surface, &stitch);
+        assert!((p.height_m - 0.001).abs() < 1e-12 && (p.top_height_m - 0.004).abs() < 1e-12);
+        assert!((p.stitch_distance_m - 2f64.sqrt() * 0.001).abs() < 1e-12);
+        assert!(p.is_down(&DownLimits::default()));
+        // The same knot 5 mm up the thread is not down; nor is one down on the tissue but 1 cm away.
+        let high = span_at(&[Vector3::new(0.001, 0.0, 0.806), Vector3::new(0.002, 0.0, 0.809)]);
+        assert!(!KnotPlacement::measure(&high, &surface, &stitch).is_down(&DownLimits::default()));
+        let aside = span_at(&[Vector3::new(0.01, 0.0, 0.801)]);
+        assert!(!KnotPlacement::measure(&aside, &surface, &stitch).is_down(&DownLimits::default()));
+        assert!(TissueSurface::new(stitch, Vector3::zeros()).is_err());
+        assert!(TissueSurface::new(stitch, Vector3::new(f64::NAN, 0.0, 1.0)).is_err());
+    }
+
+    #[test]
+    fn span_locates_passages_on_the_thread_only() {
+        let points: Vec<Vector3<f64>> = (0..5).map(|i| Vector3::new(i as f64, 0.0, 0.0)).collect();
+        let arc: Vec<f64> = (0..5).map(|i| i as f64).collect();
+        // Crossing 0 on segments 0.5 and 2.25; crossing 1 between segment 3.5 and the closure (6.0).
+        let crossings = [
+            Crossing { over_at: 0.5, under_at: 2.25, sign: 1 },
+            Crossing { over_at: 6.0, under_at: 3.5, sign: 1 },
+        ];
+        let span = KnotSpan::from_crossings(&points, &arc, &crossings, &[0, 1]).expect("on the thread");
+        assert_eq!((span.start_m, span.end_m, span.length_m()), (0.5, 3.5, 3.0));
+        assert_eq!(span.points_m.len(), 3);
+        assert!((span.centre_m.x - 2.0833333333333335).abs() < 1e-12);
+    }
+}
