@@ -4,11 +4,13 @@
 //! - [`knot`]: which knot a thread's centreline holds, whether it is down, the verdict.
 //! - [`physics`]: the Rapier sets of a scene, its step and health check.
 //! - [`scene`]: the scene file (TOML) and its checks.
+//! - [`servo`]: how a joint follows its command (lag, limits, play, calibration).
 //! - [`thread`]: the suture as a chain of capsules.
 //! - [`tunnelling`]: detecting one capsule passing through another.
 
 pub mod knot;
 pub mod physics;
 pub mod scene;
+pub mod servo;
 pub mod thread;
 pub mod tunnelling;
