@@ -1,6 +1,8 @@
 //! knotlab's simulated operating scene: the Rapier world (gantry, arms, instruments, suture, needle,
 //! tissue) that implements the `knotlab-hw` device traits, and knot evaluation.
 //!
+//! - [`world`]: the simulated scene: rig bodies driven through servos, thread, grasps, forces.
+//! - [`grasp`]: grasping as a constraint that slips above the grip force.
 //! - [`knot`]: which knot a thread's centreline holds, whether it is down, the verdict.
 //! - [`physics`]: the Rapier sets of a scene, its step and health check.
 //! - [`scene`]: the scene file (TOML) and its checks.
@@ -8,9 +10,11 @@
 //! - [`thread`]: the suture as a chain of capsules.
 //! - [`tunnelling`]: detecting one capsule passing through another.
 
+pub mod grasp;
 pub mod knot;
 pub mod physics;
 pub mod scene;
 pub mod servo;
 pub mod thread;
 pub mod tunnelling;
+pub mod world;

@@ -132,6 +132,24 @@ impl Thread {
         Self { segments, links, segment_length_m: seg }
     }
 
+    /// Moves the whole thread, at rest, onto a straight line from `start_m` along `direction`.
+    pub fn lay_straight(
+        &self,
+        physics: &mut Physics,
+        start_m: &nalgebra::Vector3<f64>,
+        direction: &nalgebra::Vector3<f64>,
+    ) {
+        let dir = direction.normalize();
+        let rotation = Rotation::from_rotation_arc(Vector::X, to_vec(&dir));
+        for (i, h) in self.segments.iter().enumerate() {
+            let centre = start_m + dir * (self.segment_length_m * (i as f64 + 0.5));
+            let body = &mut physics.bodies[*h];
+            body.set_position(Pose::from_parts(to_vec(&centre), rotation), true);
+            body.set_linvel(Vector::ZERO, true);
+            body.set_angvel(Vector::ZERO, true);
+        }
+    }
+
     /// The centreline: both ends of every segment's axis, needle end first (segments + 1 points).
     pub fn centreline(&self, physics: &Physics) -> Vec<nalgebra::Vector3<f64>> {
         let half = 0.5 * self.segment_length_m;

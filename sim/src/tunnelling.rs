@@ -138,7 +138,7 @@ mod tests {
         let mut monitor = TunnellingMonitor::new(0.01);
         let fixed = cap([-1.0, 0.0, 0.0], [1.0, 0.0, 0.0]);
         // Passes beyond the end of the fixed segment, then below it.
-        for (x, z) in [(0.9, 0.003), (1.002, 0.003), (1.002, -0.003), (0.9, -0.003)] {
+        for (x, z) in [(0.9, 0.003), (1.1, 0.003), (1.1, -0.003), (0.9, -0.003)] {
             let moving = cap([x, -1.0, z], [x, 1.0, z]);
             monitor.update(&[fixed, moving], [(0, 1)].into_iter());
         }

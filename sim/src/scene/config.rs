@@ -96,12 +96,16 @@ pub struct Trocars {
 #[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct ServoParams {
-    /// First-order lag time constant, s.
+    /// First-order lag time constant of the arm axes, s.
     pub time_constant_s: f64,
-    /// Largest acceleration, rad/s^2 (speed limits come from the URDF).
+    /// Largest acceleration of the arm axes, rad/s^2 (speed limits come from the URDF).
     pub max_acceleration_rad_s2: f64,
-    /// Backlash: dead band between motor and link, rad.
+    /// Backlash of the arm axes: dead band between motor and link, rad.
     pub play_rad: f64,
+    /// First-order lag of the instrument's small servos (roll, wrist, jaws), s.
+    pub instrument_time_constant_s: f64,
+    /// Largest acceleration of the instrument's servos, rad/s^2.
+    pub instrument_max_acceleration_rad_s2: f64,
     /// Calibration offsets of the six arm axes, per arm, rad: the link sits at command + offset.
     #[serde(default)]
     pub calibration_offset_rad: CalibrationOffsets,
@@ -219,6 +223,8 @@ impl SceneConfig {
         c.range("servo.time_constant_s", sv.time_constant_s, 0.0, 1.0);
         c.range("servo.max_acceleration_rad_s2", sv.max_acceleration_rad_s2, 0.1, 1e4);
         c.range("servo.play_rad", sv.play_rad, 0.0, 0.1);
+        c.range("servo.instrument_time_constant_s", sv.instrument_time_constant_s, 0.0, 1.0);
+        c.range("servo.instrument_max_acceleration_rad_s2", sv.instrument_max_acceleration_rad_s2, 0.1, 1e5);
         let o = &sv.calibration_offset_rad;
         for (name, offsets) in
             [("left", &o.left), ("right", &o.right), ("assist", &o.assist), ("camera", &o.camera)]

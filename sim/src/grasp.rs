@@ -1,0 +1,102 @@
+//! Grasping as a constraint, as working surgical simulators do it: closing jaws attach the thread
+//! segment between them with a fixed joint; opening releases; a pull beyond the grip force slips.
+
+use knotlab_hw::rig::ArmName;
+use nalgebra::{IsometryMatrix3, Vector3};
+use rapier3d::prelude::*;
+
+use crate::physics::Physics;
+use crate::thread::{Thread, to_na};
+
+/// What happened to a grasp.
+#[derive(Clone, Debug, PartialEq)]
+pub enum GraspEvent {
+    /// The jaws closed on a segment.
+    Grasped {
+        /// The arm.
+        arm: ArmName,
+        /// The thread segment.
+        segment: usize,
+        /// When, s.
+        time_s: f64,
+    },
+    /// The jaws opened.
+    Released {
+        /// The arm.
+        arm: ArmName,
+        /// When, s.
+        time_s: f64,
+    },
+    /// The pull exceeded the grip.
+    Slipped {
+        /// The arm.
+        arm: ArmName,
+        /// The pull, N.
+        force_n: f64,
+        /// When, s.
+        time_s: f64,
+    },
+}
+
+/// A held thread segment.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Grasp {
+    /// The index of the held segment.
+    pub segment: usize,
+    /// The constraint.
+    pub joint: ImpulseJointHandle,
+}
+
+impl Grasp {
+    /// Attaches the segment nearest the jaw centre (`jaw_offset_m` behind the tip along the jaws),
+    /// if one lies within reach of the jaws; it is held where it is.
+    pub fn try_close(
+        physics: &mut Physics,
+        thread: &Thread,
+        jaw_body: RigidBodyHandle,
+        world_from_tip: &IsometryMatrix3<f64>,
+        jaw_offset_m: f64,
+    ) -> Option<Self> {
+        let jaw_centre = world_from_tip * nalgebra::Point3::new(0.0, 0.0, -jaw_offset_m);
+        let reach_m = 0.003;
+        let (segment, distance) = thread
+            .segments
+            .iter()
+            .enumerate()
+            .map(|(i, h)| (i, (to_na(physics.bodies[*h].translation()) - jaw_centre.coords).norm()))
+            .min_by(|a, b| a.1.total_cmp(&b.1))?;
+        if distance > reach_m + 0.5 * thread.segment_length_m {
+            return None;
+        }
+        let body = thread.segments[segment];
+        let jaw_pose = *physics.bodies[jaw_body].position();
+        let segment_pose = *physics.bodies[body].position();
+        // Hold the segment at its current pose relative to the jaws.
+        let jaw_from_segment = jaw_pose.inverse() * segment_pose;
+        let joint = FixedJointBuilder::new()
+            .local_frame1(jaw_from_segment)
+            .local_frame2(Pose::IDENTITY)
+            .contacts_enabled(false);
+        let handle = physics.impulse_joints.insert(jaw_body, body, joint, true);
+        Some(Self { segment, joint: handle })
+    }
+
+    /// The force the grasp constraint transmitted in the last step, N.
+    pub fn force_n(&self, physics: &Physics) -> f64 {
+        self.force_vector_n(physics).norm()
+    }
+
+    /// The force vector of the constraint in the last step (its linear part), N. Rapier keeps the
+    /// impulse of the last solver substep, which lasts `dt / substeps`.
+    pub fn force_vector_n(&self, physics: &Physics) -> Vector3<f64> {
+        let substep_s = physics.params.dt / physics.params.num_solver_iterations.max(1) as f64;
+        physics.impulse_joints.get(self.joint).map_or(Vector3::zeros(), |j| {
+            Vector3::new(j.impulses[0], j.impulses[1], j.impulses[2]) / substep_s
+        })
+    }
+
+    /// Lets go.
+    pub fn release(self, physics: &mut Physics) {
+        physics.impulse_joints.remove(self.joint, true);
+    }
+}

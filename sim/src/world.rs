@@ -1,0 +1,347 @@
+//! The simulated operating scene: the rig's links as bodies driven through joint servos, the suture,
+//! grasps, and the instruments' force readings. The controller drives it through joint commands, as
+//! it would drive the real robots.
+
+use knotlab_hw::kinematics::{ArmJoints, JointLimit, TipOrientation, TipTarget, Tool};
+use knotlab_hw::rig::{ArmName, Rig};
+use nalgebra::{IsometryMatrix3, Vector3};
+use rapier3d::prelude::*;
+
+use crate::grasp::{Grasp, GraspEvent};
+use crate::physics::{HealthError, Physics};
+use crate::scene::SceneConfig;
+use crate::servo::{ServoModel, ServoState};
+use crate::thread::{THREAD_GROUP, Thread};
+
+/// Collision group of robot links (instruments and arms).
+pub const ROBOT_GROUP: Group = Group::GROUP_2;
+/// Collision group of the environment (table, patient's torso, gantry): kept away from the thread,
+/// which works inside the chest cavity the torso box stands for.
+pub const ENVIRONMENT_GROUP: Group = Group::GROUP_3;
+
+/// One arm in the simulation: its servos and what it was told.
+pub struct SimArm {
+    /// Which arm.
+    pub name: ArmName,
+    /// Servos in [`ArmJoints::ORDER`] (the endoscope's tool servos are unused).
+    pub servos: Vec<ServoModel>,
+    /// Their states.
+    pub states: Vec<ServoState>,
+    /// The last joint command.
+    pub command: ArmJoints,
+    /// The grasp held by the jaws, if any.
+    pub grasp: Option<Grasp>,
+    /// A grasp that slipped stays lost until the jaws reopen.
+    pub slipped: bool,
+    /// Force on the instrument from contacts and grasps in the last step, world frame, N.
+    pub force_n: Vector3<f64>,
+}
+
+impl SimArm {
+    /// The joints as the links stand now (after lag, play and calibration).
+    pub fn actual(&self) -> ArmJoints {
+        let v: [f64; 10] = std::array::from_fn(|i| self.states[i].link_rad);
+        ArmJoints::from_array(v)
+    }
+}
+
+/// The simulated scene.
+pub struct SimWorld {
+    /// The Rapier sets.
+    pub physics: Physics,
+    /// The robots.
+    pub rig: Rig,
+    /// The four arms, in [`ArmName::ALL`] order.
+    pub arms: Vec<SimArm>,
+    /// The suture.
+    pub thread: Thread,
+    /// Body of each URDF link with collision geometry (indexed like the rig's tree links).
+    pub link_bodies: Vec<Option<RigidBodyHandle>>,
+    /// Simulated time, s.
+    pub time_s: f64,
+    /// Grasp events so far.
+    pub events: Vec<GraspEvent>,
+    /// The scene it was built from.
+    pub config: SceneConfig,
+    /// Jaw openings below this count as closed, rad.
+    pub jaw_closed_rad: f64,
+    /// Pull at which a grasp slips, N.
+    pub grip_force_n: f64,
+}
+
+fn to_pose(iso: &IsometryMatrix3<f64>) -> Pose {
+    let q = nalgebra::UnitQuaternion::from_rotation_matrix(&iso.rotation);
+    let t = iso.translation.vector;
+    Pose::from_parts(Vector::new(t.x, t.y, t.z), Rotation::from_xyzw(q.i, q.j, q.k, q.w))
+}
+
+fn shape_collider(shape: &knotlab_hw::rig::Shape) -> ColliderBuilder {
+    match *shape {
+        knotlab_hw::rig::Shape::Box { half_extents_m: h } => ColliderBuilder::cuboid(h.x, h.y, h.z),
+        knotlab_hw::rig::Shape::Capsule { radius_m, length_m } => {
+            ColliderBuilder::capsule_z(0.5 * length_m, radius_m)
+        }
+        knotlab_hw::rig::Shape::Sphere { radius_m } => ColliderBuilder::ball(radius_m),
+    }
+}
+
+impl SimWorld {
+    /// The jaw opening the scene starts with, rad.
+    pub const JAW_OPEN_RAD: f64 = 0.6;
+
+    /// Builds the scene: the instruments parked just inside their trocars, jaws open, the thread laid
+    /// along the wound above the tissue.
+    pub fn new(config: SceneConfig, rig: Rig) -> Self {
+        let mut physics = Physics::new(&config.solver);
+        let arms: Vec<SimArm> = ArmName::ALL
+            .iter()
+            .map(|&name| {
+                let arm = rig.arm(name);
+                let offsets = match name {
+                    ArmName::Left => config.servo.calibration_offset_rad.left,
+                    ArmName::Right => config.servo.calibration_offset_rad.right,
+                    ArmName::Assist => config.servo.calibration_offset_rad.assist,
+                    ArmName::Camera => config.servo.calibration_offset_rad.camera,
+                };
+                let free = JointLimit::new(-1e3, 1e3, 10.0);
+                let tool_limits = match &arm.model.tool {
+                    Tool::Instrument { limits, .. } => [limits.roll, limits.pitch, limits.yaw, limits.jaw],
+                    Tool::Endoscope { .. } => [free; 4],
+                };
+                let servos = (0..10)
+                    .map(|i| ServoModel {
+                        limit: if i < 6 { arm.model.limits[i] } else { tool_limits[i - 6] },
+                        time_constant_s: if i < 6 {
+                            config.servo.time_constant_s
+                        } else {
+                            config.servo.instrument_time_constant_s
+                        },
+                        max_acceleration_rad_s2: if i < 6 {
+                            config.servo.max_acceleration_rad_s2
+                        } else {
+                            config.servo.instrument_max_acceleration_rad_s2
+                        },
+                        play_rad: if i < 6 { config.servo.play_rad } else { 0.0 },
+                        calibration_offset_rad: if i < 6 { offsets[i] } else { 0.0 },
+                    })
+                    .collect();
+                // Parked: the tip 4 cm past the scene's trocar towards the tissue (the ready poses all
+                // meet at one point), jaws open: nothing is held until a jaw closes on it.
+                let trocar = Vector3::from(match name {
+                    ArmName::Left => config.trocars.left,
+                    ArmName::Right => config.trocars.right,
+                    ArmName::Assist => config.trocars.assist,
+                    ArmName::Camera => config.trocars.camera,
+                });
+                let towards = (Vector3::from(config.tissue.centre_m) - trocar).normalize();
+                let target = TipTarget {
+                    world_position_m: trocar + towards * 0.04,
+                    orientation: TipOrientation::AlongShaft,
+                };
+                let mut ready = arm
+                    .model
+                    .solve_tip(&target, &trocar, &name.ready_joints())
+                    .unwrap_or(name.ready_joints());
+                if name.carries_instrument() {
+                    ready.tool.jaw_rad = Self::JAW_OPEN_RAD;
+                }
+                let states = ready.to_array().iter().map(|q| ServoState::at(*q)).collect();
+                SimArm {
+                    name,
+                    servos,
+                    states,
+                    command: ready,
+                    grasp: None,
+                    slipped: false,
+                    force_n: Vector3::zeros(),
+                }
+            })
+            .collect();
+
+        // Links: kinematic when an arm moves them, fixed otherwise.
+        let mut positions = vec![0.0; rig.tree.joints.len()];
+        for arm in &arms {
+            rig.arm(arm.name).write_tree_positions(&arm.actual(), &mut positions);
+        }
+        let poses = rig.tree.root_from_links(&positions);
+        let mut link_bodies = vec![None; rig.tree.links.len()];
+        for (i, link) in rig.tree.links.iter().enumerate() {
+            if link.collisions.is_empty() {
+                continue;
+            }
+            let moving = rig.tree.path_to(i).iter().any(|&j| rig.tree.joints[j].limit.is_some());
+            // The jaws hold the thread by the grasp constraint alone: their capsules closing on a
+            // held segment would fight the constraint, so they do not collide with the thread.
+            let jaw = ["_jaw_1", "_jaw_2", "_clevis"].iter().any(|s| link.name.ends_with(s));
+            let (builder, group, filter) = if moving {
+                (
+                    RigidBodyBuilder::kinematic_position_based(),
+                    ROBOT_GROUP,
+                    if jaw { Group::NONE } else { THREAD_GROUP },
+                )
+            } else {
+                (RigidBodyBuilder::fixed(), ENVIRONMENT_GROUP, Group::NONE)
+            };
+            let body = physics.bodies.insert(builder.pose(to_pose(&poses[i])).build());
+            for c in &link.collisions {
+                let collider = shape_collider(&c.shape)
+                    .position(to_pose(&c.link_from_shape))
+                    .friction(0.8)
+                    .collision_groups(InteractionGroups::new(group, filter, InteractionTestMode::And))
+                    .build();
+                physics.colliders.insert_with_parent(collider, body, &mut physics.bodies);
+            }
+            link_bodies[i] = Some(body);
+        }
+
+        let tissue = Vector3::from(config.tissue.centre_m);
+        let start = tissue + Vector3::new(-0.5 * config.thread.length_m, config.stitch.bite_m, 0.005);
+        let thread = Thread::build(&mut physics, &config.thread, &start, &Vector3::x());
+        Self {
+            physics,
+            rig,
+            arms,
+            thread,
+            link_bodies,
+            time_s: 0.0,
+            events: Vec::new(),
+            config,
+            jaw_closed_rad: 0.05,
+            grip_force_n: 2.0,
+        }
+    }
+
+    /// Commands one arm's joints (the jaw opening included).
+    pub fn command(&mut self, arm: ArmName, joints: ArmJoints) {
+        if let Some(a) = self.arms.iter_mut().find(|a| a.name == arm) {
+            a.command = joints;
+        }
+    }
+
+    /// One arm.
+    pub fn arm(&self, name: ArmName) -> &SimArm {
+        let i = ArmName::ALL.iter().position(|a| *a == name).unwrap_or(0);
+        &self.arms[i]
+    }
+
+    /// The tip pose of an arm as its links stand now.
+    pub fn world_from_tip(&self, name: ArmName) -> IsometryMatrix3<f64> {
+        self.rig.arm(name).model.world_from_tip(&self.arm(name).actual())
+    }
+
+    /// Advances one step: servos, link poses, grasps, physics, slip and force readings.
+    pub fn step(&mut self) -> Result<(), HealthError> {
+        let dt = self.config.solver.dt_s;
+        let mut positions = vec![0.0; self.rig.tree.joints.len()];
+        for arm in &mut self.arms {
+            let command = arm.command.to_array();
+            for ((servo, state), q) in arm.servos.iter().zip(arm.states.iter_mut()).zip(command) {
+                servo.step(state, q, dt);
+            }
+            self.rig.arm(arm.name).write_tree_positions(&arm.actual(), &mut positions);
+        }
+        let poses = self.rig.tree.root_from_links(&positions);
+        for (i, body) in self.link_bodies.iter().enumerate() {
+            if let Some(h) = body
+                && self.physics.bodies[*h].is_kinematic()
+            {
+                self.physics.bodies[*h].set_next_kinematic_position(to_pose(&poses[i]));
+            }
+        }
+        self.update_grasps(&poses);
+        let thread_segments = self.thread.segments.clone();
+        self.physics.step(&|h| match thread_segments.iter().position(|s| *s == h) {
+            Some(i) => format!("thread segment {i}"),
+            None => "rig link".to_owned(),
+        })?;
+        self.time_s += dt;
+        self.check_slip();
+        self.read_forces();
+        Ok(())
+    }
+
+    fn update_grasps(&mut self, poses: &[IsometryMatrix3<f64>]) {
+        for a in 0..self.arms.len() {
+            let name = self.arms[a].name;
+            if !name.carries_instrument() {
+                continue;
+            }
+            let closed = self.arms[a].actual().tool.jaw_rad < self.jaw_closed_rad;
+            let commanded_closed = self.arms[a].command.tool.jaw_rad < self.jaw_closed_rad;
+            if !commanded_closed {
+                if let Some(grasp) = self.arms[a].grasp.take() {
+                    grasp.release(&mut self.physics);
+                    self.events.push(GraspEvent::Released { arm: name, time_s: self.time_s });
+                }
+                self.arms[a].slipped = false;
+                continue;
+            }
+            if !closed || self.arms[a].grasp.is_some() || self.arms[a].slipped {
+                continue;
+            }
+            let rig_arm = self.rig.arm(name);
+            // The jaws' carrier: the link the tip frame hangs from.
+            let clevis = self.rig.tree.links[rig_arm.tip_link]
+                .parent_joint
+                .and_then(|j| self.link_bodies[self.rig.tree.joints[j].parent]);
+            let Some(clevis) = clevis else { continue };
+            let tip = poses[rig_arm.tip_link];
+            if let Some(grasp) = Grasp::try_close(&mut self.physics, &self.thread, clevis, &tip, 0.5 * 0.010)
+            {
+                self.events.push(GraspEvent::Grasped {
+                    arm: name,
+                    segment: grasp.segment,
+                    time_s: self.time_s,
+                });
+                self.arms[a].grasp = Some(grasp);
+            }
+        }
+    }
+
+    fn check_slip(&mut self) {
+        for arm in &mut self.arms {
+            let Some(grasp) = &arm.grasp else { continue };
+            let force = grasp.force_n(&self.physics);
+            if force > self.grip_force_n {
+                if let Some(grasp) = arm.grasp.take() {
+                    grasp.release(&mut self.physics);
+                }
+                arm.slipped = true;
+                self.events.push(GraspEvent::Slipped { arm: arm.name, force_n: force, time_s: self.time_s });
+            }
+        }
+    }
+
+    fn read_forces(&mut self) {
+        let dt = self.config.solver.dt_s;
+        for a in 0..self.arms.len() {
+            let rig_arm = self.rig.arm(self.arms[a].name);
+            // The instrument's bodies: every link below the flange.
+            let mut total = Vector3::zeros();
+            for (i, body) in self.link_bodies.iter().enumerate() {
+                let Some(h) = body else { continue };
+                let below_flange = self
+                    .rig
+                    .tree
+                    .path_to(i)
+                    .iter()
+                    .any(|&j| self.rig.tree.joints[j].child == rig_arm.flange_link);
+                if !below_flange && i != rig_arm.flange_link {
+                    continue;
+                }
+                for &c in self.physics.bodies[*h].colliders() {
+                    for pair in self.physics.narrow_phase.contact_pairs_with(c) {
+                        let impulse = pair.total_impulse();
+                        // The impulse pushes collider 1 away from collider 2 along the normal.
+                        let sign = if pair.collider1 == c { -1.0 } else { 1.0 };
+                        total += Vector3::new(impulse.x, impulse.y, impulse.z) * (sign / dt);
+                    }
+                }
+            }
+            if let Some(grasp) = &self.arms[a].grasp {
+                total += grasp.force_vector_n(&self.physics);
+            }
+            self.arms[a].force_n = total;
+        }
+    }
+}
