@@ -1,5 +1,6 @@
 //! Command-line parsing and dispatch; each command group lives in its own file.
 
+mod knot;
 mod numbers;
 mod output;
 mod rig;
@@ -21,6 +22,9 @@ enum Command {
     /// The robots: validate the rig, forward and inverse kinematics.
     #[command(subcommand)]
     Rig(rig::RigCommand),
+    /// Knots: which knot a thread's centreline holds.
+    #[command(subcommand)]
+    Knot(knot::KnotCommand),
 }
 
 /// Runs a parsed command line.
@@ -28,5 +32,6 @@ pub fn run(cli: Cli) -> anyhow::Result<ExitCode> {
     let mut out = output::Output::stdout();
     match cli.command {
         Command::Rig(command) => rig::run(command, &mut out),
+        Command::Knot(command) => knot::run(command, &mut out),
     }
 }
