@@ -75,7 +75,12 @@ fn loop_with_knots(knots: &[(f64, Vec<V>)]) -> Vec<V> {
 
 /// An open overhand knot on a straight-ish thread: tails leave in opposite directions.
 fn open_overhand() -> Vec<V> {
-    let mut points = vec![V::new(-20.0, -6.0, 0.0), V::new(0.0, -6.0, 0.0), V::new(7.0, -5.0, 0.0), V::new(7.5, -2.0, 0.0)];
+    let mut points = vec![
+        V::new(-20.0, -6.0, 0.0),
+        V::new(0.0, -6.0, 0.0),
+        V::new(7.0, -5.0, 0.0),
+        V::new(7.5, -2.0, 0.0),
+    ];
     points.extend(hairpin_overhand(false, 90));
     points.push(V::new(20.0, 1.5, 0.0));
     points
@@ -99,8 +104,11 @@ fn suture(twists: &[i32]) -> Vec<V> {
     let level = |r: usize| r as f64 * GAP;
     let top = twists.len() - 1;
     let y_top = level(top);
-    let mut points =
-        vec![V::new(-4.0, y_top + 6.0, 0.0), V::new(-2.5, y_top + 3.0, 0.0), V::new(-1.5, y_top + RHO + 0.4, 0.0)];
+    let mut points = vec![
+        V::new(-4.0, y_top + 6.0, 0.0),
+        V::new(-2.5, y_top + 3.0, 0.0),
+        V::new(-1.5, y_top + RHO + 0.4, 0.0),
+    ];
     let (mut region, mut end) = (top, WestTop);
     for _ in 0..4 * twists.len() + 2 {
         let k = f64::from(twists[region]);
@@ -127,7 +135,11 @@ fn suture(twists: &[i32]) -> Vec<V> {
         let side = |e: End| if matches!(e, WestTop | WestBottom) { -1.5 } else { 1.5 };
         match exit {
             EastTop if region == top => {
-                points.extend([V::new(1.5, y + RHO + 0.4, 0.0), V::new(2.5, y + 3.0, 0.0), V::new(4.0, y + 6.0, 0.0)]);
+                points.extend([
+                    V::new(1.5, y + RHO + 0.4, 0.0),
+                    V::new(2.5, y + 3.0, 0.0),
+                    V::new(4.0, y + 6.0, 0.0),
+                ]);
                 return points;
             }
             WestTop | EastTop => {
@@ -145,7 +157,12 @@ fn suture(twists: &[i32]) -> Vec<V> {
             WestBottom | EastBottom => {
                 // The bite, under the tissue.
                 let x = side(exit);
-                points.extend([V::new(x, -RHO - 0.4, 0.0), V::new(x, -3.0, 0.0), V::new(-x, -3.0, 0.0), V::new(-x, -RHO - 0.4, 0.0)]);
+                points.extend([
+                    V::new(x, -RHO - 0.4, 0.0),
+                    V::new(x, -3.0, 0.0),
+                    V::new(-x, -3.0, 0.0),
+                    V::new(-x, -RHO - 0.4, 0.0),
+                ]);
                 end = if exit == WestBottom { EastBottom } else { WestBottom };
             }
         }
@@ -188,9 +205,22 @@ fn show(name: &str, c: &Classification) -> String {
     let votes: Vec<String> = c
         .votes
         .iter()
-        .map(|v| format!("{}({}->{}, det {:?}, w {})", v.knot, v.raw_crossings, v.crossings, v.determinant, v.writhe))
+        .map(|v| {
+            format!(
+                "{}({}->{}, det {:?}, w {})",
+                v.knot, v.raw_crossings, v.crossings, v.determinant, v.writhe
+            )
+        })
         .collect();
-    format!("{name}: {} det {:?} writhe {} crossings {} agreement {:.2}\n  {}", c.knot, c.determinant, c.writhe, c.crossings, c.agreement, votes.join("\n  "))
+    format!(
+        "{name}: {} det {:?} writhe {} crossings {} agreement {:.2}\n  {}",
+        c.knot,
+        c.determinant,
+        c.writhe,
+        c.crossings,
+        c.agreement,
+        votes.join("\n  ")
+    )
 }
 
 fn check(name: &str, points: &[V], knot: KnotType, det: u64, writhe_abs: u32) -> Classification {
@@ -231,7 +261,8 @@ fn unknots_that_reduction_alone_cannot_simplify() {
     let mut rng = ChaCha8Rng::seed_from_u64(1);
     let (mut diagrams, mut kept_crossings) = (0, 0);
     for trial in 0..200 {
-        let modes: Vec<[f64; 4]> = (0..5).map(|_| std::array::from_fn(|_| rng.random_range(-1.0..1.0))).collect();
+        let modes: Vec<[f64; 4]> =
+            (0..5).map(|_| std::array::from_fn(|_| rng.random_range(-1.0..1.0))).collect();
         let points: Vec<V> = (0..300)
             .map(|i| {
                 let t = TAU * i as f64 / 300.0;
@@ -249,7 +280,9 @@ fn unknots_that_reduction_alone_cannot_simplify() {
         diagrams += c.votes.len();
         kept_crossings += c.votes.iter().filter(|v| v.crossings > 0).count();
     }
-    println!("{kept_crossings} of {diagrams} ascending diagrams kept crossings after reduction; all called unknots");
+    println!(
+        "{kept_crossings} of {diagrams} ascending diagrams kept crossings after reduction; all called unknots"
+    );
     assert!(kept_crossings > 0, "the determinant rule was never needed: make the curves harder");
 }
 
@@ -279,7 +312,13 @@ fn scale_and_position_do_not_matter() {
 #[test]
 fn open_overhand_closed_far_away_is_a_trefoil() {
     check("open overhand", &open_overhand(), KnotType::Trefoil, 3, 3);
-    check("overhand in a loop", &loop_with_knots(&[(0.0, hairpin_overhand(false, 90))]), KnotType::Trefoil, 3, 3);
+    check(
+        "overhand in a loop",
+        &loop_with_knots(&[(0.0, hairpin_overhand(false, 90))]),
+        KnotType::Trefoil,
+        3,
+        3,
+    );
     // The single throw of a suture, the bite part of the thread.
     check("single throw", &suture(&[3]), KnotType::Trefoil, 3, 3);
 }
@@ -320,14 +359,13 @@ fn small_perturbations_change_no_verdict() {
     let mut rng = ChaCha8Rng::seed_from_u64(4);
     for (name, points) in curves {
         let want = classify(&points).expect("valid").knot;
-        let mean_segment: f64 = points.windows(2).map(|w| (w[1] - w[0]).norm()).sum::<f64>() / (points.len() - 1) as f64;
+        let mean_segment: f64 =
+            points.windows(2).map(|w| (w[1] - w[0]).norm()).sum::<f64>() / (points.len() - 1) as f64;
         let sigma = 0.25 * mean_segment;
         let mut same = 0;
         for _ in 0..1000 {
-            let moved: Vec<V> = points
-                .iter()
-                .map(|p| p + V::from_fn(|_, _| rng.random_range(-sigma..sigma)))
-                .collect();
+            let moved: Vec<V> =
+                points.iter().map(|p| p + V::from_fn(|_, _| rng.random_range(-sigma..sigma))).collect();
             same += usize::from(classify(&moved).expect("valid").knot == want);
         }
         let rate = same as f64 / 1000.0;
@@ -368,7 +406,11 @@ fn csv_files_name_the_bad_line() {
         ("short.csv", "x,y,z\n0,0,0\n1,0,0\n1,1,0\n", "short.csv: line 4: end of file after only 3 point(s)"),
         ("dup.csv", "0,0,0\n1,0,0\n1,0,0\n2,1,0\n", "dup.csv: line 3: repeats the point on line 2"),
         ("nan.csv", "0,0,0\n1,0,0\n1,nan,0\n2,1,0\n", "nan.csv: line 3: y = 'nan' is not finite"),
-        ("bad.csv", "x,y,z\n0,0,0\n1;0;0\n", "bad.csv: line 3: expected 3 comma-separated numbers x,y,z, found 1"),
+        (
+            "bad.csv",
+            "x,y,z\n0,0,0\n1;0;0\n",
+            "bad.csv: line 3: expected 3 comma-separated numbers x,y,z, found 1",
+        ),
     ];
     for (name, text, message) in cases {
         let error = read_points(&write(name, text)).expect_err("refused").to_string();
@@ -396,8 +438,14 @@ fn verdicts_from_topology_and_tightness() {
         judge(&knotted, &[KnotType::Square], &site, &limits),
         Verdict::Failure(FailureMode::WrongKnotType)
     );
-    let far = StitchSite { surface: TissueSurface::new(V::new(0.0, -0.01, 0.0), V::y()).expect("normal"), stitch_m: V::new(0.0, -0.01, 0.0) };
-    assert_eq!(judge(&knotted, &[KnotType::Trefoil], &far, &limits), Verdict::Failure(FailureMode::KnotNotDown));
+    let far = StitchSite {
+        surface: TissueSurface::new(V::new(0.0, -0.01, 0.0), V::y()).expect("normal"),
+        stitch_m: V::new(0.0, -0.01, 0.0),
+    };
+    assert_eq!(
+        judge(&knotted, &[KnotType::Trefoil], &far, &limits),
+        Verdict::Failure(FailureMode::KnotNotDown)
+    );
     let loose = classify(&kinked_circle(200)).expect("valid");
     assert_eq!(judge(&loose, &[KnotType::Trefoil], &site, &limits), Verdict::Failure(FailureMode::NoKnot));
 }

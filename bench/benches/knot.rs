@@ -1,0 +1,131 @@
+//! Benchmark: classifying a 200-point thread's centreline (target: at most 1 ms).
+//!
+//! `cargo bench -p knotlab-bench --bench knot` prints, per thread shape, the median time of one
+//! `classify` call (13 projection directions, closure, crossings, reduction, determinant, vote):
+//! batches over 32 seeded perturbations of the thread, each batch timed whole, the median taken over
+//! batches (robust to the odd preempted batch on a shared 2-core machine).
+
+use std::f64::consts::{PI, TAU};
+use std::hint::black_box;
+use std::time::Instant;
+
+use knotlab_sim::knot::{KnotType, classify};
+use nalgebra::Vector3;
+use rand::{Rng, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+
+type V = Vector3<f64>;
+
+const POINTS: usize = 200;
+const VARIANTS: usize = 32;
+const BATCHES: usize = 101;
+
+/// Resamples a polyline to `n` points evenly spaced along its length.
+fn resample(points: &[V], n: usize) -> Vec<V> {
+    let mut arc = vec![0.0];
+    for w in points.windows(2) {
+        arc.push(arc[arc.len() - 1] + (w[1] - w[0]).norm());
+    }
+    let total = arc[arc.len() - 1];
+    let mut seg = 0;
+    (0..n)
+        .map(|i| {
+            let s = total * i as f64 / (n - 1) as f64;
+            while seg + 2 < arc.len() && arc[seg + 1] < s {
+                seg += 1;
+            }
+            let f = ((s - arc[seg]) / (arc[seg + 1] - arc[seg])).clamp(0.0, 1.0);
+            points[seg] + (points[seg + 1] - points[seg]) * f
+        })
+        .collect()
+}
+
+/// A 4 mm trefoil: the (2, 3) torus knot cut open on its rim.
+fn trefoil() -> Vec<V> {
+    (0..POINTS)
+        .map(|i| {
+            let t = TAU * i as f64 / POINTS as f64;
+            let r = 2.0 + (3.0 * t).cos();
+            V::new(r * (2.0 * t).cos(), r * (2.0 * t).sin(), (3.0 * t).sin()) * 0.001
+        })
+        .collect()
+}
+
+/// A square knot as a suture ties it: two opposite throws (3 half-twists each) stacked over the
+/// bite, the ends leaving upward; about 3 cm of thread.
+fn square_suture() -> Vec<V> {
+    let mut points = vec![V::new(-4.0, 9.0, 0.0), V::new(-1.5, 3.9, 0.0)];
+    let twist = |points: &mut Vec<V>, y: f64, k: f64, strand: f64, from_west: bool| {
+        for i in 0..=40 {
+            let f = f64::from(i) / 40.0;
+            let x = if from_west { -1.0 + 2.0 * f } else { 1.0 - 2.0 * f };
+            let phi = strand * PI + k * PI * (x + 1.0) / 2.0;
+            points.push(V::new(x, y + 0.5 * phi.cos(), 0.5 * phi.sin()));
+        }
+    };
+    // Upper throw west-top to east-bottom, down the east side, lower throw east-top to west-bottom,
+    // the bite, lower throw east-bottom to west-top, up the west side, upper throw to east-top.
+    twist(&mut points, 3.0, -3.0, 0.0, true);
+    points.extend([V::new(1.5, 2.1, 0.0), V::new(1.5, 0.9, 0.0)]);
+    twist(&mut points, 0.0, 3.0, 1.0, false);
+    points.extend([
+        V::new(-1.5, -0.9, 0.0),
+        V::new(-1.5, -3.0, 0.0),
+        V::new(1.5, -3.0, 0.0),
+        V::new(1.5, -0.9, 0.0),
+    ]);
+    twist(&mut points, 0.0, 3.0, 0.0, false);
+    points.extend([V::new(-1.5, 0.9, 0.0), V::new(-1.5, 2.1, 0.0)]);
+    twist(&mut points, 3.0, -3.0, 1.0, true);
+    points.extend([V::new(1.5, 3.9, 0.0), V::new(4.0, 9.0, 0.0)]);
+    resample(&points, POINTS).into_iter().map(|p| p * 0.001).collect()
+}
+
+/// An untied 10 cm thread lying in loose waves.
+fn untied() -> Vec<V> {
+    (0..POINTS)
+        .map(|i| {
+            let x = 0.1 * i as f64 / POINTS as f64;
+            V::new(x, 0.01 * (x * 90.0).sin(), 0.002 * (x * 40.0).cos())
+        })
+        .collect()
+}
+
+fn main() -> Result<(), Box<dyn std::error::Error>> {
+    let mut rng = ChaCha8Rng::seed_from_u64(20_261_124);
+    println!(
+        "knot classify, {POINTS}-point threads, {VARIANTS} seeded perturbations each, median over {BATCHES} batches"
+    );
+    let shapes: [(&str, Vec<V>, KnotType); 3] = [
+        ("trefoil", trefoil(), KnotType::Trefoil),
+        ("square suture", square_suture(), KnotType::Square),
+        ("untied thread", untied(), KnotType::Unknot),
+    ];
+    for (name, shape, want) in shapes {
+        let variants: Vec<Vec<V>> = (0..VARIANTS)
+            .map(|_| shape.iter().map(|p| p + V::from_fn(|_, _| rng.random_range(-1e-5..1e-5))).collect())
+            .collect();
+        let mut right = 0;
+        for v in &variants {
+            right += usize::from(classify(v)?.knot == want);
+        }
+        let mut per_call_us: Vec<f64> = (0..BATCHES)
+            .map(|_| {
+                let start = Instant::now();
+                for v in &variants {
+                    let _ = black_box(classify(black_box(v)));
+                }
+                start.elapsed().as_secs_f64() * 1e6 / VARIANTS as f64
+            })
+            .collect();
+        per_call_us.sort_by(f64::total_cmp);
+        let at = |q: f64| per_call_us[((per_call_us.len() - 1) as f64 * q).round() as usize];
+        println!(
+            "classify {name:<14}: median {:.3} ms/call (p10 {:.3}, p90 {:.3}); {right}/{VARIANTS} classified {want}",
+            at(0.5) / 1e3,
+            at(0.1) / 1e3,
+            at(0.9) / 1e3
+        );
+    }
+    Ok(())
+}
