@@ -121,6 +121,9 @@ mod tests {
             assert_eq!(Verdict::Failure(mode).label(), mode.name());
         }
         assert_eq!(Verdict::Success.label(), "success");
+        let de: serde::de::value::StrDeserializer<'_, serde::de::value::Error> =
+            "success".into_deserializer();
+        assert_eq!(Verdict::deserialize(de), Ok(Verdict::Success));
         let mut names: Vec<&str> = FailureMode::ALL.iter().map(|m| m.name()).collect();
         names.dedup();
         assert_eq!(names.len(), 8);
