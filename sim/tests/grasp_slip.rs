@@ -8,7 +8,8 @@ use nalgebra::Vector3;
 use rapier3d::prelude::*;
 
 fn world() -> SimWorld {
-    let scene = parse_scene(include_str!("../../scenarios/default.toml"), "default.toml").expect("shipped scene");
+    let scene =
+        parse_scene(include_str!("../../scenarios/default.toml"), "default.toml").expect("shipped scene");
     SimWorld::new(scene, Rig::shipped().expect("shipped rig"))
 }
 
