@@ -1,24 +1,10 @@
 //! `knotlab rig ...` end to end: the binary as a user runs it.
 
-use std::process::Command;
+mod common;
 
 use serde_json::Value;
 
-fn knotlab(args: &[&str]) -> (i32, String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_knotlab")).args(args).output().expect("run knotlab");
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&out.stdout).into_owned(),
-        String::from_utf8_lossy(&out.stderr).into_owned(),
-    )
-}
-
-fn json(args: &[&str]) -> (i32, Value) {
-    let (code, stdout, stderr) = knotlab(args);
-    let value =
-        serde_json::from_str(&stdout).unwrap_or_else(|e| panic!("not JSON ({e}): {stdout}\n{stderr}"));
-    (code, value)
-}
+use common::{json, knotlab};
 
 #[test]
 fn rig_check_validates_the_shipped_rig() {
