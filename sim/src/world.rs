@@ -19,6 +19,19 @@ pub const ROBOT_GROUP: Group = Group::GROUP_2;
 /// which works inside the chest cavity the torso box stands for.
 pub const ENVIRONMENT_GROUP: Group = Group::GROUP_3;
 
+/// Why a scene cannot be built.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum WorldError {
+    /// An instrument cannot be placed through its trocar.
+    #[error("trocars.{arm}: the {arm} arm cannot put its tool through this trocar: {reason}")]
+    TrocarUnreachable {
+        /// The arm.
+        arm: ArmName,
+        /// What the kinematics said.
+        reason: knotlab_hw::kinematics::IkError,
+    },
+}
+
 /// One arm in the simulation: its servos and what it was told.
 pub struct SimArm {
     /// Which arm.
@@ -91,7 +104,7 @@ impl SimWorld {
 
     /// Builds the scene: the instruments parked just inside their trocars, jaws open, the thread laid
     /// along the wound above the tissue.
-    pub fn new(config: SceneConfig, rig: Rig) -> Self {
+    pub fn new(config: SceneConfig, rig: Rig) -> Result<Self, WorldError> {
         let mut physics = Physics::new(&config.solver);
         let arms: Vec<SimArm> = ArmName::ALL
             .iter()
@@ -141,12 +154,12 @@ impl SimWorld {
                 let mut ready = arm
                     .model
                     .solve_tip(&target, &trocar, &name.ready_joints())
-                    .unwrap_or(name.ready_joints());
+                    .map_err(|reason| WorldError::TrocarUnreachable { arm: name, reason })?;
                 if name.carries_instrument() {
                     ready.tool.jaw_rad = Self::JAW_OPEN_RAD;
                 }
                 let states = ready.to_array().iter().map(|q| ServoState::at(*q)).collect();
-                SimArm {
+                Ok(SimArm {
                     name,
                     servos,
                     states,
@@ -154,9 +167,9 @@ impl SimWorld {
                     grasp: None,
                     slipped: false,
                     force_n: Vector3::zeros(),
-                }
+                })
             })
-            .collect();
+            .collect::<Result<_, WorldError>>()?;
 
         // Links: kinematic when an arm moves them, fixed otherwise.
         let mut positions = vec![0.0; rig.tree.joints.len()];
@@ -197,7 +210,7 @@ impl SimWorld {
         let tissue = Vector3::from(config.tissue.centre_m);
         let start = tissue + Vector3::new(-0.5 * config.thread.length_m, config.stitch.bite_m, 0.005);
         let thread = Thread::build(&mut physics, &config.thread, &start, &Vector3::x());
-        Self {
+        Ok(Self {
             physics,
             rig,
             arms,
@@ -208,7 +221,7 @@ impl SimWorld {
             config,
             jaw_closed_rad: 0.05,
             grip_force_n: 2.0,
-        }
+        })
     }
 
     /// Commands one arm's joints (the jaw opening included).

@@ -10,7 +10,7 @@ use rapier3d::prelude::*;
 fn world() -> SimWorld {
     let scene =
         parse_scene(include_str!("../../scenarios/default.toml"), "default.toml").expect("shipped scene");
-    SimWorld::new(scene, Rig::shipped().expect("shipped rig"))
+    SimWorld::new(scene, Rig::shipped().expect("shipped rig")).expect("the shipped scene builds")
 }
 
 /// Opens the left jaws, lays the thread through them (across the jaws, its middle segment at the jaw
@@ -55,6 +55,16 @@ fn pull(w: &mut SimWorld, force_n: f64) -> bool {
         }
     }
     false
+}
+
+/// A trocar no arm can pass its tool through is refused, naming the scene key.
+#[test]
+fn an_unreachable_trocar_is_named() {
+    let text = include_str!("../../scenarios/default.toml")
+        .replace("left = [-0.08, 0.12, 1.02]", "left = [3.0, 3.0, 1.02]");
+    let scene = parse_scene(&text, "far.toml").expect("in range");
+    let err = SimWorld::new(scene, Rig::shipped().expect("shipped rig")).err().expect("refused");
+    assert!(err.to_string().starts_with("trocars.left: the left arm cannot put its tool through"), "{err}");
 }
 
 #[test]

@@ -204,11 +204,6 @@ pub fn solve_flange_pose(
     }
     match best {
         Some((q, _)) => Ok(q),
-        None => Err(branches.failure.unwrap_or(IkError::JointLimit {
-            joint: JointId::Arm(6),
-            value_rad: f64::NAN,
-            lower_rad: limits[5].lower_rad,
-            upper_rad: limits[5].upper_rad,
-        })),
+        None => Err(branches.failure.unwrap_or(IkError::NoBranch)),
     }
 }

@@ -47,6 +47,10 @@ pub enum IkError {
         /// Longest reachable distance, m.
         max_m: f64,
     },
+    /// No arm branch was found and no more specific reason recorded (a safety net: every path the
+    /// solver knows records a reason first).
+    #[error("no arm configuration reaches the flange pose")]
+    NoBranch,
     /// Geometric solutions exist, but each puts some joint outside its limits; this is the least bad.
     #[error("{joint} would be at {value_rad:.4} rad, outside its limits {lower_rad:.4}..{upper_rad:.4} rad")]
     JointLimit {

@@ -296,11 +296,7 @@ impl ArmModel {
         }
         match best {
             Some((arm_rad, _)) => Ok(ArmJoints { arm_rad, tool: ToolJoints::default() }),
-            None => Err(branches.failure.unwrap_or(IkError::OutOfReach {
-                distance_m: f64::NAN,
-                min_m: 0.0,
-                max_m: 0.0,
-            })),
+            None => Err(branches.failure.unwrap_or(IkError::NoBranch)),
         }
     }
 }
