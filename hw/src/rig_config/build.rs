@@ -1,0 +1,235 @@
+//! From a rig config to devices and a controller. Every joint driver is wrapped in its limit
+//! decorators (position and velocity from the rig's URDF, and a per-cycle step limit where the config
+//! asks), so a bad command is refused before it reaches any backend.
+
+use nalgebra::Vector3;
+
+use crate::controller::{ArmSetup, Controller, ControllerError, ControllerParams};
+use crate::device::clock::PacedByDevices;
+use crate::device::dummy::{
+    DummyArmServo, DummyForceSensor, DummyInstrumentDrive, DummyMaster, DummyPedals, ForceHandle,
+    MasterHandle, PedalHandle, VirtualClock,
+};
+use crate::device::{
+    ArmDevices, ArmServo, CycleClock, DeviceError, DeviceId, DeviceKind, DeviceSet, ForceSensor,
+    InstrumentDrive, MasterDevice, PositionLimit, StepLimit, VelocityLimit,
+};
+use crate::kinematics::{ArmJoints, Tool};
+use crate::melfa::{CR750_CYCLE_S, Layout, MelfaArm, MelfaConfig};
+use crate::rig::{ArmName, Rig};
+
+use super::schema::{Backend, RigConfig};
+
+/// The simulated scene as a source of devices; the `sim` crate implements it, so `hw` needs no
+/// simulator. Every device it hands out acts on the same scene, and its clock steps that scene.
+pub trait SimulatedScene {
+    /// The simulation's step, s.
+    fn period_s(&self) -> f64;
+    /// The arm's servo.
+    fn arm_servo(&mut self, arm: ArmName) -> Box<dyn ArmServo>;
+    /// The arm's instrument motors.
+    fn instrument_drive(&mut self, arm: ArmName) -> Box<dyn InstrumentDrive>;
+    /// The arm's strain gauges.
+    fn force_sensor(&mut self, arm: ArmName) -> Box<dyn ForceSensor>;
+    /// The clock that steps the scene once per cycle.
+    fn clock(&mut self) -> Box<dyn CycleClock>;
+    /// The scene's trocar for the arm, world frame, m.
+    fn world_trocar_m(&self, arm: ArmName) -> Vector3<f64>;
+    /// Where the arm stands in the scene now (dummy devices of a sim rig start there).
+    fn joints(&self, arm: ArmName) -> ArmJoints;
+}
+
+/// Why a rig config could not be turned into devices.
+#[derive(Debug, thiserror::Error)]
+pub enum RigBuildError {
+    /// A `sim` device without a simulated scene to take it from.
+    #[error("{key}: backend \"sim\" needs the simulated scene: build this rig through knotlab-sim's backend")]
+    NeedsSimulator {
+        /// The key that asked for it.
+        key: String,
+    },
+    /// The config has problems (see [`RigConfig::problems`]).
+    #[error("{}", problems.iter().map(|(k, r)| format!("{k}: {r}")).collect::<Vec<_>>().join("; "))]
+    Invalid {
+        /// (key, reason) for each problem.
+        problems: Vec<(String, String)>,
+    },
+    /// A device could not be opened (a MELFA controller that does not answer).
+    #[error("{key}: {source}")]
+    Device {
+        /// The device's key.
+        key: String,
+        /// Why.
+        source: DeviceError,
+    },
+}
+
+/// The handles of the dummy input devices, to press pedals and set forces from a test or a user
+/// interface.
+#[derive(Clone, Debug, Default)]
+pub struct DummyHandles {
+    /// The pedals, if dummy.
+    pub pedals: Option<PedalHandle>,
+    /// Dummy force sensors by arm.
+    pub forces: Vec<(ArmName, ForceHandle)>,
+    /// Dummy master devices by the arm they steer.
+    pub masters: Vec<(ArmName, MasterHandle)>,
+}
+
+impl DummyHandles {
+    /// The dummy force sensor of one arm.
+    pub fn force(&self, arm: ArmName) -> Option<&ForceHandle> {
+        self.forces.iter().find(|(a, _)| *a == arm).map(|(_, h)| h)
+    }
+}
+
+/// A rig's devices, ready for a controller.
+pub struct BuiltRig {
+    /// The devices.
+    pub devices: DeviceSet,
+    /// Each arm's model and trocar.
+    pub setups: Vec<ArmSetup>,
+    /// The controller's tuning.
+    pub params: ControllerParams,
+    /// Handles of the dummy inputs.
+    pub handles: DummyHandles,
+}
+
+impl BuiltRig {
+    /// A controller for these devices (reads every device once).
+    pub fn into_controller(self) -> Result<(Controller, DummyHandles), ControllerError> {
+        let controller = Controller::new(self.devices, &self.setups, self.params)?;
+        Ok((controller, self.handles))
+    }
+}
+
+fn need_sim<'a>(
+    sim: &'a mut Option<&mut dyn SimulatedScene>,
+    key: String,
+) -> Result<&'a mut dyn SimulatedScene, RigBuildError> {
+    match sim {
+        Some(s) => Ok(&mut **s),
+        None => Err(RigBuildError::NeedsSimulator { key }),
+    }
+}
+
+/// Builds the devices of `config` for `rig`; `sim` supplies the `sim` devices.
+pub fn build_rig(
+    config: &RigConfig,
+    rig: &Rig,
+    mut sim: Option<&mut dyn SimulatedScene>,
+) -> Result<BuiltRig, RigBuildError> {
+    let problems = config.problems();
+    if !problems.is_empty() {
+        return Err(RigBuildError::Invalid { problems });
+    }
+    let uses_sim = config.arms.iter().any(|(_, a)| {
+        a.servo.backend == Backend::Sim
+            || a.instrument.is_some_and(|d| d.backend == Backend::Sim)
+            || a.force.is_some_and(|d| d.backend == Backend::Sim)
+    });
+    let melfa_cycle = config
+        .arms
+        .iter()
+        .find(|(_, a)| a.servo.backend == Backend::Melfa)
+        .map(|(_, a)| a.servo.cycle_s.unwrap_or(CR750_CYCLE_S));
+    let clock: Box<dyn CycleClock> = if uses_sim {
+        need_sim(&mut sim, "arms".into())?.clock()
+    } else if let Some(period_s) = melfa_cycle {
+        Box::new(PacedByDevices { period_s })
+    } else if config.controller.real_time {
+        Box::new(VirtualClock::real_time(config.controller.period_s))
+    } else {
+        Box::new(VirtualClock::new(config.controller.period_s))
+    };
+    let period_s = clock.period_s();
+    let mut handles = DummyHandles::default();
+    let mut arms = Vec::new();
+    let mut setups = Vec::new();
+    for (name, arm) in config.arms.iter() {
+        let at = format!("arms.{name}");
+        let model = rig.arm(name).model;
+        let start = match &sim {
+            Some(s) => s.joints(name),
+            None => name.ready_joints(),
+        };
+        let servo_id = DeviceId::of_arm(DeviceKind::ArmServo, name);
+        let mut servo: Box<dyn ArmServo> = match arm.servo.backend {
+            Backend::Sim => need_sim(&mut sim, format!("{at}.servo"))?.arm_servo(name),
+            Backend::Dummy => Box::new(DummyArmServo::new(start.arm_rad)),
+            Backend::Melfa => {
+                let s = &arm.servo;
+                let controller = s.controller.ok_or_else(|| RigBuildError::Invalid {
+                    problems: vec![(format!("{at}.servo.controller"), "missing".into())],
+                })?;
+                let mut melfa = MelfaConfig::new(name, controller, &model.limits)
+                    .with_cycle(s.cycle_s.unwrap_or(CR750_CYCLE_S), &model.limits);
+                melfa.layout = s.layout.map_or(Layout::H7, Layout::from);
+                if let Some(bind) = s.bind {
+                    melfa.bind = bind;
+                }
+                if let Some(t) = s.receive_timeout_s {
+                    melfa.receive_timeout_s = t;
+                }
+                if let Some(n) = s.max_lost {
+                    melfa.max_lost = n;
+                }
+                let driver = MelfaArm::connect(melfa)
+                    .map_err(|source| RigBuildError::Device { key: format!("{at}.servo"), source })?;
+                Box::new(driver)
+            }
+        };
+        if let Some(step) = arm.max_step_rad {
+            servo = Box::new(StepLimit::arm(servo, servo_id, [step; 6]));
+        }
+        servo = Box::new(VelocityLimit::arm(servo, servo_id, model.limits, period_s));
+        servo = Box::new(PositionLimit::arm(servo, servo_id, model.limits));
+
+        let instrument = match (&arm.instrument, &model.tool) {
+            (Some(device), Tool::Instrument { limits, .. }) => {
+                let id = DeviceId::of_arm(DeviceKind::InstrumentDrive, name);
+                let mut drive: Box<dyn InstrumentDrive> = match device.backend {
+                    Backend::Sim => need_sim(&mut sim, format!("{at}.instrument"))?.instrument_drive(name),
+                    _ => Box::new(DummyInstrumentDrive::new(start.tool)),
+                };
+                drive = Box::new(VelocityLimit::instrument(drive, id, limits, period_s));
+                Some(Box::new(PositionLimit::instrument(drive, id, limits)) as Box<dyn InstrumentDrive>)
+            }
+            _ => None,
+        };
+        let force: Option<Box<dyn ForceSensor>> = match &arm.force {
+            Some(device) if device.backend == Backend::Sim => {
+                Some(need_sim(&mut sim, format!("{at}.force"))?.force_sensor(name))
+            }
+            Some(_) => {
+                let sensor = DummyForceSensor::new();
+                handles.forces.push((name, sensor.handle()));
+                Some(Box::new(sensor))
+            }
+            None => None,
+        };
+        let world_trocar_m = match (arm.trocar_m, &sim) {
+            (Some(t), _) => Vector3::from(t),
+            (None, Some(s)) => s.world_trocar_m(name),
+            (None, None) => return Err(RigBuildError::NeedsSimulator { key: format!("{at}.trocar_m") }),
+        };
+        setups.push(ArmSetup { arm: name, model, world_trocar_m });
+        arms.push((name, ArmDevices { servo, instrument, force }));
+    }
+    let pedals = DummyPedals::new();
+    handles.pedals = Some(pedals.handle());
+    let mut masters: Vec<(ArmName, Box<dyn MasterDevice>)> = Vec::new();
+    for (name, master) in [(ArmName::Left, &config.masters.left), (ArmName::Right, &config.masters.right)] {
+        if master.is_some() {
+            let device = DummyMaster::new();
+            handles.masters.push((name, device.handle()));
+            masters.push((name, Box::new(device)));
+        }
+    }
+    Ok(BuiltRig {
+        devices: DeviceSet { arms, pedals: Box::new(pedals), masters, clock },
+        setups,
+        params: config.controller.params(),
+        handles,
+    })
+}

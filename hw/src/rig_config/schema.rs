@@ -1,0 +1,327 @@
+//! The rig config's contents, and the checks that name each key.
+
+use std::net::SocketAddr;
+
+use serde::{Deserialize, Serialize};
+
+use crate::controller::ControllerParams;
+use crate::melfa::Layout;
+use crate::rig::ArmName;
+
+/// A whole rig config.
+#[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct RigConfig {
+    /// A line saying what the rig is.
+    pub description: String,
+    /// The controller's tuning and, for rigs of dummy devices, the clock.
+    #[serde(default)]
+    pub controller: ControllerSection,
+    /// The arms that take part.
+    #[serde(default)]
+    pub arms: Arms,
+    /// The foot pedals.
+    #[serde(default = "DeviceConfig::dummy")]
+    pub pedals: DeviceConfig,
+    /// Master devices, by the arm each steers.
+    #[serde(default)]
+    pub masters: Masters,
+}
+
+/// The controller's tuning.
+#[derive(Clone, Copy, Debug, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct ControllerSection {
+    /// Stale cycles in a row that fault the run.
+    pub watchdog_cycles: u32,
+    /// Fraction of the rated joint speeds the controller may command, (0, 1].
+    pub speed_scale: f64,
+    /// Force fed back to a master device per newton on its instrument.
+    pub force_feedback_scale: f64,
+    /// The cycle of a rig of dummy devices only, s (sim and melfa rigs take their backend's).
+    pub period_s: f64,
+    /// A rig of dummy devices runs in real time (sleeps each cycle) rather than as fast as it can.
+    pub real_time: bool,
+}
+
+impl Default for ControllerSection {
+    fn default() -> Self {
+        let p = ControllerParams::default();
+        Self {
+            watchdog_cycles: p.watchdog_cycles,
+            speed_scale: p.speed_scale,
+            force_feedback_scale: p.force_feedback_scale,
+            period_s: 0.001,
+            real_time: false,
+        }
+    }
+}
+
+impl ControllerSection {
+    /// The controller parameters.
+    pub fn params(&self) -> ControllerParams {
+        ControllerParams {
+            watchdog_cycles: self.watchdog_cycles,
+            speed_scale: self.speed_scale,
+            force_feedback_scale: self.force_feedback_scale,
+        }
+    }
+}
+
+/// The arms, each optional.
+#[derive(Clone, Debug, Default, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct Arms {
+    /// The left instrument arm.
+    pub left: Option<ArmConfig>,
+    /// The right instrument arm.
+    pub right: Option<ArmConfig>,
+    /// The assisting instrument arm.
+    pub assist: Option<ArmConfig>,
+    /// The endoscope arm.
+    pub camera: Option<ArmConfig>,
+}
+
+impl Arms {
+    /// The configured arms in [`ArmName::ALL`] order.
+    pub fn iter(&self) -> impl Iterator<Item = (ArmName, &ArmConfig)> {
+        ArmName::ALL
+            .into_iter()
+            .zip([&self.left, &self.right, &self.assist, &self.camera])
+            .filter_map(|(name, arm)| arm.as_ref().map(|a| (name, a)))
+    }
+}
+
+/// Master devices, each optional.
+#[derive(Clone, Debug, Default, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct Masters {
+    /// The master steering the left arm.
+    pub left: Option<DeviceConfig>,
+    /// The master steering the right arm.
+    pub right: Option<DeviceConfig>,
+}
+
+/// Which backend drives a device.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Backend {
+    /// The simulated scene (knotlab-sim).
+    Sim,
+    /// A Mitsubishi MELFA controller over UDP (arm servos only).
+    Melfa,
+    /// A dummy driver (perfect joints; inputs set through handles).
+    Dummy,
+}
+
+impl Backend {
+    /// The name in the file.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Backend::Sim => "sim",
+            Backend::Melfa => "melfa",
+            Backend::Dummy => "dummy",
+        }
+    }
+}
+
+/// A device with nothing to configure but its backend.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct DeviceConfig {
+    /// Its backend.
+    pub backend: Backend,
+}
+
+impl DeviceConfig {
+    /// A dummy device.
+    pub fn dummy() -> Self {
+        Self { backend: Backend::Dummy }
+    }
+}
+
+/// The MELFA packet layouts by their names in the file.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum LayoutName {
+    /// Software H7 and later (196 bytes).
+    H7,
+    /// Software H6 and older (64 bytes).
+    PreH7,
+}
+
+impl From<LayoutName> for Layout {
+    fn from(name: LayoutName) -> Self {
+        match name {
+            LayoutName::H7 => Layout::H7,
+            LayoutName::PreH7 => Layout::PreH7,
+        }
+    }
+}
+
+/// An arm's servo: its backend and, for `melfa`, how to reach the controller.
+#[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct ServoConfig {
+    /// Its backend.
+    pub backend: Backend,
+    /// melfa: the controller's address, "ip:port" (port 10000 on a real controller).
+    pub controller: Option<SocketAddr>,
+    /// melfa: the local address to send from (default: any, or loopback for a loopback controller).
+    pub bind: Option<SocketAddr>,
+    /// melfa: the controller software's packet layout (default h7).
+    pub layout: Option<LayoutName>,
+    /// melfa: the controller's cycle, s (default 0.00711, CR750; 0.0035 for CR800).
+    pub cycle_s: Option<f64>,
+    /// melfa: how long to wait for each reply, s (default two cycles).
+    pub receive_timeout_s: Option<f64>,
+    /// melfa: replies lost in a row after which the link is down (default 100).
+    pub max_lost: Option<u32>,
+}
+
+/// One arm.
+#[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct ArmConfig {
+    /// The trocar point, world frame, m (default with a sim servo: the scene's).
+    pub trocar_m: Option<[f64; 3]>,
+    /// A per-cycle step limit on every axis, rad (a [`crate::device::StepLimit`] around the servo).
+    pub max_step_rad: Option<f64>,
+    /// The six axes.
+    pub servo: ServoConfig,
+    /// The instrument's motors (not for the camera arm).
+    pub instrument: Option<DeviceConfig>,
+    /// The instrument's strain gauges (not for the camera arm).
+    pub force: Option<DeviceConfig>,
+}
+
+struct Problems(Vec<(String, String)>);
+
+impl Problems {
+    fn add(&mut self, key: impl Into<String>, reason: impl Into<String>) {
+        self.0.push((key.into(), reason.into()));
+    }
+
+    fn backend(&mut self, key: String, backend: Backend, allowed: &[Backend], what: &str) {
+        if !allowed.contains(&backend) {
+            let names: Vec<&str> = allowed.iter().map(|b| b.as_str()).collect();
+            self.add(
+                key,
+                format!("{what} cannot use backend \"{}\": use {}", backend.as_str(), names.join(" or ")),
+            );
+        }
+    }
+
+    fn positive(&mut self, key: String, value: Option<f64>) {
+        if let Some(v) = value
+            && !(v.is_finite() && v > 0.0)
+        {
+            self.add(key, format!("{v} must be a positive number"));
+        }
+    }
+}
+
+impl RigConfig {
+    /// Every value out of range or combination that cannot work, as (key, reason).
+    pub fn problems(&self) -> Vec<(String, String)> {
+        let mut p = Problems(Vec::new());
+        for (field, reason) in self.controller.params().problems() {
+            p.add(format!("controller.{field}"), reason);
+        }
+        p.positive("controller.period_s".into(), Some(self.controller.period_s));
+        if self.arms.iter().next().is_none() {
+            p.add("arms", "no arm is configured");
+        }
+        let mut melfa_cycles = Vec::new();
+        for (name, arm) in self.arms.iter() {
+            let at = format!("arms.{name}");
+            let servo = &arm.servo;
+            p.backend(
+                format!("{at}.servo.backend"),
+                servo.backend,
+                &[Backend::Sim, Backend::Melfa, Backend::Dummy],
+                "an arm servo",
+            );
+            let melfa_fields = [
+                ("controller", servo.controller.is_some()),
+                ("bind", servo.bind.is_some()),
+                ("layout", servo.layout.is_some()),
+                ("cycle_s", servo.cycle_s.is_some()),
+                ("receive_timeout_s", servo.receive_timeout_s.is_some()),
+                ("max_lost", servo.max_lost.is_some()),
+            ];
+            if servo.backend == Backend::Melfa {
+                if servo.controller.is_none() {
+                    p.add(
+                        format!("{at}.servo.controller"),
+                        "backend \"melfa\" needs the controller's address, \"ip:port\"",
+                    );
+                }
+                p.positive(format!("{at}.servo.cycle_s"), servo.cycle_s);
+                p.positive(format!("{at}.servo.receive_timeout_s"), servo.receive_timeout_s);
+                if servo.max_lost == Some(0) {
+                    p.add(format!("{at}.servo.max_lost"), "must be at least 1");
+                }
+                melfa_cycles.push((name, servo.cycle_s.unwrap_or(crate::melfa::CR750_CYCLE_S)));
+            } else {
+                for (field, given) in melfa_fields {
+                    if given {
+                        p.add(format!("{at}.servo.{field}"), "only for backend \"melfa\"");
+                    }
+                }
+            }
+            if let Some(t) = arm.trocar_m
+                && t.iter().any(|x| !x.is_finite())
+            {
+                p.add(format!("{at}.trocar_m"), "not finite");
+            }
+            if arm.trocar_m.is_none() && servo.backend != Backend::Sim {
+                p.add(format!("{at}.trocar_m"), "needed: only a sim servo takes the trocar from the scene");
+            }
+            p.positive(format!("{at}.max_step_rad"), arm.max_step_rad);
+            for (field, device) in [("instrument", &arm.instrument), ("force", &arm.force)] {
+                let Some(device) = device else { continue };
+                if !name.carries_instrument() {
+                    p.add(
+                        format!("{at}.{field}"),
+                        "the camera arm carries the endoscope: it has no instrument motors or strain gauges",
+                    );
+                }
+                p.backend(
+                    format!("{at}.{field}.backend"),
+                    device.backend,
+                    &[Backend::Sim, Backend::Dummy],
+                    "an instrument device",
+                );
+            }
+        }
+        p.backend("pedals.backend".into(), self.pedals.backend, &[Backend::Dummy], "the pedals");
+        for (name, master) in [("left", &self.masters.left), ("right", &self.masters.right)] {
+            if let Some(m) = master {
+                p.backend(format!("masters.{name}.backend"), m.backend, &[Backend::Dummy], "a master device");
+            }
+        }
+        let uses = |b: Backend| {
+            self.arms.iter().any(|(_, a)| {
+                a.servo.backend == b
+                    || a.instrument.is_some_and(|d| d.backend == b)
+                    || a.force.is_some_and(|d| d.backend == b)
+            })
+        };
+        if uses(Backend::Sim) && uses(Backend::Melfa) {
+            p.add(
+                "arms",
+                "mixes sim and melfa devices: the simulation's step and the MELFA controller's cycle cannot both pace the loop",
+            );
+        }
+        if let Some((first, cycle)) = melfa_cycles.first()
+            && let Some((other, c)) = melfa_cycles.iter().find(|(_, c)| c != cycle)
+        {
+            p.add(
+                format!("arms.{other}.servo.cycle_s"),
+                format!("{c} s differs from the {first} arm's {cycle} s: all MELFA controllers of a rig share one cycle"),
+            );
+        }
+        p.0
+    }
+}

@@ -1,0 +1,35 @@
+//! Force-triggered events: inside a time window, when the instrument's force reaches a threshold, an
+//! action takes over until the window ends (a force-controlled segment).
+
+use serde::{Deserialize, Serialize};
+
+/// An event of one track.
+#[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct ForceEvent {
+    /// A name, for logs and for later triggers that refer to this event.
+    #[serde(default)]
+    pub name: String,
+    /// The window opens, s from the skill's start.
+    pub from_s: f64,
+    /// The window closes, s; the action's effect ends here.
+    pub until_s: f64,
+    /// The event fires the first cycle inside the window in which the force on the instrument (its
+    /// magnitude, from the strain gauges) reaches this, N.
+    pub threshold_n: f64,
+    /// What happens.
+    pub action: ForceAction,
+}
+
+/// What a fired event does, from the cycle it fires until its window closes.
+#[derive(Clone, Copy, Debug, PartialEq, Deserialize, Serialize)]
+#[serde(tag = "kind", rename_all = "snake_case", deny_unknown_fields)]
+pub enum ForceAction {
+    /// Open the jaw to this angle (release what it holds), rad.
+    OpenJaw {
+        /// The opening, rad.
+        jaw_rad: f64,
+    },
+    /// Stop the tip where it was commanded when the event fired (stop pushing).
+    Hold,
+}
