@@ -2,6 +2,7 @@
 //! tissue) that implements the `knotlab-hw` device traits, and knot evaluation.
 //!
 //! - [`world`]: the simulated scene: rig bodies driven through servos, thread, grasps, forces.
+//! - [`backend`]: the scene as `knotlab-hw` devices (arm servos, instrument drives, force sensors, clock).
 //! - [`grasp`]: grasping as a constraint that slips above the grip force.
 //! - [`knot`]: which knot a thread's centreline holds, whether it is down, the verdict.
 //! - [`physics`]: the Rapier sets of a scene, its step and health check.
@@ -10,6 +11,7 @@
 //! - [`thread`]: the suture as a chain of capsules.
 //! - [`tunnelling`]: detecting one capsule passing through another.
 
+pub mod backend;
 pub mod grasp;
 pub mod knot;
 pub mod physics;
