@@ -264,6 +264,24 @@ fn the_emulator_ignores_malformed_packets_and_keeps_serving() {
 }
 
 #[test]
+fn a_paced_emulator_counts_the_cycles_between_packets() {
+    let mut config = emulator_config(ARM, Layout::H7, DropPolicy::Never, 0.0);
+    config.pace = true;
+    let (addr, emulator) = spawn_emulator(config);
+    let limits = rig().arm(ARM).model.limits;
+    let mut melfa = MelfaArm::connect(MelfaConfig::new(ARM, addr, &limits)).unwrap();
+    for _ in 0..5 {
+        // 30 ms between packets: at least four 7.11 ms cycle boundaries pass.
+        std::thread::sleep(Duration::from_millis(30));
+        assert!(melfa.read().unwrap().fresh);
+        assert!(melfa.last_reply().unwrap().t_count >= 3, "{:?}", melfa.last_reply());
+    }
+    melfa.end().unwrap();
+    let report = emulator.join().unwrap().unwrap();
+    assert!(report.cycles >= 5 * 4, "{report:?}");
+}
+
+#[test]
 fn the_emulator_binds_loopback_only_unless_told() {
     let config = emulator_config(ARM, Layout::H7, DropPolicy::Never, 0.0);
     let error = Emulator::bind("0.0.0.0:0".parse().unwrap(), false, config.clone()).err().expect("refused");

@@ -1,6 +1,7 @@
 //! Command-line parsing and dispatch; each command group lives in its own file.
 
 mod knot;
+mod melfa;
 mod numbers;
 mod output;
 mod rig;
@@ -25,6 +26,8 @@ enum Command {
     /// Knots: which knot a thread's centreline holds.
     #[command(subcommand)]
     Knot(knot::KnotCommand),
+    /// A MELFA controller emulator: MXT real-time external control over UDP, moving a simulated arm.
+    MelfaEmulator(melfa::EmulatorArgs),
 }
 
 /// Runs a parsed command line.
@@ -33,5 +36,6 @@ pub fn run(cli: Cli) -> anyhow::Result<ExitCode> {
     match cli.command {
         Command::Rig(command) => rig::run(command, &mut out),
         Command::Knot(command) => knot::run(command, &mut out),
+        Command::MelfaEmulator(args) => melfa::run(args, &mut out),
     }
 }
