@@ -2,4 +2,5 @@
 //! fluid solver, virtual obstacles and skill synthesis. It never depends on a physics engine. It grows
 //! with the learner issues; today it only fixes the crate's place in the workspace (`hw` <- `learner`).
 
+pub mod fluid;
 pub mod obstacles;
