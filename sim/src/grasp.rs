@@ -48,24 +48,27 @@ pub struct Grasp {
 }
 
 impl Grasp {
-    /// Attaches the segment nearest the jaw centre (`jaw_offset_m` behind the tip along the jaws),
-    /// if one lies within reach of the jaws; it is held where it is.
+    /// Attaches the thread segment or the needle nearest the jaw centre (`jaw_offset_m` behind the tip
+    /// along the jaws), if it lies within reach of the jaws; it is held where it is. `needle_m` are
+    /// points along the needle (world frame), which is part of the first segment's body.
     pub fn try_close(
         physics: &mut Physics,
         thread: &Thread,
+        needle_m: &[Vector3<f64>],
         jaw_body: RigidBodyHandle,
         world_from_tip: &IsometryMatrix3<f64>,
         jaw_offset_m: f64,
     ) -> Option<Self> {
         let jaw_centre = world_from_tip * nalgebra::Point3::new(0.0, 0.0, -jaw_offset_m);
         let reach_m = 0.003;
-        let (segment, distance) = thread
-            .segments
-            .iter()
-            .enumerate()
-            .map(|(i, h)| (i, (to_na(physics.bodies[*h].translation()) - jaw_centre.coords).norm()))
-            .min_by(|a, b| a.1.total_cmp(&b.1))?;
-        if distance > reach_m + 0.5 * thread.segment_length_m {
+        // (segment, how far beyond its reach the jaw centre is)
+        let segments = thread.segments.iter().enumerate().map(|(i, h)| {
+            let d = (to_na(physics.bodies[*h].translation()) - jaw_centre.coords).norm();
+            (i, d - reach_m - 0.5 * thread.segment_length_m)
+        });
+        let needle = needle_m.iter().map(|p| (0, (p - jaw_centre.coords).norm() - reach_m));
+        let (segment, beyond) = segments.chain(needle).min_by(|a, b| a.1.total_cmp(&b.1))?;
+        if beyond > 0.0 {
             return None;
         }
         let body = thread.segments[segment];

@@ -3,10 +3,16 @@
 //!
 //! - [`world`]: the simulated scene: rig bodies driven through servos, thread, grasps, forces.
 //! - [`backend`]: the scene as `knotlab-hw` devices (arm servos, instrument drives, force sensors, clock).
+//! - [`tissue`]: the pad and the two flaps of the wound, pulled open by an elastic load.
+//! - [`stitch`]: the thread passing through the flaps, sliding with friction.
+//! - [`needle`]: the half-circle needle on the thread's first segment.
+//! - [`layout`]: where the thread lies at the start of the task.
 //! - [`grasp`]: grasping as a constraint that slips above the grip force.
 //! - [`knot`]: which knot a thread's centreline holds, whether it is down, the verdict.
 //! - [`physics`]: the Rapier sets of a scene, its step and health check.
 //! - [`scene`]: the scene file (TOML) and its checks.
+//! - [`snapshot`]: the scene drawn in top, front and side views (PNG).
+//! - [`stress`]: the scripted stress sequence behind `knotlab sim` and its figures.
 //! - [`servo`]: how a joint follows its command (lag, limits, play, calibration).
 //! - [`thread`]: the suture as a chain of capsules.
 //! - [`tunnelling`]: detecting one capsule passing through another.
@@ -14,9 +20,15 @@
 pub mod backend;
 pub mod grasp;
 pub mod knot;
+pub mod layout;
+pub mod needle;
 pub mod physics;
 pub mod scene;
 pub mod servo;
+pub mod snapshot;
+pub mod stitch;
+pub mod stress;
 pub mod thread;
+pub mod tissue;
 pub mod tunnelling;
 pub mod world;

@@ -165,6 +165,15 @@ impl Physics {
 
     /// Advances one step, then checks every dynamic body. `label` names a body for the report.
     pub fn step(&mut self, label: &dyn Fn(RigidBodyHandle) -> String) -> Result<(), HealthError> {
+        self.step_with_hooks(&(), label)
+    }
+
+    /// [`Physics::step`] with contact filters (`hooks`).
+    pub fn step_with_hooks(
+        &mut self,
+        hooks: &dyn PhysicsHooks,
+        label: &dyn Fn(RigidBodyHandle) -> String,
+    ) -> Result<(), HealthError> {
         self.pipeline.step(
             self.gravity,
             &self.params,
@@ -177,7 +186,7 @@ impl Physics {
             &mut self.multibody_joints,
             &mut self.soft_bodies,
             &mut self.ccd,
-            &(),
+            hooks,
             &(),
         );
         self.step_count += 1;

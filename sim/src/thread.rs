@@ -150,6 +150,20 @@ impl Thread {
         }
     }
 
+    /// Moves the whole thread, at rest, onto `polyline` (needle end first), each segment a chord of it;
+    /// thread left over runs on straight beyond the last point.
+    pub fn lay_along(&self, physics: &mut Physics, polyline: &[nalgebra::Vector3<f64>]) {
+        let points = crate::layout::chord_points(polyline, self.segment_length_m, self.segments.len() + 1);
+        for (i, h) in self.segments.iter().enumerate() {
+            let (a, b) = (points[i], points[i + 1]);
+            let rotation = Rotation::from_rotation_arc(Vector::X, to_vec(&(b - a).normalize()));
+            let body = &mut physics.bodies[*h];
+            body.set_position(Pose::from_parts(to_vec(&(0.5 * (a + b))), rotation), true);
+            body.set_linvel(Vector::ZERO, true);
+            body.set_angvel(Vector::ZERO, true);
+        }
+    }
+
     /// The centreline: both ends of every segment's axis, needle end first (segments + 1 points).
     pub fn centreline(&self, physics: &Physics) -> Vec<nalgebra::Vector3<f64>> {
         let half = 0.5 * self.segment_length_m;

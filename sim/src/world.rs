@@ -4,14 +4,21 @@
 
 use knotlab_hw::kinematics::{ArmJoints, JointLimit, TipOrientation, TipTarget, Tool};
 use knotlab_hw::rig::{ArmName, Rig};
-use nalgebra::{IsometryMatrix3, Vector3};
+use nalgebra::{IsometryMatrix3, Point3, Vector3};
+use rand::SeedableRng;
+use rand_chacha::ChaCha8Rng;
+use rand_distr::{Distribution, Normal};
 use rapier3d::prelude::*;
 
 use crate::grasp::{Grasp, GraspEvent};
+use crate::layout::start_layout;
+use crate::needle::Needle;
 use crate::physics::{HealthError, Physics};
 use crate::scene::SceneConfig;
 use crate::servo::{ServoModel, ServoState};
+use crate::stitch::{Stitch, StitchEvent, StitchHooks};
 use crate::thread::{THREAD_GROUP, Thread};
+use crate::tissue::Tissue;
 
 /// Collision group of robot links (instruments and arms).
 pub const ROBOT_GROUP: Group = Group::GROUP_2;
@@ -29,6 +36,24 @@ pub enum WorldError {
         arm: ArmName,
         /// What the kinematics said.
         reason: knotlab_hw::kinematics::IkError,
+    },
+    /// An instrument cannot reach the point where the start condition wants it to hold the thread.
+    #[error("start.{key}: the {arm} instrument cannot reach it: {reason}")]
+    StartUnreachable {
+        /// The scene key.
+        key: &'static str,
+        /// The arm.
+        arm: ArmName,
+        /// What the kinematics said.
+        reason: knotlab_hw::kinematics::IkError,
+    },
+    /// The instrument at a start point did not close on the thread.
+    #[error("start.{key}: the {arm} jaws found no thread to hold there")]
+    StartNotHeld {
+        /// The scene key.
+        key: &'static str,
+        /// The arm.
+        arm: ArmName,
     },
 }
 
@@ -68,6 +93,14 @@ pub struct SimWorld {
     pub arms: Vec<SimArm>,
     /// The suture.
     pub thread: Thread,
+    /// The needle on the thread's first segment.
+    pub needle: Needle,
+    /// The pad and the two flaps of the wound.
+    pub tissue: Tissue,
+    /// Where the thread passes through the flaps.
+    pub stitch: Stitch,
+    /// What the stitch noticed so far.
+    pub stitch_events: Vec<StitchEvent>,
     /// Body of each URDF link with collision geometry (indexed like the rig's tree links).
     pub link_bodies: Vec<Option<RigidBodyHandle>>,
     /// Simulated time, s.
@@ -80,6 +113,8 @@ pub struct SimWorld {
     pub jaw_closed_rad: f64,
     /// Pull at which a grasp slips, N.
     pub grip_force_n: f64,
+    /// The strain gauges' noise source.
+    noise: ChaCha8Rng,
 }
 
 fn to_pose(iso: &IsometryMatrix3<f64>) -> Pose {
@@ -102,8 +137,9 @@ impl SimWorld {
     /// The jaw opening the scene starts with, rad.
     pub const JAW_OPEN_RAD: f64 = 0.6;
 
-    /// Builds the scene: the instruments parked just inside their trocars, jaws open, the thread laid
-    /// along the wound above the tissue.
+    /// Builds the scene in the knot-tying task's start condition: the thread runs through the stitch,
+    /// its needle held by the right instrument and its tail by the assist (where `config.start` says);
+    /// the left instrument and the endoscope are parked 4 cm inside their trocars.
     pub fn new(config: SceneConfig, rig: Rig) -> Result<Self, WorldError> {
         let mut physics = Physics::new(&config.solver);
         let arms: Vec<SimArm> = ArmName::ALL
@@ -138,26 +174,8 @@ impl SimWorld {
                         calibration_offset_rad: if i < 6 { offsets[i] } else { 0.0 },
                     })
                     .collect();
-                // Parked: the tip 4 cm past the scene's trocar towards the tissue (the ready poses all
-                // meet at one point), jaws open: nothing is held until a jaw closes on it.
-                let trocar = Vector3::from(match name {
-                    ArmName::Left => config.trocars.left,
-                    ArmName::Right => config.trocars.right,
-                    ArmName::Assist => config.trocars.assist,
-                    ArmName::Camera => config.trocars.camera,
-                });
-                let towards = (Vector3::from(config.tissue.centre_m) - trocar).normalize();
-                let target = TipTarget {
-                    world_position_m: trocar + towards * 0.04,
-                    orientation: TipOrientation::AlongShaft,
-                };
-                let mut ready = arm
-                    .model
-                    .solve_tip(&target, &trocar, &name.ready_joints())
-                    .map_err(|reason| WorldError::TrocarUnreachable { arm: name, reason })?;
-                if name.carries_instrument() {
-                    ready.tool.jaw_rad = Self::JAW_OPEN_RAD;
-                }
+                let trocar = trocar_of(&config, name);
+                let ready = start_joints(&config, &rig, name, &trocar)?;
                 let states = ready.to_array().iter().map(|q| ServoState::at(*q)).collect();
                 Ok(SimArm {
                     name,
@@ -207,21 +225,97 @@ impl SimWorld {
             link_bodies[i] = Some(body);
         }
 
-        let tissue = Vector3::from(config.tissue.centre_m);
-        let start = tissue + Vector3::new(-0.5 * config.thread.length_m, config.stitch.bite_m, 0.005);
-        let thread = Thread::build(&mut physics, &config.thread, &start, &Vector3::x());
-        Ok(Self {
+        let tissue = Tissue::build(&mut physics, &config.tissue, &config.stitch);
+        let layout = start_layout(&config, &tissue, &physics);
+        let thread = Thread::build(&mut physics, &config.thread, &layout[0], &(layout[1] - layout[0]));
+        thread.lay_along(&mut physics, &layout);
+        let needle = Needle::attach(&config.needle, &mut physics, &thread);
+        let stitch = Stitch::anchor(&mut physics, &thread, &tissue, config.stitch.slide_friction_n);
+        let grip_force_n = config.sensor.grip_force_n;
+        let mut world = Self {
             physics,
             rig,
             arms,
             thread,
+            needle,
+            tissue,
+            stitch,
+            stitch_events: Vec::new(),
             link_bodies,
             time_s: 0.0,
             events: Vec::new(),
             config,
             jaw_closed_rad: 0.05,
-            grip_force_n: 2.0,
-        })
+            grip_force_n,
+            noise: ChaCha8Rng::seed_from_u64(0),
+        };
+        // The start condition: the right jaws on the needle, the assist's on the tail.
+        for (arm, key) in [(ArmName::Right, "needle_m"), (ArmName::Assist, "tail_m")] {
+            let poses = world.link_poses();
+            if !world.try_grasp(arm, &poses) {
+                return Err(WorldError::StartNotHeld { key, arm });
+            }
+        }
+        Ok(world)
+    }
+
+    /// Joints that put `arm`'s jaw centre at `jaw_centre_m` (world), nearest its last command, the jaw
+    /// opening unchanged.
+    pub fn joints_for_jaw_centre(
+        &self,
+        arm: ArmName,
+        jaw_centre_m: &Vector3<f64>,
+    ) -> Result<ArmJoints, knotlab_hw::kinematics::IkError> {
+        let trocar = trocar_of(&self.config, arm);
+        let current = self.arm(arm).command;
+        let mut joints = self.rig.arm(arm).model.solve_tip(
+            &tip_for_jaw_centre(&trocar, jaw_centre_m),
+            &trocar,
+            &current,
+        )?;
+        joints.tool.jaw_rad = current.tool.jaw_rad;
+        Ok(joints)
+    }
+
+    /// Seeds the strain gauges' noise (the same seed gives the same readings).
+    pub fn reseed(&mut self, seed: u64) {
+        self.noise = ChaCha8Rng::seed_from_u64(seed);
+    }
+
+    /// Lets go of everything and takes the thread out of the tissue: a free thread for experiments.
+    pub fn free_thread(&mut self) {
+        for a in 0..self.arms.len() {
+            if let Some(grasp) = self.arms[a].grasp.take() {
+                grasp.release(&mut self.physics);
+            }
+            if self.arms[a].name.carries_instrument() {
+                self.arms[a].command.tool.jaw_rad = Self::JAW_OPEN_RAD;
+            }
+        }
+        for hole in &mut self.stitch.holes {
+            if let Some(j) = hole.joint.take() {
+                self.physics.impulse_joints.remove(j, true);
+            }
+            hole.segment = None;
+        }
+    }
+
+    /// The wound gap between the flaps' inner faces, m.
+    pub fn wound_gap_m(&self) -> f64 {
+        self.tissue.gap_m(&self.physics)
+    }
+
+    /// Rigid bodies in the scene.
+    pub fn body_count(&self) -> usize {
+        self.physics.bodies.len()
+    }
+
+    fn link_poses(&self) -> Vec<IsometryMatrix3<f64>> {
+        let mut positions = vec![0.0; self.rig.tree.joints.len()];
+        for arm in &self.arms {
+            self.rig.arm(arm.name).write_tree_positions(&arm.actual(), &mut positions);
+        }
+        self.rig.tree.root_from_links(&positions)
     }
 
     /// Commands one arm's joints (the jaw opening included).
@@ -262,12 +356,25 @@ impl SimWorld {
             }
         }
         self.update_grasps(&poses);
+        let hooks = StitchHooks {
+            flap_colliders: self.tissue.flap_colliders,
+            inside: self.stitch.segments_inside().map_or_else(Vec::new, |range| {
+                range
+                    .filter_map(|i| self.thread.segments.get(i))
+                    .flat_map(|h| self.physics.bodies[*h].colliders().iter().copied())
+                    .collect()
+            }),
+        };
         let thread_segments = self.thread.segments.clone();
-        self.physics.step(&|h| match thread_segments.iter().position(|s| *s == h) {
+        let flaps = self.tissue.flaps;
+        self.physics.step_with_hooks(&hooks, &|h| match thread_segments.iter().position(|s| *s == h) {
             Some(i) => format!("thread segment {i}"),
+            None if flaps.contains(&h) => "tissue flap".to_owned(),
             None => "rig link".to_owned(),
         })?;
         self.time_s += dt;
+        let events = self.stitch.follow(&mut self.physics, &self.thread, &self.tissue, self.time_s);
+        self.stitch_events.extend(events);
         self.check_slip();
         self.read_forces();
         Ok(())
@@ -292,22 +399,28 @@ impl SimWorld {
             if !closed || self.arms[a].grasp.is_some() || self.arms[a].slipped {
                 continue;
             }
-            let rig_arm = self.rig.arm(name);
-            // The jaws' carrier: the link the tip frame hangs from.
-            let clevis = self.rig.tree.links[rig_arm.tip_link]
-                .parent_joint
-                .and_then(|j| self.link_bodies[self.rig.tree.joints[j].parent]);
-            let Some(clevis) = clevis else { continue };
-            let tip = poses[rig_arm.tip_link];
-            if let Some(grasp) = Grasp::try_close(&mut self.physics, &self.thread, clevis, &tip, 0.5 * 0.010)
-            {
-                self.events.push(GraspEvent::Grasped {
-                    arm: name,
-                    segment: grasp.segment,
-                    time_s: self.time_s,
-                });
+            self.try_grasp(name, poses);
+        }
+    }
+
+    /// Closes `arm`'s grasp on the thread or needle between its jaws, if any; true when it holds.
+    fn try_grasp(&mut self, arm: ArmName, poses: &[IsometryMatrix3<f64>]) -> bool {
+        let Some(a) = self.arms.iter().position(|x| x.name == arm) else { return false };
+        let rig_arm = self.rig.arm(arm);
+        // The jaws' carrier: the link the tip frame hangs from.
+        let clevis = self.rig.tree.links[rig_arm.tip_link]
+            .parent_joint
+            .and_then(|j| self.link_bodies[self.rig.tree.joints[j].parent]);
+        let Some(clevis) = clevis else { return false };
+        let tip = poses[rig_arm.tip_link];
+        let needle = self.needle.world_points_m(&self.physics, &self.thread);
+        match Grasp::try_close(&mut self.physics, &self.thread, &needle, clevis, &tip, JAW_CENTRE_OFFSET_M) {
+            Some(grasp) => {
+                self.events.push(GraspEvent::Grasped { arm, segment: grasp.segment, time_s: self.time_s });
                 self.arms[a].grasp = Some(grasp);
+                true
             }
+            None => false,
         }
     }
 
@@ -354,7 +467,73 @@ impl SimWorld {
             if let Some(grasp) = &self.arms[a].grasp {
                 total += grasp.force_vector_n(&self.physics);
             }
+            if let Ok(noise) = Normal::new(0.0, self.config.sensor.force_noise_n) {
+                for k in 0..3 {
+                    total[k] += noise.sample(&mut self.noise);
+                }
+            }
             self.arms[a].force_n = total;
         }
     }
+}
+
+/// The scene's trocar point of an arm, world frame, m.
+pub fn trocar_of(config: &SceneConfig, arm: ArmName) -> Vector3<f64> {
+    Vector3::from(match arm {
+        ArmName::Left => config.trocars.left,
+        ArmName::Right => config.trocars.right,
+        ArmName::Assist => config.trocars.assist,
+        ArmName::Camera => config.trocars.camera,
+    })
+}
+
+/// The tip target that puts the jaws' centre at `jaw_centre_m` (world), the tip along the shaft.
+pub fn tip_for_jaw_centre(trocar_m: &Vector3<f64>, jaw_centre_m: &Vector3<f64>) -> TipTarget {
+    let shaft = (jaw_centre_m - trocar_m).normalize();
+    TipTarget {
+        world_position_m: jaw_centre_m + shaft * JAW_CENTRE_OFFSET_M,
+        orientation: TipOrientation::AlongShaft,
+    }
+}
+
+/// The jaws hold what lies this far behind the tip, along the tip's z axis, m.
+pub const JAW_CENTRE_OFFSET_M: f64 = 0.005;
+
+/// The joints an arm starts with: the right instrument holding the needle and the assist holding the
+/// tail where the scene's start condition says; the others parked, their tip 4 cm past the trocar
+/// towards the tissue, jaws open.
+fn start_joints(
+    config: &SceneConfig,
+    rig: &Rig,
+    name: ArmName,
+    trocar: &Vector3<f64>,
+) -> Result<ArmJoints, WorldError> {
+    let arm = rig.arm(name);
+    let world_from_tissue = Tissue::frame(&config.tissue);
+    let held = match name {
+        ArmName::Right => Some(("needle_m", config.start.needle_m)),
+        ArmName::Assist => Some(("tail_m", config.start.tail_m)),
+        _ => None,
+    };
+    if let Some((key, point)) = held {
+        let jaw_centre = world_from_tissue * Point3::from(Vector3::from(point));
+        let target = tip_for_jaw_centre(trocar, &jaw_centre.coords);
+        let mut joints = arm
+            .model
+            .solve_tip(&target, trocar, &name.ready_joints())
+            .map_err(|reason| WorldError::StartUnreachable { key, arm: name, reason })?;
+        joints.tool.jaw_rad = 0.0;
+        return Ok(joints);
+    }
+    let towards = (Vector3::from(config.tissue.centre_m) - trocar).normalize();
+    let target =
+        TipTarget { world_position_m: trocar + towards * 0.04, orientation: TipOrientation::AlongShaft };
+    let mut ready = arm
+        .model
+        .solve_tip(&target, trocar, &name.ready_joints())
+        .map_err(|reason| WorldError::TrocarUnreachable { arm: name, reason })?;
+    if name.carries_instrument() {
+        ready.tool.jaw_rad = SimWorld::JAW_OPEN_RAD;
+    }
+    Ok(ready)
 }

@@ -16,6 +16,7 @@ fn world() -> SimWorld {
 /// Opens the left jaws, lays the thread through them (across the jaws, its middle segment at the jaw
 /// centre), closes them, and returns the held segment.
 fn grasp_middle(w: &mut SimWorld) -> usize {
+    w.free_thread();
     let mut open = w.arm(ArmName::Left).command;
     open.tool.jaw_rad = 0.6;
     w.command(ArmName::Left, open);

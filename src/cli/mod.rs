@@ -5,6 +5,7 @@ mod melfa;
 mod numbers;
 mod output;
 mod rig;
+mod sim;
 
 use std::process::ExitCode;
 
@@ -28,6 +29,8 @@ enum Command {
     Knot(knot::KnotCommand),
     /// A MELFA controller emulator: MXT real-time external control over UDP, moving a simulated arm.
     MelfaEmulator(melfa::EmulatorArgs),
+    /// The simulated scene: run its scripted stress sequence and report what the thread did.
+    Sim(sim::SimArgs),
 }
 
 /// Runs a parsed command line.
@@ -37,5 +40,6 @@ pub fn run(cli: Cli) -> anyhow::Result<ExitCode> {
         Command::Rig(command) => rig::run(command, &mut out),
         Command::Knot(command) => knot::run(command, &mut out),
         Command::MelfaEmulator(args) => melfa::run(args, &mut out),
+        Command::Sim(args) => sim::run(args, &mut out),
     }
 }

@@ -2,6 +2,9 @@
 
 use nalgebra::Vector3;
 
+/// A comma-separated list of numbers (an alias, so that clap takes it as one value).
+pub type Numbers = Vec<f64>;
+
 /// Parses `a,b,c,...` into finite numbers.
 pub fn parse_list(text: &str) -> Result<Vec<f64>, String> {
     text.split(',')

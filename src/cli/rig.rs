@@ -11,11 +11,10 @@ use serde::Serialize;
 use knotlab_hw::kinematics::{ArmJoints, IkResiduals, TipOrientation, TipTarget, Tool};
 use knotlab_hw::rig::{ArmName, JointKind, Rig};
 
-use super::numbers::{parse_list, parse_vector3};
+use super::numbers::{Numbers, parse_list, parse_vector3};
 use super::output::{Output, outln};
 
 /// A comma-separated list as one argument (an alias, so clap does not read it as a repeated flag).
-type Numbers = Vec<f64>;
 
 #[derive(Debug, Subcommand)]
 pub enum RigCommand {

@@ -25,6 +25,10 @@ pub struct SceneConfig {
     pub trocars: Trocars,
     /// Joint servos of the arms and instruments.
     pub servo: ServoParams,
+    /// The instruments' strain gauges.
+    pub sensor: SensorParams,
+    /// The knot-tying task's initial condition.
+    pub start: StartParams,
     /// Extra boxes in the workspace.
     #[serde(default)]
     pub obstacles: Vec<Obstacle>,
@@ -76,6 +80,29 @@ pub struct StitchParams {
     pub along_m: f64,
     /// Friction force resisting the thread sliding through each flap, N.
     pub slide_friction_n: f64,
+}
+
+/// The strain gauges on the instrument shafts.
+#[derive(Clone, Copy, Debug, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct SensorParams {
+    /// Standard deviation of the noise on each axis of a force reading, N.
+    pub force_noise_n: f64,
+    /// Grasped thread slips out of the jaws above this pull, N.
+    pub grip_force_n: f64,
+}
+
+/// The knot-tying task's initial condition, in the tissue frame (x along the wound, y across it
+/// towards the tail's flap, z up, origin at the wound's centre on the surface), m. The needle has
+/// pierced both flaps (the thread runs through the stitch) and is held by the right instrument; the
+/// assist holds the tail; the long end between the needle and the stitch lies on the pad.
+#[derive(Clone, Copy, Debug, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct StartParams {
+    /// Where the right instrument's jaws hold the needle (at its back, where the thread is swaged).
+    pub needle_m: [f64; 3],
+    /// Where the assist's jaws hold the tail's end.
+    pub tail_m: [f64; 3],
 }
 
 /// Trocar points for the four arms, world frame, m.
@@ -213,6 +240,14 @@ impl SceneConfig {
         c.range("stitch.depth_m", st.depth_m, 0.0, ti.flap_size_m[2]);
         c.range("stitch.along_m", st.along_m, -0.5 * ti.flap_size_m[0], 0.5 * ti.flap_size_m[0]);
         c.range("stitch.slide_friction_n", st.slide_friction_n, 0.0, 10.0);
+        c.range("sensor.force_noise_n", self.sensor.force_noise_n, 0.0, 10.0);
+        c.range("sensor.grip_force_n", self.sensor.grip_force_n, 0.01, 100.0);
+        for (axis, v) in ["x", "y", "z"].iter().zip(&self.start.needle_m) {
+            c.range(&format!("start.needle_m.{axis}"), *v, -0.2, 0.2);
+        }
+        for (axis, v) in ["x", "y", "z"].iter().zip(&self.start.tail_m) {
+            c.range(&format!("start.tail_m.{axis}"), *v, -0.2, 0.2);
+        }
         let tr = &self.trocars;
         for (name, p) in
             [("left", &tr.left), ("right", &tr.right), ("assist", &tr.assist), ("camera", &tr.camera)]

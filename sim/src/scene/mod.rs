@@ -4,5 +4,8 @@
 mod config;
 mod load;
 
-pub use config::{NeedleParams, Obstacle, SceneConfig, ServoParams, StitchParams, TissueParams, Trocars};
+pub use config::{
+    NeedleParams, Obstacle, SceneConfig, SensorParams, ServoParams, StartParams, StitchParams, TissueParams,
+    Trocars,
+};
 pub use load::{SceneError, load_scene, parse_scene};

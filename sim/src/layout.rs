@@ -1,0 +1,101 @@
+//! Where the thread lies at the start of the knot-tying task: from the needle in the right jaws down to
+//! the pad, along the pad to the exit point, through the stitch to the entry point, and up to the
+//! assist's jaws holding the tail. The point where the long end meets the pad is placed so that the
+//! path is exactly as long as the thread.
+
+use nalgebra::{Point3, Vector3};
+
+use crate::physics::Physics;
+use crate::scene::SceneConfig;
+use crate::tissue::{Flap, Tissue};
+
+fn length(points: &[Vector3<f64>]) -> f64 {
+    points.windows(2).map(|w| (w[1] - w[0]).norm()).sum()
+}
+
+/// The start path, needle end first, world frame, m.
+pub fn start_layout(config: &SceneConfig, tissue: &Tissue, physics: &Physics) -> Vec<Vector3<f64>> {
+    let frame = tissue.world_from_tissue;
+    let to_world = |p: Vector3<f64>| (frame * Point3::from(p)).coords;
+    let needle = to_world(Vector3::from(config.start.needle_m));
+    let tail = to_world(Vector3::from(config.start.tail_m));
+    let exit = tissue.hole_m(physics, Flap::B);
+    let entry = tissue.hole_m(physics, Flap::A);
+    // On the pad, outward from the exit point (towards -y), lifted by the thread's radius.
+    let pad_z = -config.tissue.flap_size_m[2] + config.thread.radius_m;
+    let on_pad =
+        |reach: f64| to_world(Vector3::new(config.start.needle_m[0], -config.stitch.bite_m - reach, pad_z));
+    let path = |reach: f64| vec![needle, on_pad(reach), exit, entry, tail];
+    let total = config.thread.length_m;
+    if length(&path(0.0)) >= total {
+        return vec![needle, exit, entry, tail];
+    }
+    // The path's length grows with the reach on the pad: bisect for the thread's length.
+    let (mut lo, mut hi) = (0.0, 1.0);
+    for _ in 0..60 {
+        let mid = 0.5 * (lo + hi);
+        if length(&path(mid)) < total {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    path(0.5 * (lo + hi))
+}
+
+/// Points along `polyline` spaced `step_m` apart in straight-line distance (each the first point of
+/// the polyline beyond the last at that distance), `count` of them; the polyline is extended along its
+/// last piece when it runs out. Chords, not arc length: a chain of rigid segments laid on them has no
+/// stretched joint, even at corners.
+pub fn chord_points(polyline: &[Vector3<f64>], step_m: f64, count: usize) -> Vec<Vector3<f64>> {
+    let mut out = Vec::with_capacity(count);
+    let Some(first) = polyline.first() else { return out };
+    out.push(*first);
+    let mut piece = 0;
+    while out.len() < count {
+        let p = out[out.len() - 1];
+        // Find the first piece whose far end lies at least step_m away from p.
+        loop {
+            let last_piece = piece + 2 >= polyline.len();
+            let (a, b) = if polyline.len() < 2 {
+                (*first, *first + Vector3::x())
+            } else {
+                (polyline[piece.min(polyline.len() - 2)], polyline[(piece + 1).min(polyline.len() - 1)])
+            };
+            let d = b - a;
+            // Solve |a + d t - p| = step for the largest t in [0, 1] (or beyond on the last piece).
+            let (qa, qb, qc) = (d.dot(&d), 2.0 * d.dot(&(a - p)), (a - p).norm_squared() - step_m * step_m);
+            let disc = qb * qb - 4.0 * qa * qc;
+            let t = if qa > 0.0 && disc >= 0.0 { (-qb + disc.sqrt()) / (2.0 * qa) } else { f64::NAN };
+            if t.is_finite() && t >= 0.0 && (t <= 1.0 || last_piece) {
+                out.push(a + d * t);
+                break;
+            }
+            if last_piece {
+                // Degenerate polyline: go on straight.
+                out.push(p + d.try_normalize(0.0).unwrap_or_else(Vector3::x) * step_m);
+                break;
+            }
+            piece += 1;
+        }
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn chord_points_are_a_step_apart_and_turn_corners() {
+        let l = vec![Vector3::zeros(), Vector3::new(0.1, 0.0, 0.0), Vector3::new(0.1, 0.1, 0.0)];
+        let pts = chord_points(&l, 0.01, 25);
+        assert_eq!(pts.len(), 25);
+        for w in pts.windows(2) {
+            assert!(((w[1] - w[0]).norm() - 0.01).abs() < 1e-12);
+        }
+        // Past the corner the points follow the second piece.
+        assert!((pts[15].x - 0.1).abs() < 1e-12, "{:?}", pts[15]);
+        assert!(pts[24].y > 0.12, "extended past the end: {:?}", pts[24]);
+    }
+}

@@ -1,0 +1,195 @@
+//! The stitch: where the suture passes through the two flaps. At each entry or exit point a joint ties
+//! the flap's point to the axis of the thread segment passing through it: the two translations across
+//! the segment are locked, the thread slides along its length against a friction force, and turns
+//! freely. After each step the joint moves on to the neighbouring segment when the point has slid past
+//! the segment's end, so the whole thread can be pulled through. Between the two points the thread
+//! runs inside the tissue, so contacts between those segments and the flaps are filtered out.
+
+use nalgebra::Vector3;
+use rapier3d::prelude::*;
+
+use crate::physics::Physics;
+use crate::thread::Thread;
+use crate::tissue::{Flap, Tissue};
+
+/// One point where the thread passes through a flap.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct StitchHole {
+    /// Which flap.
+    pub flap: Flap,
+    /// The segment passing through, if the thread is still in.
+    pub segment: Option<usize>,
+    /// The joint holding it.
+    pub joint: Option<ImpulseJointHandle>,
+}
+
+/// Something the stitch noticed.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum StitchEvent {
+    /// The thread's end slid out of a flap.
+    PulledOut {
+        /// The flap.
+        flap: Flap,
+        /// When, s.
+        time_s: f64,
+    },
+}
+
+/// Both stitch points, exit (B) first: the order the thread meets them from the needle end.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Stitch {
+    /// [B, A].
+    pub holes: [StitchHole; 2],
+    /// Friction force against sliding, N.
+    pub slide_friction_n: f64,
+}
+
+fn to_na(v: Vector) -> Vector3<f64> {
+    Vector3::new(v.x, v.y, v.z)
+}
+
+fn to_vec(v: &Vector3<f64>) -> Vector {
+    Vector::new(v.x, v.y, v.z)
+}
+
+/// Where `hole_m` (world) lies along segment `i`'s axis, m from its centre (+ towards the tail).
+fn along_segment(physics: &Physics, thread: &Thread, i: usize, hole_m: &Vector3<f64>) -> f64 {
+    let pose = physics.bodies[thread.segments[i]].position();
+    to_na(pose.inverse_transform_point(to_vec(hole_m))).x
+}
+
+impl Stitch {
+    /// Ties each flap's stitch point to the segment whose axis passes nearest it.
+    pub fn anchor(physics: &mut Physics, thread: &Thread, tissue: &Tissue, slide_friction_n: f64) -> Self {
+        let mut holes = [Flap::B, Flap::A].map(|flap| StitchHole { flap, segment: None, joint: None });
+        for hole in &mut holes {
+            let at = tissue.hole_m(physics, hole.flap);
+            let nearest = thread
+                .capsules(physics, 0.0)
+                .iter()
+                .enumerate()
+                .map(|(i, c)| {
+                    let d = c.b_m - c.a_m;
+                    let t = ((at - c.a_m).dot(&d) / d.norm_squared()).clamp(0.0, 1.0);
+                    (i, (c.a_m + d * t - at).norm())
+                })
+                .min_by(|a, b| a.1.total_cmp(&b.1))
+                .map(|(i, _)| i);
+            if let Some(i) = nearest {
+                hole.joint = Some(Self::tie(physics, thread, tissue, hole.flap, i, slide_friction_n));
+                hole.segment = Some(i);
+            }
+        }
+        Self { holes, slide_friction_n }
+    }
+
+    fn tie(
+        physics: &mut Physics,
+        thread: &Thread,
+        tissue: &Tissue,
+        flap: Flap,
+        segment: usize,
+        slide_friction_n: f64,
+    ) -> ImpulseJointHandle {
+        // Frame 1 on the segment (x along its axis), frame 2 at the flap's point: the point must stay
+        // on the segment's axis (y, z locked), sliding along x against friction.
+        let joint = GenericJointBuilder::new(JointAxesMask::LIN_Y | JointAxesMask::LIN_Z)
+            .local_frame1(Pose::IDENTITY)
+            .local_frame2(Pose::from_translation(to_vec(&tissue.flap_from_hole_m(flap))))
+            .motor_model(JointAxis::LinX, MotorModel::ForceBased)
+            .motor_velocity(JointAxis::LinX, 0.0, 1e3)
+            .motor_max_force(JointAxis::LinX, slide_friction_n)
+            .contacts_enabled(false);
+        physics.impulse_joints.insert(thread.segments[segment], tissue.flap(flap), joint, true)
+    }
+
+    /// After a step: moves each joint to the neighbouring segment where the point has slid past the
+    /// segment's end; reports a thread end leaving a flap.
+    pub fn follow(
+        &mut self,
+        physics: &mut Physics,
+        thread: &Thread,
+        tissue: &Tissue,
+        time_s: f64,
+    ) -> Vec<StitchEvent> {
+        let half = 0.5 * thread.segment_length_m;
+        let mut events = Vec::new();
+        for hole in &mut self.holes {
+            let Some(mut i) = hole.segment else { continue };
+            let at = tissue.hole_m(physics, hole.flap);
+            let start = i;
+            let mut out = false;
+            // Walk towards the point; a point in the gap outside a bent joint lies beyond both
+            // neighbours' ends: stay on the segment where the walk would turn back.
+            let mut direction = 0i8;
+            for _ in 0..4 {
+                let x = along_segment(physics, thread, i, &at);
+                let step = if x > half {
+                    1
+                } else if x < -half {
+                    -1
+                } else {
+                    0
+                };
+                if step == 0 || step == -direction {
+                    break;
+                }
+                direction = step;
+                if step > 0 && i + 1 >= thread.segments.len() || step < 0 && i == 0 {
+                    out = true;
+                    break;
+                }
+                i = if step > 0 { i + 1 } else { i - 1 };
+            }
+            if out {
+                if let Some(j) = hole.joint.take() {
+                    physics.impulse_joints.remove(j, true);
+                }
+                hole.segment = None;
+                events.push(StitchEvent::PulledOut { flap: hole.flap, time_s });
+            } else if i != start {
+                if let Some(j) = hole.joint.take() {
+                    physics.impulse_joints.remove(j, true);
+                }
+                hole.joint = Some(Self::tie(physics, thread, tissue, hole.flap, i, self.slide_friction_n));
+                hole.segment = Some(i);
+            }
+        }
+        events
+    }
+
+    /// The segments inside the tissue (between the two points, one more on either side): they pass
+    /// through the flaps and must not collide with them.
+    pub fn segments_inside(&self) -> Option<std::ops::RangeInclusive<usize>> {
+        let indices: Vec<usize> = self.holes.iter().filter_map(|h| h.segment).collect();
+        let lo = *indices.iter().min()?;
+        let hi = *indices.iter().max()?;
+        Some(lo.saturating_sub(1)..=hi + 1)
+    }
+
+    /// The length of thread on the needle's side of the exit point, m: grows as the thread is pulled
+    /// through.
+    pub fn needle_side_length_m(&self, physics: &Physics, thread: &Thread, tissue: &Tissue) -> Option<f64> {
+        let hole = &self.holes[0];
+        let i = hole.segment?;
+        let x = along_segment(physics, thread, i, &tissue.hole_m(physics, hole.flap));
+        Some(thread.segment_length_m * (i as f64 + 0.5) + x)
+    }
+}
+
+/// Contact filter of a scene: thread segments inside the tissue pass through the flaps.
+pub struct StitchHooks {
+    /// The flaps' colliders.
+    pub flap_colliders: [ColliderHandle; 2],
+    /// Colliders of the segments inside the tissue.
+    pub inside: Vec<ColliderHandle>,
+}
+
+impl PhysicsHooks for StitchHooks {
+    fn filter_contact_pair(&self, context: &PairFilterContext) -> Option<SolverFlags> {
+        let (a, b) = (context.collider1, context.collider2);
+        let flap_pair = (self.flap_colliders.contains(&a) && self.inside.contains(&b))
+            || (self.flap_colliders.contains(&b) && self.inside.contains(&a));
+        if flap_pair { None } else { Some(SolverFlags::COMPUTE_RIGID_IMPULSES) }
+    }
+}
