@@ -43,8 +43,13 @@ impl ObstacleMask {
         Ok(Self { n, blocked })
     }
 
+    /// Whether cell `(i, j)` is blocked; cells outside the grid are not.
+    pub fn get(&self, i: usize, j: usize) -> bool {
+        i < self.n && j < self.n && self.blocked[j * self.n + i]
+    }
+
     /// Whether cell `(i, j)` is blocked; cells outside the grid are blocked (the walls).
-    pub fn get(&self, i: isize, j: isize) -> bool {
+    pub fn blocked_or_outside(&self, i: isize, j: isize) -> bool {
         let n = self.n as isize;
         if i < 0 || j < 0 || i >= n || j >= n {
             return true;
@@ -92,7 +97,8 @@ impl ObstacleMask {
     }
 
     fn violates(&self, i: isize, j: isize) -> bool {
-        (!self.get(i - 1, j) && !self.get(i + 1, j)) || (!self.get(i, j - 1) && !self.get(i, j + 1))
+        let b = |i, j| self.blocked_or_outside(i, j);
+        (!b(i - 1, j) && !b(i + 1, j)) || (!b(i, j - 1) && !b(i, j + 1))
     }
 
     /// The mask made to obey the rule of [`ObstacleMask::violations`] by growing obstacles, never by
@@ -111,12 +117,12 @@ impl ObstacleMask {
                         continue;
                     }
                     let (ii, jj) = (i as isize, j as isize);
-                    if !mask.get(ii - 1, jj) && !mask.get(ii + 1, jj) {
+                    if !mask.blocked_or_outside(ii - 1, jj) && !mask.blocked_or_outside(ii + 1, jj) {
                         mask.set(i + 1, j, true);
                         added += 1;
                         changed = true;
                     }
-                    if !mask.get(ii, jj - 1) && !mask.get(ii, jj + 1) {
+                    if !mask.blocked_or_outside(ii, jj - 1) && !mask.blocked_or_outside(ii, jj + 1) {
                         mask.set(i, j + 1, true);
                         added += 1;
                         changed = true;
