@@ -73,6 +73,8 @@ pub struct SimArm {
     pub slipped: bool,
     /// Force on the instrument from contacts and grasps in the last step, world frame, N.
     pub force_n: Vector3<f64>,
+    /// The bodies of the instrument (the flange and every link below it): what the gauge feels.
+    pub instrument_bodies: Vec<RigidBodyHandle>,
 }
 
 impl SimArm {
@@ -185,6 +187,7 @@ impl SimWorld {
                     grasp: None,
                     slipped: false,
                     force_n: Vector3::zeros(),
+                    instrument_bodies: Vec::new(),
                 })
             })
             .collect::<Result<_, WorldError>>()?;
@@ -225,6 +228,16 @@ impl SimWorld {
             link_bodies[i] = Some(body);
         }
 
+        let mut arms = arms;
+        for arm in &mut arms {
+            let flange = rig.arm(arm.name).flange_link;
+            arm.instrument_bodies = (0..rig.tree.links.len())
+                .filter(|&i| {
+                    i == flange || rig.tree.path_to(i).iter().any(|&j| rig.tree.joints[j].child == flange)
+                })
+                .filter_map(|i| link_bodies[i])
+                .collect();
+        }
         let tissue = Tissue::build(&mut physics, &config.tissue, &config.stitch);
         let layout = start_layout(&config, &tissue, &physics);
         let thread = Thread::build(&mut physics, &config.thread, &layout[0], &(layout[1] - layout[0]));
@@ -441,20 +454,8 @@ impl SimWorld {
     fn read_forces(&mut self) {
         let dt = self.config.solver.dt_s;
         for a in 0..self.arms.len() {
-            let rig_arm = self.rig.arm(self.arms[a].name);
-            // The instrument's bodies: every link below the flange.
             let mut total = Vector3::zeros();
-            for (i, body) in self.link_bodies.iter().enumerate() {
-                let Some(h) = body else { continue };
-                let below_flange = self
-                    .rig
-                    .tree
-                    .path_to(i)
-                    .iter()
-                    .any(|&j| self.rig.tree.joints[j].child == rig_arm.flange_link);
-                if !below_flange && i != rig_arm.flange_link {
-                    continue;
-                }
+            for h in &self.arms[a].instrument_bodies {
                 for &c in self.physics.bodies[*h].colliders() {
                     for pair in self.physics.narrow_phase.contact_pairs_with(c) {
                         let impulse = pair.total_impulse();
