@@ -103,6 +103,26 @@ fn the_emergency_stop_halts_motion_within_one_cycle_and_holds() {
     // A new skill is refused while stopped.
     let error = controller.load_skill(reach_skill(arm, start, Vector3::zeros(), 0.1)).unwrap_err();
     assert!(matches!(error, ControllerError::NotRunning { status: Status::EmergencyStopped }), "{error}");
+    // Released, the stop can be cleared; the arm holds until a new skill comes.
+    controller.reset_emergency_stop().unwrap();
+    assert_eq!(controller.status(), Status::Idle);
+    let record = controller.step().unwrap();
+    assert_eq!((record.status, record.arm(arm).unwrap().measured), (Status::Idle, stopped));
+    controller.load_skill(reach_skill(arm, start, Vector3::zeros(), 0.1)).unwrap();
+    assert_eq!(controller.status(), Status::Running);
+}
+
+#[test]
+fn an_emergency_stop_is_not_cleared_while_the_pedal_is_pressed() {
+    let arm = ArmName::Left;
+    let (mut controller, pedals, _) = dummy_controller(arm, PERIOD_S, ControllerParams::default());
+    let error = controller.reset_emergency_stop().unwrap_err();
+    assert!(matches!(error, ControllerError::NotRunning { status: Status::Idle }), "{error}");
+    pedals.set_emergency_stop(true);
+    assert_eq!(controller.step().unwrap().status, Status::EmergencyStopped);
+    let error = controller.reset_emergency_stop().unwrap_err();
+    assert!(matches!(error, ControllerError::EmergencyStopHeld), "{error}");
+    assert_eq!(controller.status(), Status::EmergencyStopped);
 }
 
 #[test]

@@ -49,11 +49,14 @@ pub enum ControllerError {
         /// Why.
         source: IkError,
     },
+    /// An emergency stop cannot be cleared while the pedal is pressed.
+    #[error("the emergency stop pedal is still pressed")]
+    EmergencyStopHeld,
     /// `run_to_end` without a skill.
     #[error("no skill loaded")]
     NoSkill,
-    /// A step after the run faulted.
-    #[error("the controller is {status:?} after a fault and does not move any more")]
+    /// A step after the run faulted, a skill while emergency-stopped, or a reset with nothing to reset.
+    #[error("the controller is {status:?}: not possible now")]
     NotRunning {
         /// Its status.
         status: Status,

@@ -201,6 +201,22 @@ impl Controller {
         Ok(())
     }
 
+    /// Clears a latched emergency stop once the pedal has been released (as the last cycle read it): the
+    /// controller goes idle, the skill is dropped, every arm holds its set-point. Load a skill to move
+    /// again.
+    pub fn reset_emergency_stop(&mut self) -> Result<(), ControllerError> {
+        if self.status != Status::EmergencyStopped {
+            return Err(ControllerError::NotRunning { status: self.status });
+        }
+        if self.record.pedals.emergency_stop {
+            return Err(ControllerError::EmergencyStopHeld);
+        }
+        self.skill = None;
+        self.status = Status::Idle;
+        self.record.status = Status::Idle;
+        Ok(())
+    }
+
     /// Runs one cycle and returns its record. After a fault the error is returned once and every later
     /// call returns [`ControllerError::NotRunning`].
     pub fn step(&mut self) -> Result<&CycleRecord, ControllerError> {

@@ -50,7 +50,8 @@ pub struct ArmRecord {
 /// One cycle.
 #[derive(Clone, Debug, PartialEq)]
 pub struct CycleRecord {
-    /// Cycles completed before this one (0 for the first).
+    /// The cycle's index from the controller's start (0 for the first step, and for the readings taken
+    /// by [`super::Controller::new`]).
     pub cycle: u64,
     /// Device time at this cycle's reading, s (cycle times period).
     pub time_s: f64,
