@@ -1,0 +1,524 @@
+//! `knotlab fluid`: the Navier-Stokes solver's lid-driven cavity (validation against Ghia et al.) and the
+//! instantiation of a 2D primitive by stirring a fluid (the built-in double wrap, or a path file), around
+//! obstacles given as boxes in the plane.
+
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+
+use anyhow::{Context, bail};
+use clap::{Args, Subcommand, ValueEnum};
+use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector2, Vector3};
+use serde::{Deserialize, Serialize};
+
+use knotlab_learner::fluid::{
+    CavityConfig, FluidError, GHIA_U_Y, GHIA_V_X, GridRegion, InstantiateSettings, Instantiation,
+    ObstacleMask, PlanarDemonstration, PlaneFrame, PressureSolverKind, SpeedPath, instantiate, run_cavity,
+};
+
+use super::numbers::{parse_list, parse_vector3};
+use super::output::{Output, outln};
+
+#[derive(Debug, Subcommand)]
+pub enum FluidCommand {
+    /// Run the lid-driven cavity to its steady state and write the centreline profiles (CSV
+    /// `profile,coord,value`: `u` along x = 0.5 at the heights y, `v` along y = 0.5 at the abscissae x of
+    /// Ghia, Ghia and Shin 1982).
+    Cavity(CavityArgs),
+    /// Instantiate a 2D primitive: stir a fluid along the path at the new site, throw a particle in, and
+    /// write the particle's path (and the grid).
+    Primitive(Box<PrimitiveArgs>),
+}
+
+#[derive(Debug, Clone, Copy, ValueEnum)]
+enum Solver {
+    /// Sparse Cholesky, factored once (the default).
+    Direct,
+    /// Successive over-relaxation, the reference.
+    Sor,
+}
+
+impl From<Solver> for PressureSolverKind {
+    fn from(s: Solver) -> Self {
+        match s {
+            Solver::Direct => PressureSolverKind::Direct,
+            Solver::Sor => PressureSolverKind::Sor,
+        }
+    }
+}
+
+#[derive(Debug, Args)]
+pub struct CavityArgs {
+    /// Reynolds number (lid speed 1, side 1).
+    #[arg(long, allow_hyphen_values = true)]
+    re: f64,
+    /// Cells per side.
+    #[arg(long, default_value_t = 128)]
+    n: usize,
+    /// The CSV file to write.
+    #[arg(long)]
+    out: PathBuf,
+    /// The pressure solver.
+    #[arg(long, value_enum, default_value_t = Solver::Direct)]
+    solver: Solver,
+    /// The Ghia table (CSV `profile,coord,re100,re1000`, e.g. ../shared/reference/ghia1982-cavity.csv):
+    /// report the largest error against its column for --re 100 or 1000.
+    #[arg(long)]
+    reference: Option<PathBuf>,
+    /// Print JSON instead of text.
+    #[arg(long)]
+    json: bool,
+}
+
+/// The built-in test paths.
+#[derive(Debug, Clone, Copy, ValueEnum)]
+enum BuiltInPath {
+    /// The knot's double wrap: two turns around the centre of the plane, lead in and lead out.
+    DoubleLoop,
+}
+
+#[derive(Debug, Args)]
+pub struct PrimitiveArgs {
+    /// The built-in path (ignored with --path-file).
+    #[arg(long, value_enum, default_value_t = BuiltInPath::DoubleLoop)]
+    path: BuiltInPath,
+    /// A path file instead: CSV `x_m,y_m,speed_mps` per line in plane coordinates (header line, blank
+    /// lines and `#` comments allowed).
+    #[arg(long)]
+    path_file: Option<PathBuf>,
+    /// Diameter of the built-in double wrap's outer turn, m.
+    #[arg(long, default_value_t = 0.024)]
+    diameter_m: f64,
+    /// Speed of the built-in path, m/s.
+    #[arg(long, default_value_t = 0.02)]
+    speed_mps: f64,
+    /// Cells per side of the grid.
+    #[arg(long, default_value_t = 50)]
+    n: usize,
+    /// Free margin around the path's bounding box, m.
+    #[arg(long, default_value_t = 0.006)]
+    margin_m: f64,
+    /// The demonstration plane's origin x,y,z in the world, m.
+    #[arg(long, allow_hyphen_values = true, value_parser = parse_vector3, default_value = "0,0,0.85")]
+    plane_origin: Vector3<f64>,
+    /// The plane's first axis x,y,z.
+    #[arg(long, allow_hyphen_values = true, value_parser = parse_vector3, default_value = "1,0,0")]
+    plane_x: Vector3<f64>,
+    /// The plane's second axis x,y,z.
+    #[arg(long, allow_hyphen_values = true, value_parser = parse_vector3, default_value = "0,1,0")]
+    plane_y: Vector3<f64>,
+    /// The new site: the rigid motion of the world carrying the demonstration there, `x,y,z` (m) or
+    /// `x,y,z,roll,pitch,yaw` (rad).
+    #[arg(long, allow_hyphen_values = true, value_parser = parse_site)]
+    site: Option<Site>,
+    /// An obstacle: the box `x0,y0,x1,y1` in plane coordinates (m); every cell it touches is blocked.
+    /// Repeat for more.
+    #[arg(long = "obstacle", allow_hyphen_values = true, value_parser = parse_box)]
+    obstacles: Vec<Rect>,
+    /// Obstacles from a TOML file: `[[box]]` tables with `min_m = [x, y]` and `max_m = [x, y]`.
+    #[arg(long)]
+    obstacles_file: Option<PathBuf>,
+    /// The pressure solver.
+    #[arg(long, value_enum, default_value_t = Solver::Direct)]
+    solver: Solver,
+    /// Time between two output points, s.
+    #[arg(long, default_value_t = 0.01)]
+    output_dt_s: f64,
+    /// Write the path here: CSV `t_s,plane_x_m,plane_y_m,x_m,y_m,z_m`.
+    #[arg(long)]
+    out: Option<PathBuf>,
+    /// Write the grid here: CSV `i,j,plane_x_m,plane_y_m,blocked,u_mps,v_mps` (cell centres, final flow).
+    #[arg(long)]
+    grid: Option<PathBuf>,
+    /// Print JSON instead of text.
+    #[arg(long)]
+    json: bool,
+}
+
+/// A rigid motion from the command line.
+#[derive(Debug, Clone, Copy)]
+pub struct Site(Isometry3<f64>);
+
+fn parse_site(text: &str) -> Result<Site, String> {
+    match parse_list(text)?.as_slice() {
+        [x, y, z] => Ok(Site(Isometry3::translation(*x, *y, *z))),
+        [x, y, z, roll, pitch, yaw] => Ok(Site(Isometry3::from_parts(
+            Translation3::new(*x, *y, *z),
+            UnitQuaternion::from_euler_angles(*roll, *pitch, *yaw),
+        ))),
+        other => Err(format!("expected x,y,z or x,y,z,roll,pitch,yaw, got {} numbers", other.len())),
+    }
+}
+
+/// A box in plane coordinates.
+#[derive(Debug, Clone, Copy, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Rect {
+    min_m: [f64; 2],
+    max_m: [f64; 2],
+}
+
+fn parse_box(text: &str) -> Result<Rect, String> {
+    match parse_list(text)?.as_slice() {
+        [x0, y0, x1, y1] => Ok(Rect { min_m: [*x0, *y0], max_m: [*x1, *y1] }),
+        other => Err(format!("expected x0,y0,x1,y1, got {} numbers", other.len())),
+    }
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct ObstacleFile {
+    #[serde(rename = "box", default)]
+    boxes: Vec<Rect>,
+}
+
+/// A library error in the command line's words: a bad input names the flag that gave it.
+fn flag_error(error: FluidError) -> anyhow::Error {
+    match &error {
+        FluidError::Invalid { field, reason } => {
+            let flag = match field.as_str() {
+                "region.n" | "n" => "n",
+                "re" => "re",
+                "margin_m" | "points" => "margin-m",
+                "plane.origin_m" => "plane-origin",
+                "plane.axis_x" => "plane-x",
+                "plane.axis_y" => "plane-y",
+                "output_dt_s" => "output-dt-s",
+                "radius_m" => "diameter-m",
+                _ => return anyhow::anyhow!("{error}"),
+            };
+            anyhow::anyhow!("--{flag}: {reason}")
+        }
+        _ => anyhow::anyhow!("{error}"),
+    }
+}
+
+pub fn run(command: FluidCommand, out: &mut Output) -> anyhow::Result<ExitCode> {
+    match command {
+        FluidCommand::Cavity(args) => cavity(&args, out),
+        FluidCommand::Primitive(args) => primitive(&args, out),
+    }
+}
+
+#[derive(Serialize)]
+struct CavityReport {
+    re: f64,
+    n: usize,
+    solver: &'static str,
+    steps: usize,
+    coarse_steps: usize,
+    time: f64,
+    steady: bool,
+    final_acceleration: f64,
+    max_divergence: f64,
+    divergence_tolerance: f64,
+    out: String,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    max_error: Option<f64>,
+}
+
+fn cavity(args: &CavityArgs, out: &mut Output) -> anyhow::Result<ExitCode> {
+    let config = CavityConfig { solver: args.solver.into(), ..CavityConfig::new(args.re, args.n) };
+    let reference = match &args.reference {
+        Some(path) => Some(read_reference(path, args.re)?),
+        None => None,
+    };
+    let run = run_cavity(&config, |_| {}).map_err(flag_error)?;
+    let mut csv = String::from("profile,coord,value\n");
+    let mut max_error: Option<f64> = None;
+    let profiles = GHIA_U_Y
+        .iter()
+        .map(|&y| ("u", y, run.u_centreline(y)))
+        .chain(GHIA_V_X.iter().map(|&x| ("v", x, run.v_centreline(x))));
+    for (profile, coord, value) in profiles {
+        let _ = writeln!(csv, "{profile},{coord},{value}");
+        if let Some(table) = &reference {
+            let want = table.iter().find(|(p, c, _)| p == profile && (c - coord).abs() < 1e-9).map(|r| r.2);
+            if let Some(want) = want {
+                max_error = Some(max_error.unwrap_or(0.0).max((value - want).abs()));
+            }
+        }
+    }
+    std::fs::write(&args.out, csv).with_context(|| format!("writing {}", args.out.display()))?;
+    let report = CavityReport {
+        re: args.re,
+        n: args.n,
+        solver: config.solver.name(),
+        steps: run.steps,
+        coarse_steps: run.coarse_steps,
+        time: run.sim.time_s(),
+        steady: run.steady,
+        final_acceleration: run.final_acceleration,
+        max_divergence: run.max_divergence,
+        divergence_tolerance: config.divergence_tol,
+        out: args.out.display().to_string(),
+        max_error,
+    };
+    if args.json {
+        out.line(serde_json::to_string_pretty(&report).context("writing JSON")?);
+    } else {
+        outln!(
+            out,
+            "cavity Re {} on {} x {} ({} solver): {} steps (+{} on coarser grids) to t = {:.2}, {}",
+            report.re,
+            report.n,
+            report.n,
+            report.solver,
+            report.steps,
+            report.coarse_steps,
+            report.time,
+            if report.steady { "steady" } else { "NOT steady" }
+        );
+        outln!(
+            out,
+            "largest divergence after a step {:.2e} (tolerance {:.0e}); profiles in {}",
+            report.max_divergence,
+            report.divergence_tolerance,
+            report.out
+        );
+        if let Some(e) = report.max_error {
+            outln!(out, "largest error against Ghia et al.: {e:.4}");
+        }
+    }
+    Ok(if run.steady { ExitCode::SUCCESS } else { ExitCode::FAILURE })
+}
+
+/// The Ghia table's column for `re` (100 or 1000): `(profile, coord, value)`.
+fn read_reference(path: &Path, re: f64) -> anyhow::Result<Vec<(String, f64, f64)>> {
+    let column = if re == 100.0 {
+        2
+    } else if re == 1000.0 {
+        3
+    } else {
+        bail!("--reference: the table has Re 100 and 1000 only, not {re}");
+    };
+    let text = std::fs::read_to_string(path).with_context(|| format!("reading {}", path.display()))?;
+    let mut rows = Vec::new();
+    for (number, line) in text.lines().enumerate() {
+        let line = line.trim();
+        if line.is_empty() || line.starts_with('#') || line.starts_with("profile") {
+            continue;
+        }
+        let fields: Vec<&str> = line.split(',').map(str::trim).collect();
+        let at = || format!("{}:{}", path.display(), number + 1);
+        if fields.len() != 4 || !(fields[0] == "u" || fields[0] == "v") {
+            bail!("{}: expected profile,coord,re100,re1000 with profile u or v, got '{line}'", at());
+        }
+        let parse = |s: &str, what: &str| {
+            s.parse::<f64>()
+                .ok()
+                .filter(|x| x.is_finite())
+                .with_context(|| format!("{}: {what} '{s}' is not a number", at()))
+        };
+        rows.push((fields[0].to_owned(), parse(fields[1], "coord")?, parse(fields[column], "value")?));
+    }
+    if rows.is_empty() {
+        bail!("{}: no rows", path.display());
+    }
+    Ok(rows)
+}
+
+#[derive(Serialize)]
+struct PrimitiveReport {
+    n: usize,
+    cell_m: f64,
+    region_origin_m: [f64; 2],
+    world_corner_m: [f64; 3],
+    points: usize,
+    duration_s: f64,
+    path_length_m: f64,
+    steps: usize,
+    solver: &'static str,
+    viscosity_m2ps: f64,
+    max_divergence_per_s: f64,
+    divergence_tol_per_s: f64,
+    blocked_cells: usize,
+    repaired_cells: usize,
+    detours: usize,
+    moved_samples: usize,
+    particle_splits: usize,
+    particle_holds: usize,
+    end_gap_m: f64,
+    #[serde(serialize_with = "finite_or_null")]
+    min_clearance_m: f64,
+    start_world_m: [f64; 3],
+    end_world_m: [f64; 3],
+    #[serde(skip_serializing_if = "Option::is_none")]
+    out: Option<String>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    grid: Option<String>,
+}
+
+fn finite_or_null<S: serde::Serializer>(x: &f64, s: S) -> Result<S::Ok, S::Error> {
+    if x.is_finite() { s.serialize_f64(*x) } else { s.serialize_none() }
+}
+
+fn primitive(args: &PrimitiveArgs, out: &mut Output) -> anyhow::Result<ExitCode> {
+    let plane = PlaneFrame::new(args.plane_origin, args.plane_x, args.plane_y).map_err(flag_error)?;
+    let path = match &args.path_file {
+        Some(file) => read_path(file)?,
+        None => match args.path {
+            BuiltInPath::DoubleLoop => {
+                if !(args.speed_mps.is_finite() && args.speed_mps > 0.0) {
+                    bail!("--speed-mps: must be positive, got {}", args.speed_mps);
+                }
+                SpeedPath::double_loop(Vector2::zeros(), args.diameter_m / 2.0, args.speed_mps)
+                    .map_err(flag_error)?
+            }
+        },
+    };
+    let region = GridRegion::around(&path.points_m, args.n, args.margin_m).map_err(flag_error)?;
+    let mut mask = ObstacleMask::free(args.n);
+    let mut boxes = args.obstacles.clone();
+    if let Some(file) = &args.obstacles_file {
+        boxes.extend(read_obstacles(file)?);
+    }
+    for (k, b) in boxes.iter().enumerate() {
+        if !b.min_m.iter().chain(&b.max_m).all(|x| x.is_finite()) {
+            bail!("obstacle {}: the box corners must be finite", k + 1);
+        }
+        region.block_box(&mut mask, Vector2::from(b.min_m), Vector2::from(b.max_m));
+    }
+    let blocked_cells = mask.count_blocked();
+    let settings = InstantiateSettings {
+        solver: args.solver.into(),
+        output_dt_s: args.output_dt_s,
+        ..InstantiateSettings::default()
+    };
+    let site = args.site.map_or_else(Isometry3::identity, |s| s.0);
+    let demo = PlanarDemonstration { plane, path };
+    let inst = instantiate(&demo, &site, &region, &mask, &settings).map_err(flag_error)?;
+    if let Some(file) = &args.out {
+        write_path(file, &inst)?;
+    }
+    if let Some(file) = &args.grid {
+        write_grid(file, &inst)?;
+    }
+    let r = &inst.report;
+    let first = inst.points[0].world_m;
+    let last = inst.points[inst.points.len() - 1].world_m;
+    let report = PrimitiveReport {
+        n: args.n,
+        cell_m: r.cell_m,
+        region_origin_m: [region.origin_m.x, region.origin_m.y],
+        world_corner_m: inst.region.world_corner_m(&inst.plane).into(),
+        points: inst.points.len(),
+        duration_s: r.duration_s,
+        path_length_m: inst.points.windows(2).map(|w| (w[1].world_m - w[0].world_m).norm()).sum(),
+        steps: r.steps,
+        solver: settings.solver.name(),
+        viscosity_m2ps: r.viscosity_m2ps,
+        max_divergence_per_s: r.max_divergence_per_s,
+        divergence_tol_per_s: r.divergence_tol_per_s,
+        blocked_cells,
+        repaired_cells: r.repaired_cells,
+        detours: r.detours,
+        moved_samples: r.moved_samples,
+        particle_splits: r.particle_splits,
+        particle_holds: r.particle_holds,
+        end_gap_m: r.end_gap_m,
+        min_clearance_m: r.min_clearance_m,
+        start_world_m: first.into(),
+        end_world_m: last.into(),
+        out: args.out.as_ref().map(|p| p.display().to_string()),
+        grid: args.grid.as_ref().map(|p| p.display().to_string()),
+    };
+    if args.json {
+        out.line(serde_json::to_string_pretty(&report).context("writing JSON")?);
+    } else {
+        outln!(
+            out,
+            "2D primitive on {0} x {0} cells of {1:.3} mm: {2} points over {3:.3} s, {4:.1} mm long, {5} fluid steps ({6} solver)",
+            report.n,
+            report.cell_m * 1e3,
+            report.points,
+            report.duration_s,
+            report.path_length_m * 1e3,
+            report.steps,
+            report.solver
+        );
+        outln!(
+            out,
+            "obstacles: {} cells blocked (+{} by the repair), {} detours; particle: {} split steps, {} holds, end {:.3} mm from the stirrer, clearance {}",
+            report.blocked_cells,
+            report.repaired_cells,
+            report.detours,
+            report.particle_splits,
+            report.particle_holds,
+            report.end_gap_m * 1e3,
+            if report.min_clearance_m.is_finite() {
+                format!("{:.3} mm", report.min_clearance_m * 1e3)
+            } else {
+                "(no obstacle)".to_owned()
+            }
+        );
+        outln!(
+            out,
+            "largest divergence after a step {:.2e} 1/s (tolerance {:.2e})",
+            report.max_divergence_per_s,
+            report.divergence_tol_per_s
+        );
+    }
+    Ok(ExitCode::SUCCESS)
+}
+
+/// A path file: `x_m,y_m,speed_mps` per line.
+fn read_path(file: &Path) -> anyhow::Result<SpeedPath> {
+    let text = std::fs::read_to_string(file).with_context(|| format!("reading {}", file.display()))?;
+    let (mut points, mut speeds) = (Vec::new(), Vec::new());
+    for (number, line) in text.lines().enumerate() {
+        let line = line.trim();
+        if line.is_empty() || line.starts_with('#') || line.chars().next().is_some_and(char::is_alphabetic) {
+            continue;
+        }
+        let values =
+            parse_list(line).map_err(|e| anyhow::anyhow!("{}:{}: {e}", file.display(), number + 1))?;
+        match values.as_slice() {
+            [x, y, v] => {
+                points.push(Vector2::new(*x, *y));
+                speeds.push(*v);
+            }
+            other => bail!(
+                "{}:{}: expected x_m,y_m,speed_mps, got {} numbers",
+                file.display(),
+                number + 1,
+                other.len()
+            ),
+        }
+    }
+    SpeedPath::new(points, speeds).map_err(|e| anyhow::anyhow!("{}: {e}", file.display()))
+}
+
+fn read_obstacles(file: &Path) -> anyhow::Result<Vec<Rect>> {
+    let text = std::fs::read_to_string(file).with_context(|| format!("reading {}", file.display()))?;
+    let parsed: ObstacleFile =
+        toml::from_str(&text).map_err(|e| anyhow::anyhow!("{}: {e}", file.display()))?;
+    Ok(parsed.boxes)
+}
+
+fn write_path(file: &Path, inst: &Instantiation) -> anyhow::Result<()> {
+    let mut csv = String::from("t_s,plane_x_m,plane_y_m,x_m,y_m,z_m\n");
+    for p in &inst.points {
+        let _ = writeln!(
+            csv,
+            "{},{},{},{},{},{}",
+            p.t_s, p.plane_m.x, p.plane_m.y, p.world_m.x, p.world_m.y, p.world_m.z
+        );
+    }
+    std::fs::write(file, csv).with_context(|| format!("writing {}", file.display()))
+}
+
+fn write_grid(file: &Path, inst: &Instantiation) -> anyhow::Result<()> {
+    let region = inst.region;
+    let mut csv = String::from("i,j,plane_x_m,plane_y_m,blocked,u_mps,v_mps\n");
+    for j in 0..region.n {
+        for i in 0..region.n {
+            let centre = region.origin_m + Vector2::new(i as f64 + 0.5, j as f64 + 0.5) * region.cell_m;
+            let velocity = inst.cell_velocity_mps[j * region.n + i];
+            let blocked = u8::from(inst.mask.get(i, j));
+            let _ =
+                writeln!(csv, "{i},{j},{},{},{blocked},{},{}", centre.x, centre.y, velocity.x, velocity.y);
+        }
+    }
+    std::fs::write(file, csv).with_context(|| format!("writing {}", file.display()))
+}
