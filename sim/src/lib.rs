@@ -7,6 +7,7 @@
 //! - [`stitch`]: the thread passing through the flaps, sliding with friction.
 //! - [`needle`]: the half-circle needle on the thread's first segment.
 //! - [`layout`]: where the thread lies at the start of the task.
+//! - [`evaluate`]: the knot's verdict in the scene, with the holding test.
 //! - [`grasp`]: grasping as a constraint that slips above the grip force.
 //! - [`knot`]: which knot a thread's centreline holds, whether it is down, the verdict.
 //! - [`physics`]: the Rapier sets of a scene, its step and health check.
@@ -18,6 +19,7 @@
 //! - [`tunnelling`]: detecting one capsule passing through another.
 
 pub mod backend;
+pub mod evaluate;
 pub mod grasp;
 pub mod knot;
 pub mod layout;

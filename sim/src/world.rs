@@ -295,6 +295,15 @@ impl SimWorld {
         self.noise = ChaCha8Rng::seed_from_u64(seed);
     }
 
+    /// Opens every instrument's jaws: grasps are released at the next step.
+    pub fn release_all(&mut self) {
+        for arm in &mut self.arms {
+            if arm.name.carries_instrument() {
+                arm.command.tool.jaw_rad = Self::JAW_OPEN_RAD;
+            }
+        }
+    }
+
     /// Lets go of everything and takes the thread out of the tissue: a free thread for experiments.
     pub fn free_thread(&mut self) {
         for a in 0..self.arms.len() {

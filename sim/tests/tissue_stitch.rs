@@ -106,3 +106,22 @@ fn stitch_friction_holds_a_pull_below_it() {
     println!("pulled with 0.03 N for 0.3 s: slid {:.2} mm", slid * 1e3);
     assert!(slid.abs() < 0.003, "slid {slid} m under a pull below the friction");
 }
+
+/// The start condition holds no knot: the evaluation says so without running the holding test, and
+/// an untied thread, released, lets the load hold the wound open.
+#[test]
+fn an_untied_thread_is_no_knot_and_the_wound_stays_open() {
+    use knotlab_sim::evaluate::evaluate_knot;
+    use knotlab_sim::knot::{FailureMode, KnotType, Verdict};
+    let mut w = world();
+    run(&mut w, 200);
+    let params = w.config.evaluation.clone();
+    let result = evaluate_knot(&mut w, &params);
+    assert_eq!(result.knot_before, Some(KnotType::Unknot));
+    assert_eq!(result.verdict, Verdict::Failure(FailureMode::NoKnot));
+    assert_eq!(result.gap_after_m, None, "no holding test without a knot");
+    w.release_all();
+    run(&mut w, 1000);
+    assert!(w.arm(ArmName::Right).grasp.is_none() && w.arm(ArmName::Assist).grasp.is_none());
+    assert!(w.wound_gap_m() > params.max_wound_gap_m, "gap {}", w.wound_gap_m());
+}

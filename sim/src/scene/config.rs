@@ -29,6 +29,9 @@ pub struct SceneConfig {
     pub sensor: SensorParams,
     /// The knot-tying task's initial condition.
     pub start: StartParams,
+    /// How the knot is judged.
+    #[serde(default)]
+    pub evaluation: crate::evaluate::EvaluationParams,
     /// Extra boxes in the workspace.
     #[serde(default)]
     pub obstacles: Vec<Obstacle>,
@@ -247,6 +250,14 @@ impl SceneConfig {
         }
         for (axis, v) in ["x", "y", "z"].iter().zip(&self.start.tail_m) {
             c.range(&format!("start.tail_m.{axis}"), *v, -0.2, 0.2);
+        }
+        let ev = &self.evaluation;
+        c.range("evaluation.max_knot_height_m", ev.max_knot_height_m, 0.0, 0.05);
+        c.range("evaluation.max_stitch_distance_m", ev.max_stitch_distance_m, 0.0, 0.05);
+        c.range("evaluation.settle_s", ev.settle_s, 0.0, 60.0);
+        c.range("evaluation.max_wound_gap_m", ev.max_wound_gap_m, 0.0, 0.05);
+        if ev.accepted.is_empty() {
+            c.0.push(("evaluation.accepted".to_owned(), "must name at least one knot".to_owned()));
         }
         let tr = &self.trocars;
         for (name, p) in
