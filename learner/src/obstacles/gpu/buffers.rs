@@ -1,6 +1,7 @@
 //! The kernel's buffers as `#[repr(C)]` structs, every field a 16-byte vector so the layout is the
-//! same in Rust, WGSL uniform and WGSL storage (see `virtual_obstacles.wgsl`), and their packing from a
-//! [`PreparedGrid`] (f64 to f32).
+//! same in Rust and WGSL (see `virtual_obstacles.wgsl`), and their packing from a [`PreparedGrid`]
+//! (f64 to f32). All are storage buffers, the parameters included: lavapipe specialises a kernel on
+//! uniform values that steer control flow and compiled a new variant, for seconds, for every grid.
 
 use bytemuck::{Pod, Zeroable};
 use nalgebra::{IsometryMatrix3, Vector3};
@@ -9,7 +10,7 @@ use knotlab_hw::kinematics::{TipOrientation, Tool};
 
 use crate::obstacles::prepare::PreparedGrid;
 
-/// The kernel's uniform parameters (`Params` in the WGSL).
+/// The kernel's parameters (`Params` in the WGSL).
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Pod, Zeroable)]
 pub struct GpuParams {
@@ -89,6 +90,7 @@ fn rows(iso: &IsometryMatrix3<f64>) -> [[f32; 4]; 3] {
     std::array::from_fn(|i| [r[(i, 0)] as f32, r[(i, 1)] as f32, r[(i, 2)] as f32, t[i] as f32])
 }
 
+/// `v`, with one zero element if empty: a zero-size binding is not allowed.
 fn non_empty<T: Zeroable>(mut v: Vec<T>) -> Vec<T> {
     if v.is_empty() {
         v.push(T::zeroed());

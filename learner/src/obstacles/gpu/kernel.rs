@@ -140,7 +140,7 @@ impl GpuKernel {
             })
         };
         let storage = wgpu::BufferUsages::STORAGE;
-        let params = init("params", bytemuck::bytes_of(&packed.params), wgpu::BufferUsages::UNIFORM);
+        let params = init("params", bytemuck::bytes_of(&packed.params), storage);
         let moving = init("moving boxes", bytemuck::cast_slice(&packed.moving), storage);
         let environment = init("environment boxes", bytemuck::cast_slice(&packed.environment), storage);
         let pairs = init("self pairs", bytemuck::cast_slice(&packed.pairs), storage);

@@ -32,7 +32,7 @@ struct GpuBox {
     info: vec4<u32>,            // anchor index, flags (1: tests environment / patient, 2: inserted), 0, 0
 }
 
-@group(0) @binding(0) var<uniform> params: Params;
+@group(0) @binding(0) var<storage, read> params: Params;
 @group(0) @binding(1) var<storage, read> moving: array<GpuBox>;
 @group(0) @binding(2) var<storage, read> environment: array<GpuBox>;
 @group(0) @binding(3) var<storage, read> pairs: array<vec4<u32>>;
