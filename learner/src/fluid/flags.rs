@@ -23,6 +23,8 @@ pub struct Flags {
     pub grid: StaggeredGrid,
     /// Per cell (ghosts included, always obstacle): whether it holds fluid.
     pub fluid: Vec<bool>,
+    /// Per cell: 1 for fluid, 0 otherwise.
+    pub fluid_weight: Vec<f64>,
     /// Interior obstacle cells next to fluid: array index and the sides (`NORTH | EAST`, ...) where the
     /// fluid is. Never two opposite sides.
     pub boundary: Vec<(usize, u8)>,
@@ -111,7 +113,20 @@ impl Flags {
             }
         }
         let (region, regions) = label_regions(&grid, &fluid);
-        Ok(Self { grid, fluid, boundary, u_fluid, v_fluid, u_solid, v_solid, region, regions, fluid_cells })
+        let fluid_weight = fluid.iter().map(|&f| if f { 1.0 } else { 0.0 }).collect();
+        Ok(Self {
+            grid,
+            fluid,
+            fluid_weight,
+            boundary,
+            u_fluid,
+            v_fluid,
+            u_solid,
+            v_solid,
+            region,
+            regions,
+            fluid_cells,
+        })
     }
 }
 

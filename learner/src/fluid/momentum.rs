@@ -139,17 +139,23 @@ pub fn compute_rhs(flags: &Flags, f: &[f64], g: &[f64], dt: f64, rhs: &mut [f64]
     let c = 1.0 / (grid.h_m * dt);
     rhs.fill(0.0);
     for j in 1..=n {
-        for i in 1..=n {
-            let k = j * s + i;
-            if flags.fluid[k] {
-                rhs[k] = c * ((f[k] - f[k - 1]) + (g[k] - g[k - s]));
-            }
+        let k = j * s + 1;
+        let out = &mut rhs[k..k + n];
+        let (fe, fw, gn, gs, w) = (
+            &f[k..k + n],
+            &f[k - 1..k - 1 + n],
+            &g[k..k + n],
+            &g[k - s..k - s + n],
+            &flags.fluid_weight[k..k + n],
+        );
+        for i in 0..n {
+            out[i] = w[i] * c * ((fe[i] - fw[i]) + (gn[i] - gs[i]));
         }
     }
 }
 
 /// The pressure correction (eq. 3.34 and 3.35): `u = F - dt dp/dx`, `v = G - dt dp/dy` on every face
-/// between two fluid cells. Returns the largest change of a velocity, m/s.
+/// between two fluid cells (the other faces keep their velocity, which `F` and `G` hold).
 pub fn correct_velocities(
     flags: &Flags,
     f: &[f64],
@@ -158,41 +164,73 @@ pub fn correct_velocities(
     dt: f64,
     u: &mut [f64],
     v: &mut [f64],
-) -> f64 {
+) {
     let grid = flags.grid;
     let (n, s) = (grid.n, grid.stride());
     let c = dt / grid.h_m;
+    for j in 1..=n {
+        let k = j * s + 1;
+        let (out, fk, pe, pc) = (&mut u[k..k + n - 1], &f[k..k + n - 1], &p[k + 1..k + n], &p[k..k + n - 1]);
+        for i in 0..n - 1 {
+            out[i] = fk[i] - c * (pe[i] - pc[i]);
+        }
+    }
+    for j in 1..n {
+        let k = j * s + 1;
+        let (out, gk, pn, pc) = (&mut v[k..k + n], &g[k..k + n], &p[k + s..k + s + n], &p[k..k + n]);
+        for i in 0..n {
+            out[i] = gk[i] - c * (pn[i] - pc[i]);
+        }
+    }
+    for &k in &flags.u_solid {
+        u[k] = f[k];
+    }
+    for &k in &flags.v_solid {
+        v[k] = g[k];
+    }
+}
+
+/// The largest change between `old` and `new` velocities over the interior faces, m/s.
+pub fn max_change(flags: &Flags, u_old: &[f64], v_old: &[f64], u: &[f64], v: &[f64]) -> f64 {
+    let grid = flags.grid;
+    let (n, s) = (grid.n, grid.stride());
     let mut change = 0.0f64;
     for j in 1..=n {
-        for i in 1..=n {
-            let k = j * s + i;
-            if flags.u_fluid[k] {
-                let new = f[k] - c * (p[k + 1] - p[k]);
-                change = change.max((new - u[k]).abs());
-                u[k] = new;
-            }
-            if flags.v_fluid[k] {
-                let new = g[k] - c * (p[k + s] - p[k]);
-                change = change.max((new - v[k]).abs());
-                v[k] = new;
+        let k = j * s + 1;
+        for (a, b) in u[k..k + n - 1].iter().zip(&u_old[k..k + n - 1]) {
+            change = change.max((a - b).abs());
+        }
+        if j < n {
+            for (a, b) in v[k..k + n].iter().zip(&v_old[k..k + n]) {
+                change = change.max((a - b).abs());
             }
         }
     }
     change
 }
 
-/// The largest discrete divergence `|du/dx + dv/dy|` over the fluid cells, 1/s.
+/// The largest discrete divergence `|du/dx + dv/dy|` over the fluid cells, 1/s (NaN if a velocity
+/// next to a fluid cell is not finite).
 pub fn max_divergence(flags: &Flags, u: &[f64], v: &[f64]) -> f64 {
     let grid = flags.grid;
     let (n, s) = (grid.n, grid.stride());
     let inv_h = 1.0 / grid.h_m;
     let mut worst = 0.0f64;
     for j in 1..=n {
-        for i in 1..=n {
-            let k = j * s + i;
-            if flags.fluid[k] {
-                worst = worst.max((inv_h * ((u[k] - u[k - 1]) + (v[k] - v[k - s]))).abs());
+        let k = j * s + 1;
+        let (ue, uw, vn, vs, w) = (
+            &u[k..k + n],
+            &u[k - 1..k - 1 + n],
+            &v[k..k + n],
+            &v[k - s..k - s + n],
+            &flags.fluid_weight[k..k + n],
+        );
+        for i in 0..n {
+            let div = w[i] * inv_h * ((ue[i] - uw[i]) + (vn[i] - vs[i]));
+            if div.is_nan() {
+                return f64::NAN;
             }
+            worst = worst.max(div.abs());
         }
     }
     worst
