@@ -200,3 +200,25 @@ fn primitive_reads_a_path_file_and_names_bad_input() {
     assert_eq!(code, 2);
     assert!(stderr.contains("x0,y0,x1,y1"), "{stderr}");
 }
+
+#[test]
+fn primitive_avoids_solids_cutting_the_plane() {
+    let dir = TempDir::new("primitive-solids");
+    // A shaft straight down through the outer loop and a tilted post, in the world at the (unmoved) site;
+    // the plane is z = 0.85.
+    let solids = dir.write(
+        "solids.toml",
+        "[[capsule]]\na_m = [0.0, 0.012, 0.80]\nb_m = [0.0, 0.012, 0.90]\nradius_m = 0.0015\n\n\
+         [[box3d]]\ncentre_m = [-0.008, 0.0, 0.85]\nhalf_extents_m = [0.002, 0.002, 0.05]\nrpy_rad = [0.3, 0.0, 0.0]\n",
+    );
+    let (code, v) = json(&["fluid", "primitive", "--obstacles-file", &solids, "--json"]);
+    assert_eq!(code, 0, "{v}");
+    assert!(number(&v, "blocked_cells") >= 20.0, "{v}");
+    assert!(number(&v, "detours") >= 1.0, "{v}");
+    assert!(number(&v, "min_clearance_m") >= 0.5 * number(&v, "cell_m"), "{v}");
+    let bad =
+        dir.write("bad.toml", "[[capsule]]\na_m = [0.0, 0.0, 0.8]\nb_m = [0.0, 0.0, 0.9]\nradius_m = -1.0\n");
+    let (code, _, stderr) = knotlab(&["fluid", "primitive", "--obstacles-file", &bad]);
+    assert_eq!(code, 1);
+    assert!(stderr.contains("bad.toml: solid 1") && stderr.contains("radius_m"), "{stderr}");
+}

@@ -13,7 +13,8 @@ use serde::{Deserialize, Serialize};
 
 use knotlab_learner::fluid::{
     CavityConfig, FluidError, GHIA_U_Y, GHIA_V_X, GridRegion, InstantiateSettings, Instantiation,
-    ObstacleMask, PlanarDemonstration, PlaneFrame, PressureSolverKind, SpeedPath, instantiate, run_cavity,
+    ObstacleMask, PlanarDemonstration, PlaneFrame, PressureSolverKind, Solid, SpeedPath, block_solid,
+    instantiate, run_cavity,
 };
 
 use super::numbers::{parse_list, parse_vector3};
@@ -115,7 +116,10 @@ pub struct PrimitiveArgs {
     /// Repeat for more.
     #[arg(long = "obstacle", allow_hyphen_values = true, value_parser = parse_box)]
     obstacles: Vec<Rect>,
-    /// Obstacles from a TOML file: `[[box]]` tables with `min_m = [x, y]` and `max_m = [x, y]`.
+    /// Obstacles from a TOML file: `[[box]]` tables with `min_m = [x, y]` and `max_m = [x, y]` (plane
+    /// coordinates); solids in the world at the new site cutting the plane: `[[box3d]]` with
+    /// `centre_m = [x, y, z]`, `half_extents_m = [x, y, z]` and optional `rpy_rad = [roll, pitch, yaw]`,
+    /// `[[capsule]]` with `a_m`, `b_m` (axis ends) and `radius_m`.
     #[arg(long)]
     obstacles_file: Option<PathBuf>,
     /// The pressure solver.
@@ -170,6 +174,47 @@ fn parse_box(text: &str) -> Result<Rect, String> {
 struct ObstacleFile {
     #[serde(rename = "box", default)]
     boxes: Vec<Rect>,
+    #[serde(rename = "box3d", default)]
+    boxes_3d: Vec<Box3d>,
+    #[serde(rename = "capsule", default)]
+    capsules: Vec<Capsule>,
+}
+
+/// An oriented box in the world.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct Box3d {
+    centre_m: [f64; 3],
+    half_extents_m: [f64; 3],
+    #[serde(default)]
+    rpy_rad: [f64; 3],
+}
+
+/// A capsule in the world.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct Capsule {
+    a_m: [f64; 3],
+    b_m: [f64; 3],
+    radius_m: f64,
+}
+
+impl ObstacleFile {
+    fn solids(&self) -> Vec<Solid> {
+        let boxes = self.boxes_3d.iter().map(|b| Solid::Box {
+            world_from_box: Isometry3::from_parts(
+                Translation3::from(Vector3::from(b.centre_m)),
+                UnitQuaternion::from_euler_angles(b.rpy_rad[0], b.rpy_rad[1], b.rpy_rad[2]),
+            ),
+            half_extents_m: Vector3::from(b.half_extents_m),
+        });
+        let capsules = self.capsules.iter().map(|c| Solid::Capsule {
+            a_m: Vector3::from(c.a_m),
+            b_m: Vector3::from(c.b_m),
+            radius_m: c.radius_m,
+        });
+        boxes.chain(capsules).collect()
+    }
 }
 
 /// A library error in the command line's words: a bad input names the flag that gave it.
@@ -370,8 +415,14 @@ fn primitive(args: &PrimitiveArgs, out: &mut Output) -> anyhow::Result<ExitCode>
     let region = GridRegion::around(&path.points_m, args.n, args.margin_m).map_err(flag_error)?;
     let mut mask = ObstacleMask::free(args.n);
     let mut boxes = args.obstacles.clone();
+    let site = args.site.map_or_else(Isometry3::identity, |s| s.0);
     if let Some(file) = &args.obstacles_file {
-        boxes.extend(read_obstacles(file)?);
+        let parsed = read_obstacles(file)?;
+        boxes.extend(parsed.boxes.iter().copied());
+        for (k, solid) in parsed.solids().iter().enumerate() {
+            block_solid(&mut mask, &plane.moved(&site), &region, solid)
+                .map_err(|e| anyhow::anyhow!("{}: solid {}: {e}", file.display(), k + 1))?;
+        }
     }
     for (k, b) in boxes.iter().enumerate() {
         if !b.min_m.iter().chain(&b.max_m).all(|x| x.is_finite()) {
@@ -385,7 +436,6 @@ fn primitive(args: &PrimitiveArgs, out: &mut Output) -> anyhow::Result<ExitCode>
         output_dt_s: args.output_dt_s,
         ..InstantiateSettings::default()
     };
-    let site = args.site.map_or_else(Isometry3::identity, |s| s.0);
     let demo = PlanarDemonstration { plane, path };
     let inst = instantiate(&demo, &site, &region, &mask, &settings).map_err(flag_error)?;
     if let Some(file) = &args.out {
@@ -489,11 +539,9 @@ fn read_path(file: &Path) -> anyhow::Result<SpeedPath> {
     SpeedPath::new(points, speeds).map_err(|e| anyhow::anyhow!("{}: {e}", file.display()))
 }
 
-fn read_obstacles(file: &Path) -> anyhow::Result<Vec<Rect>> {
+fn read_obstacles(file: &Path) -> anyhow::Result<ObstacleFile> {
     let text = std::fs::read_to_string(file).with_context(|| format!("reading {}", file.display()))?;
-    let parsed: ObstacleFile =
-        toml::from_str(&text).map_err(|e| anyhow::anyhow!("{}: {e}", file.display()))?;
-    Ok(parsed.boxes)
+    toml::from_str(&text).map_err(|e| anyhow::anyhow!("{}: {e}", file.display()))
 }
 
 fn write_path(file: &Path, inst: &Instantiation) -> anyhow::Result<()> {

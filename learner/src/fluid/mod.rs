@@ -18,6 +18,7 @@ pub mod plane;
 pub mod pressure;
 pub mod raster;
 pub mod simulation;
+pub mod solids;
 pub mod stirring;
 pub mod timestep;
 
@@ -33,4 +34,5 @@ pub use params::{DonorCell, FluidParams, PressureSolverKind};
 pub use path::{ArcPath, ArcSample, SpeedPath};
 pub use plane::{GridRegion, PlaneFrame};
 pub use simulation::{FluidSim, StepReport};
+pub use solids::{Solid, block_solid};
 pub use stirring::{Stirrer, StirringSettings};
