@@ -4,6 +4,7 @@ mod fluid;
 mod knot;
 mod melfa;
 mod numbers;
+mod obstacles;
 mod output;
 mod rig;
 mod sim;
@@ -35,6 +36,8 @@ enum Command {
     MelfaEmulator(melfa::EmulatorArgs),
     /// The simulated scene: run its scripted stress sequence and report what the thread did.
     Sim(sim::SimArgs),
+    /// Virtual obstacles: the grid cells where an arm's tip would make the arm collide (CPU or GPU).
+    Obstacles(obstacles::ObstaclesArgs),
 }
 
 /// Runs a parsed command line.
@@ -46,5 +49,6 @@ pub fn run(cli: Cli) -> anyhow::Result<ExitCode> {
         Command::Fluid(command) => fluid::run(command, &mut out),
         Command::MelfaEmulator(args) => melfa::run(args, &mut out),
         Command::Sim(args) => sim::run(args, &mut out),
+        Command::Obstacles(args) => obstacles::run(args, &mut out),
     }
 }

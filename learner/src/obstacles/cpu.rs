@@ -13,6 +13,7 @@ use rayon::prelude::*;
 use knotlab_hw::kinematics::ArmJoints;
 
 use super::check::{SubcellVerdict, moving_hits_env, spheres_meet};
+use super::error::ObstacleError;
 use super::grid::{CellVerdict, GridResult};
 use super::obb::Obb;
 use super::prepare::PreparedGrid;
@@ -134,6 +135,14 @@ fn evaluate_cell(
         CellVerdict::Free
     };
     (verdict, tested)
+}
+
+/// A thread pool of `threads` threads for [`compute_cpu`]: `thread_pool(2)?.install(|| compute_cpu(..))`.
+pub fn thread_pool(threads: usize) -> Result<rayon::ThreadPool, ObstacleError> {
+    rayon::ThreadPoolBuilder::new().num_threads(threads.max(1)).build().map_err(|e| ObstacleError::World {
+        what: format!("a pool of {threads} threads"),
+        reason: e.to_string(),
+    })
 }
 
 /// Computes the grid on the CPU. With `keep_subcells`, every subcell is evaluated and its verdict kept

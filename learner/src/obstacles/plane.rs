@@ -79,6 +79,19 @@ impl GridPlane {
         Ok(Self { origin_m, axis_u: u, axis_v: v, size_m, cells, subcells })
     }
 
+    /// A checked grid centred on `centre_m` (see [`GridPlane::new`] for the checks).
+    pub fn centred(
+        centre_m: Vector3<f64>,
+        axis_u: Vector3<f64>,
+        axis_v: Vector3<f64>,
+        size_m: f64,
+        cells: usize,
+        subcells: usize,
+    ) -> Result<Self, ObstacleError> {
+        let plane = Self::new(centre_m, axis_u, axis_v, size_m, cells, subcells)?;
+        Ok(Self { origin_m: centre_m - (plane.axis_u + plane.axis_v) * (0.5 * size_m), ..plane })
+    }
+
     /// Subcells along one side (n s).
     pub fn side(&self) -> usize {
         self.cells * self.subcells
