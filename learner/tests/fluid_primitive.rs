@@ -271,3 +271,20 @@ fn instantiation_is_deterministic_to_the_bit() {
         assert_eq!(p.world_m.map(f64::to_bits), q.world_m.map(f64::to_bits));
     }
 }
+
+#[test]
+fn a_finer_grid_regenerates_the_same_path() {
+    let demo = double_wrap();
+    let moved_plane = demo.plane.moved(&site());
+    let moved_demo: Vec<Vector3<f64>> = demo.path.points_m.iter().map(|p| moved_plane.to_world(p)).collect();
+    for n in [50, 128] {
+        let region = GridRegion::around(&demo.path.points_m, n, 0.006).expect("region");
+        let inst =
+            instantiate(&demo, &site(), &region, &ObstacleMask::free(n), &InstantiateSettings::default())
+                .expect("instantiate");
+        let world: Vec<Vector3<f64>> = inst.points.iter().map(|p| p.world_m).collect();
+        let distance = hausdorff(&world, &moved_demo);
+        println!("n {n}: Hausdorff {:.3} cells, {} steps", distance / region.cell_m, inst.report.steps);
+        assert!(distance <= region.cell_m, "n {n}: {:.3} cells", distance / region.cell_m);
+    }
+}

@@ -2,6 +2,14 @@
 //! Navier-Stokes solver after Griebel, Dornseifer and Neunhoeffer, "Numerical Simulation in Fluid
 //! Dynamics" (SIAM 1997), stirred along a demonstrated path, and a particle thrown into the stream that
 //! regenerates the path at a new site, around obstacles.
+//!
+//! The API for a 2D primitive is [`instantiate()`]: a [`PlanarDemonstration`] (a [`PlaneFrame`] and a
+//! [`SpeedPath`] in its coordinates), the site as a rigid motion of the world, a [`GridRegion`] in the
+//! moved plane and an [`ObstacleMask`] (real obstacles from [`GridRegion::block_box`] or
+//! [`block_solid`], virtual obstacles OR-ed in with [`ObstacleMask::union`]); it returns the particle's
+//! path as time-stamped plane and world points ([`Instantiation`]). The solver itself is [`FluidSim`]
+//! (one adaptive step at a time, SOR or the direct pressure solve, walls that may slide, presets), and
+//! [`run_cavity`] its validation against Ghia, Ghia and Shin (1982).
 
 pub mod boundary;
 pub mod cavity;

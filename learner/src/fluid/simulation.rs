@@ -28,8 +28,9 @@ pub struct StepReport {
     /// Largest divergence of the corrected velocities over the fluid cells, 1/s, computed from the
     /// velocities themselves (before stirring presets overwrite any face).
     pub max_divergence_per_s: f64,
-    /// Largest change of a velocity between two fluid cells over the step divided by the step, m/s^2
-    /// (zero at a steady state; presets count as they are before the step resets them).
+    /// Largest change of a velocity on an interior face over the step divided by the step, m/s^2 (zero at
+    /// a steady state; a stirred face counts with its preset before the step and its corrected value
+    /// after, before the new presets).
     pub max_acceleration_mps2: f64,
 }
 
