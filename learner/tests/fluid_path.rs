@@ -104,3 +104,14 @@ fn bad_paths_name_the_field() {
     assert!(SpeedPath::new(vec![v(0.0, 0.0), v(0.0, 0.0)], vec![0.1, 0.1]).is_err());
     assert!(SpeedPath::new(vec![v(0.0, 0.0), v(1.0, 0.0)], vec![0.1]).is_err());
 }
+
+#[test]
+fn a_degenerate_step_does_not_exhaust_memory() {
+    let path = SpeedPath::constant_speed(vec![v(0.0, 0.0), v(0.1, 0.0)], 0.02).expect("path");
+    let arc = ArcPath::new(&path);
+    for d in [0.0, -1.0, f64::NAN, 1e-30] {
+        let samples = arc.sample_equal(d);
+        assert!(samples.len() <= 10_000_002, "d = {d}: {} samples", samples.len());
+        assert_eq!(samples[samples.len() - 1].s_m, 0.1);
+    }
+}

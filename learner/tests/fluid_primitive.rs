@@ -247,6 +247,10 @@ fn bad_input_is_refused_with_the_field_named() {
     let err =
         instantiate(&demo, &site(), &region, &ObstacleMask::free(50), &settings).expect_err("output_dt_s");
     assert!(matches!(&err, FluidError::Invalid { field, .. } if field == "output_dt_s"), "{err}");
+    let settings = InstantiateSettings { output_dt_s: 1e-9, ..InstantiateSettings::default() };
+    let err =
+        instantiate(&demo, &site(), &region, &ObstacleMask::free(50), &settings).expect_err("10^10 points");
+    assert!(matches!(&err, FluidError::Invalid { field, .. } if field == "output_dt_s"), "{err}");
     let mut bad = demo.clone();
     bad.path.speed_mps[5] = -1.0;
     let err = instantiate(&bad, &site(), &region, &ObstacleMask::free(50), &InstantiateSettings::default())

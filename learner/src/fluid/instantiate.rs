@@ -183,6 +183,12 @@ pub fn instantiate(
     let flags = sim.flags().clone();
     let stirrer = Stirrer::plan(&local, &flags, &settings.stirring)?;
     let duration = stirrer.duration_s();
+    if duration / settings.output_dt_s > 1e7 {
+        return Err(FluidError::invalid(
+            "output_dt_s",
+            format!("{} s gives more than 10 million points over {duration:.3} s", settings.output_dt_s),
+        ));
+    }
     sim.set_presets(stirrer.presets_at(0.0, &flags))?;
     let mut particle = Particle::new(stirrer.position_at(0.0), 0.0);
     let mut max_divergence = 0.0f64;

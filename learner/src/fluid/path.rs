@@ -207,8 +207,10 @@ impl ArcPath {
     }
 
     /// Samples every `d_m` of arc length from the start, and the end point (the last step may be shorter).
+    /// A step that is not positive, or below a ten-millionth of the length, is taken as that.
     pub fn sample_equal(&self, d_m: f64) -> Vec<ArcSample> {
         let total = self.length_m();
+        let d_m = if d_m.is_finite() && d_m > 0.0 { d_m.max(total * 1e-7) } else { total * 1e-7 };
         let count = (total / d_m).floor() as usize;
         let mut out: Vec<ArcSample> = (0..=count).map(|k| self.at(k as f64 * d_m)).collect();
         if total - count as f64 * d_m > 1e-12 * total.max(1e-9) {
