@@ -60,7 +60,7 @@ impl Grasp {
         jaw_offset_m: f64,
     ) -> Option<Self> {
         let jaw_centre = world_from_tip * nalgebra::Point3::new(0.0, 0.0, -jaw_offset_m);
-        let reach_m = 0.003;
+        let reach_m = crate::world::GRASP_REACH_M;
         // (segment, how far beyond its reach the jaw centre is)
         let segments = thread.segments.iter().enumerate().map(|(i, h)| {
             let d = (to_na(physics.bodies[*h].translation()) - jaw_centre.coords).norm();

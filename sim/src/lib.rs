@@ -9,6 +9,7 @@
 //! - [`layout`]: where the thread lies at the start of the task.
 //! - [`evaluate`]: the knot's verdict in the scene, with the holding test.
 //! - [`grasp`]: grasping as a constraint that slips above the grip force.
+//! - [`hooks`]: the contact filter (thread through the flaps and through the jaws holding it).
 //! - [`knot`]: which knot a thread's centreline holds, whether it is down, the verdict.
 //! - [`physics`]: the Rapier sets of a scene, its step and health check.
 //! - [`scene`]: the scene file (TOML) and its checks.
@@ -21,6 +22,7 @@
 pub mod backend;
 pub mod evaluate;
 pub mod grasp;
+pub mod hooks;
 pub mod knot;
 pub mod layout;
 pub mod needle;

@@ -176,20 +176,3 @@ impl Stitch {
         Some(thread.segment_length_m * (i as f64 + 0.5) + x)
     }
 }
-
-/// Contact filter of a scene: thread segments inside the tissue pass through the flaps.
-pub struct StitchHooks {
-    /// The flaps' colliders.
-    pub flap_colliders: [ColliderHandle; 2],
-    /// Colliders of the segments inside the tissue.
-    pub inside: Vec<ColliderHandle>,
-}
-
-impl PhysicsHooks for StitchHooks {
-    fn filter_contact_pair(&self, context: &PairFilterContext) -> Option<SolverFlags> {
-        let (a, b) = (context.collider1, context.collider2);
-        let flap_pair = (self.flap_colliders.contains(&a) && self.inside.contains(&b))
-            || (self.flap_colliders.contains(&b) && self.inside.contains(&a));
-        if flap_pair { None } else { Some(SolverFlags::COMPUTE_RIGID_IMPULSES) }
-    }
-}

@@ -69,9 +69,12 @@ fn side(a: &Capsule, b: &Capsule, watch_m: f64) -> Option<(f64, bool)> {
     let (aa, bb, ee, c, f) = (d1.dot(&d1), d1.dot(&d2), d2.dot(&d2), d1.dot(&r), d2.dot(&r));
     let denom = aa * ee - bb * bb;
     let (s_line, t_line) = ((bb * f - c * ee) / denom, (aa * f - bb * c) / denom);
-    let inside = |x: f64| (-0.02..=1.02).contains(&x);
+    // A crossing within the two radii of an end still counts (a strand passing over a chain's joint
+    // is inside both segments); beyond that, the pair has slid past the end.
+    let reach = a.radius_m + b.radius_m;
+    let inside = |x: f64, length: f64| (-reach / length..=1.0 + reach / length).contains(&x);
     let _ = (s, t);
-    Some((gap.dot(&normal).signum(), inside(s_line) && inside(t_line)))
+    Some((gap.dot(&normal).signum(), inside(s_line, aa.sqrt()) && inside(t_line, ee.sqrt())))
 }
 
 /// Watches pairs of capsules from step to step and counts tunnelling events (a strand passing through

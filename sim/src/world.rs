@@ -11,12 +11,13 @@ use rand_distr::{Distribution, Normal};
 use rapier3d::prelude::*;
 
 use crate::grasp::{Grasp, GraspEvent};
+use crate::hooks::ContactFilter;
 use crate::layout::start_layout;
 use crate::needle::Needle;
 use crate::physics::{HealthError, Physics};
 use crate::scene::SceneConfig;
 use crate::servo::{ServoModel, ServoState};
-use crate::stitch::{Stitch, StitchEvent, StitchHooks};
+use crate::stitch::{Stitch, StitchEvent};
 use crate::thread::{THREAD_GROUP, Thread};
 use crate::tissue::Tissue;
 
@@ -75,6 +76,8 @@ pub struct SimArm {
     pub force_n: Vector3<f64>,
     /// The bodies of the instrument (the flange and every link below it): what the gauge feels.
     pub instrument_bodies: Vec<RigidBodyHandle>,
+    /// The colliders of the jaws and the clevis carrying them.
+    pub jaw_colliders: Vec<ColliderHandle>,
 }
 
 impl SimArm {
@@ -188,6 +191,7 @@ impl SimWorld {
                     slipped: false,
                     force_n: Vector3::zeros(),
                     instrument_bodies: Vec::new(),
+                    jaw_colliders: Vec::new(),
                 })
             })
             .collect::<Result<_, WorldError>>()?;
@@ -199,20 +203,17 @@ impl SimWorld {
         }
         let poses = rig.tree.root_from_links(&positions);
         let mut link_bodies = vec![None; rig.tree.links.len()];
+        let mut jaw_colliders: Vec<(String, ColliderHandle)> = Vec::new();
         for (i, link) in rig.tree.links.iter().enumerate() {
             if link.collisions.is_empty() {
                 continue;
             }
             let moving = rig.tree.path_to(i).iter().any(|&j| rig.tree.joints[j].limit.is_some());
-            // The jaws hold the thread by the grasp constraint alone: their capsules closing on a
-            // held segment would fight the constraint, so they do not collide with the thread.
+            // The jaws collide with the thread (it can be wound around them), except with what they
+            // hold or close on: the contact filter leaves that to the grasp constraint.
             let jaw = ["_jaw_1", "_jaw_2", "_clevis"].iter().any(|s| link.name.ends_with(s));
             let (builder, group, filter) = if moving {
-                (
-                    RigidBodyBuilder::kinematic_position_based(),
-                    ROBOT_GROUP,
-                    if jaw { Group::NONE } else { THREAD_GROUP },
-                )
+                (RigidBodyBuilder::kinematic_position_based(), ROBOT_GROUP, THREAD_GROUP)
             } else {
                 (RigidBodyBuilder::fixed(), ENVIRONMENT_GROUP, Group::NONE)
             };
@@ -221,9 +222,13 @@ impl SimWorld {
                 let collider = shape_collider(&c.shape)
                     .position(to_pose(&c.link_from_shape))
                     .friction(0.8)
+                    .active_hooks(if jaw { ActiveHooks::FILTER_CONTACT_PAIRS } else { ActiveHooks::empty() })
                     .collision_groups(InteractionGroups::new(group, filter, InteractionTestMode::And))
                     .build();
-                physics.colliders.insert_with_parent(collider, body, &mut physics.bodies);
+                let handle = physics.colliders.insert_with_parent(collider, body, &mut physics.bodies);
+                if jaw && moving {
+                    jaw_colliders.push((link.name.clone(), handle));
+                }
             }
             link_bodies[i] = Some(body);
         }
@@ -237,6 +242,9 @@ impl SimWorld {
                 })
                 .filter_map(|i| link_bodies[i])
                 .collect();
+            let prefix = format!("{}_", arm.name);
+            arm.jaw_colliders =
+                jaw_colliders.iter().filter(|(name, _)| name.starts_with(&prefix)).map(|(_, h)| *h).collect();
         }
         let tissue = Tissue::build(&mut physics, &config.tissue, &config.stitch);
         let layout = start_layout(&config, &tissue, &physics);
@@ -332,6 +340,46 @@ impl SimWorld {
         self.physics.bodies.len()
     }
 
+    /// The pairs that must not touch this step: segments inside the tissue and the flaps; the jaws and
+    /// what they hold or are closing on (the held segment and its neighbours, and any segment within
+    /// the jaws' reach while they are told to close).
+    fn contact_filter(&self, poses: &[IsometryMatrix3<f64>]) -> ContactFilter {
+        let mut filter = ContactFilter::default();
+        let colliders_of = |i: usize| -> Vec<ColliderHandle> {
+            self.thread
+                .segments
+                .get(i)
+                .map_or_else(Vec::new, |h| self.physics.bodies[*h].colliders().to_vec())
+        };
+        if let Some(range) = self.stitch.segments_inside() {
+            let inside: Vec<ColliderHandle> = range.flat_map(colliders_of).collect();
+            filter.exclude_all(&self.tissue.flap_colliders, &inside);
+        }
+        let reach = GRASP_REACH_M + self.thread.segment_length_m;
+        for arm in &self.arms {
+            if arm.jaw_colliders.is_empty() {
+                continue;
+            }
+            let mut near: Vec<usize> = Vec::new();
+            if let Some(grasp) = &arm.grasp {
+                near.extend(grasp.segment.saturating_sub(1)..=grasp.segment + 1);
+            }
+            if arm.command.tool.jaw_rad < Self::JAW_OPEN_RAD {
+                let tip = poses[self.rig.arm(arm.name).tip_link];
+                let centre = (tip * Point3::new(0.0, 0.0, -JAW_CENTRE_OFFSET_M)).coords;
+                for (i, h) in self.thread.segments.iter().enumerate() {
+                    let t = self.physics.bodies[*h].translation();
+                    if (Vector3::new(t.x, t.y, t.z) - centre).norm() < reach {
+                        near.push(i);
+                    }
+                }
+            }
+            let held: Vec<ColliderHandle> = near.into_iter().flat_map(colliders_of).collect();
+            filter.exclude_all(&arm.jaw_colliders, &held);
+        }
+        filter
+    }
+
     fn link_poses(&self) -> Vec<IsometryMatrix3<f64>> {
         let mut positions = vec![0.0; self.rig.tree.joints.len()];
         for arm in &self.arms {
@@ -378,15 +426,7 @@ impl SimWorld {
             }
         }
         self.update_grasps(&poses);
-        let hooks = StitchHooks {
-            flap_colliders: self.tissue.flap_colliders,
-            inside: self.stitch.segments_inside().map_or_else(Vec::new, |range| {
-                range
-                    .filter_map(|i| self.thread.segments.get(i))
-                    .flat_map(|h| self.physics.bodies[*h].colliders().iter().copied())
-                    .collect()
-            }),
-        };
+        let hooks = self.contact_filter(&poses);
         let thread_segments = self.thread.segments.clone();
         let flaps = self.tissue.flaps;
         self.physics.step_with_hooks(&hooks, &|h| match thread_segments.iter().position(|s| *s == h) {
@@ -505,6 +545,10 @@ pub fn tip_for_jaw_centre(trocar_m: &Vector3<f64>, jaw_centre_m: &Vector3<f64>) 
         orientation: TipOrientation::AlongShaft,
     }
 }
+
+/// The jaws close on what lies within this distance of their centre (beyond a segment's half
+/// length), m.
+pub const GRASP_REACH_M: f64 = 0.003;
 
 /// The jaws hold what lies this far behind the tip, along the tip's z axis, m.
 pub const JAW_CENTRE_OFFSET_M: f64 = 0.005;

@@ -60,10 +60,10 @@ fn drag(speed_m_s: f64) -> (usize, usize, f64) {
     let shaft = left_shaft(&w);
     let s = shaft_capsule(&w, shaft);
     let axis = (s.b_m - s.a_m).normalize();
-    // The point of the shaft 3 cm up from its tip end, then swept along +x.
+    // The point of the shaft 5 cm up from its tip end (well above the jaws), then swept along +x.
     let tip_end = if (s.a_m - from).norm() < (s.b_m - from).norm() { s.a_m } else { s.b_m };
     let up = if (s.a_m - from).norm() < (s.b_m - from).norm() { axis } else { -axis };
-    let crossing = tip_end + up * 0.03 + Vector3::new(0.015, 0.0, 0.0);
+    let crossing = tip_end + up * 0.05 + Vector3::new(0.015, 0.0, 0.0);
     let half = 0.5 * w.thread.segment_length_m * w.thread.segments.len() as f64;
     let across = frame.rotation * Vector3::y();
     let gravity = w.physics.gravity;
