@@ -41,8 +41,10 @@ pub enum GraspEvent {
 /// A held thread segment.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Grasp {
-    /// The index of the held segment.
+    /// The index of the held segment (0 for the needle, which is part of the first segment).
     pub segment: usize,
+    /// Whether the jaws hold the needle rather than the thread.
+    pub on_needle: bool,
     /// The constraint.
     pub joint: ImpulseJointHandle,
 }
@@ -64,10 +66,10 @@ impl Grasp {
         // (segment, how far beyond its reach the jaw centre is)
         let segments = thread.segments.iter().enumerate().map(|(i, h)| {
             let d = (to_na(physics.bodies[*h].translation()) - jaw_centre.coords).norm();
-            (i, d - reach_m - 0.5 * thread.segment_length_m)
+            (i, false, d - reach_m - 0.5 * thread.segment_length_m)
         });
-        let needle = needle_m.iter().map(|p| (0, (p - jaw_centre.coords).norm() - reach_m));
-        let (segment, beyond) = segments.chain(needle).min_by(|a, b| a.1.total_cmp(&b.1))?;
+        let needle = needle_m.iter().map(|p| (0, true, (p - jaw_centre.coords).norm() - reach_m));
+        let (segment, on_needle, beyond) = segments.chain(needle).min_by(|a, b| a.2.total_cmp(&b.2))?;
         if beyond > 0.0 {
             return None;
         }
@@ -81,7 +83,7 @@ impl Grasp {
             .local_frame2(Pose::IDENTITY)
             .contacts_enabled(false);
         let handle = physics.impulse_joints.insert(jaw_body, body, joint, true);
-        Some(Self { segment, joint: handle })
+        Some(Self { segment, on_needle, joint: handle })
     }
 
     /// The force the grasp constraint transmitted in the last step, N.

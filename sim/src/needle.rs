@@ -11,6 +11,7 @@ use rapier3d::prelude::*;
 use crate::physics::Physics;
 use crate::scene::NeedleParams;
 use crate::thread::{THREAD_GROUP, Thread};
+use crate::tissue::{FLAP_GROUP, PAD_GROUP};
 
 /// Capsules approximating the arc.
 const PIECES: usize = 8;
@@ -52,7 +53,13 @@ impl Needle {
             ))
             .mass(piece_mass)
             .friction(0.3)
-            .collision_groups(InteractionGroups::new(THREAD_GROUP, Group::ALL, InteractionTestMode::And))
+            // The needle touches the thread and the tissue, not the instruments: a 16 mm arc swinging
+            // with the holding jaws would otherwise snag every instrument it passes and tear the grasp.
+            .collision_groups(InteractionGroups::new(
+                THREAD_GROUP,
+                THREAD_GROUP | FLAP_GROUP | PAD_GROUP,
+                InteractionTestMode::And,
+            ))
             .build();
             physics.colliders.insert_with_parent(capsule, body, &mut physics.bodies);
         }

@@ -211,7 +211,7 @@ impl SimWorld {
             let moving = rig.tree.path_to(i).iter().any(|&j| rig.tree.joints[j].limit.is_some());
             // The jaws collide with the thread (it can be wound around them), except with what they
             // hold or close on: the contact filter leaves that to the grasp constraint.
-            let jaw = ["_jaw_1", "_jaw_2", "_clevis"].iter().any(|s| link.name.ends_with(s));
+            let jaw = ["_jaw_1", "_jaw_2", "_clevis", "_wrist"].iter().any(|s| link.name.ends_with(s));
             let (builder, group, filter) = if moving {
                 (RigidBodyBuilder::kinematic_position_based(), ROBOT_GROUP, THREAD_GROUP)
             } else {
@@ -362,7 +362,7 @@ impl SimWorld {
             }
             let mut near: Vec<usize> = Vec::new();
             if let Some(grasp) = &arm.grasp {
-                near.extend(grasp.segment.saturating_sub(1)..=grasp.segment + 1);
+                near.extend(grasp.segment.saturating_sub(2)..=grasp.segment + 2);
             }
             if arm.command.tool.jaw_rad < Self::JAW_OPEN_RAD {
                 let tip = poses[self.rig.arm(arm.name).tip_link];
@@ -490,7 +490,9 @@ impl SimWorld {
         for arm in &mut self.arms {
             let Some(grasp) = &arm.grasp else { continue };
             let force = grasp.force_n(&self.physics);
-            if force > self.grip_force_n {
+            let grip =
+                if grasp.on_needle { self.config.sensor.needle_grip_force_n } else { self.grip_force_n };
+            if force > grip {
                 if let Some(grasp) = arm.grasp.take() {
                     grasp.release(&mut self.physics);
                 }

@@ -93,6 +93,8 @@ pub struct SensorParams {
     pub force_noise_n: f64,
     /// Grasped thread slips out of the jaws above this pull, N.
     pub grip_force_n: f64,
+    /// A needle held in a needle driver's jaws slips above this pull, N.
+    pub needle_grip_force_n: f64,
 }
 
 /// The knot-tying task's initial condition, in the tissue frame (x along the wound, y across it
@@ -245,6 +247,7 @@ impl SceneConfig {
         c.range("stitch.slide_friction_n", st.slide_friction_n, 0.0, 10.0);
         c.range("sensor.force_noise_n", self.sensor.force_noise_n, 0.0, 10.0);
         c.range("sensor.grip_force_n", self.sensor.grip_force_n, 0.01, 100.0);
+        c.range("sensor.needle_grip_force_n", self.sensor.needle_grip_force_n, 0.01, 100.0);
         for (axis, v) in ["x", "y", "z"].iter().zip(&self.start.needle_m) {
             c.range(&format!("start.needle_m.{axis}"), *v, -0.2, 0.2);
         }
