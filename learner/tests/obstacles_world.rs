@@ -6,6 +6,7 @@ mod obstacles_common;
 
 use knotlab_hw::kinematics::{ArmJoints, TipOrientation, TipTarget, Tool, ToolJoints};
 use knotlab_hw::rig::{ArmName, Rig, Shape};
+use knotlab_learner::obstacles::frames::{AnchorKinematics, world_from_anchors};
 use knotlab_learner::obstacles::world::MIN_SELF_JOINTS;
 use knotlab_learner::obstacles::*;
 use nalgebra::Vector3;
@@ -61,6 +62,22 @@ fn anchored_boxes_follow_the_urdf_walk() {
         }
     }
     assert_eq!(compared, 50 * (15 * 3 + 11));
+}
+
+#[test]
+fn cached_forward_kinematics_matches_hw() {
+    let rig = Rig::shipped().unwrap();
+    let mut rng = ChaCha8Rng::seed_from_u64(4);
+    for name in ArmName::ALL {
+        let model = rig.arm(name).model;
+        let fast = AnchorKinematics::new(&model);
+        for _ in 0..200 {
+            let joints = random_joints(&rig, name, 0.3, &mut rng);
+            for (a, b) in fast.world_from_anchors(&joints).iter().zip(world_from_anchors(&model, &joints)) {
+                assert!((a.to_homogeneous() - b.to_homogeneous()).abs().max() < 1e-12, "{name}");
+            }
+        }
+    }
 }
 
 #[test]

@@ -7,7 +7,6 @@ use nalgebra::{Matrix3, Rotation3, Vector3};
 use knotlab_hw::kinematics::tool::MIN_TROCAR_DISTANCE_M;
 use knotlab_hw::kinematics::{ArmJoints, TipOrientation, TipTarget};
 
-use super::frames::world_from_anchors;
 use super::obb::Obb;
 use super::prepare::{EnvBox, MovingBox, PreparedGrid};
 
@@ -97,7 +96,7 @@ impl PreparedGrid {
 
     /// The moving arm's boxes in the world at `joints`, written to `out` (as long as `moving`).
     pub fn pose_moving(&self, joints: &ArmJoints, out: &mut [Obb]) {
-        let anchors = world_from_anchors(&self.model, joints);
+        let anchors = self.kinematics.world_from_anchors(joints);
         for (m, slot) in self.moving.iter().zip(out.iter_mut()) {
             *slot = Obb::new(&(anchors[m.anchor] * m.anchor_from_box), m.half_extents_m);
         }

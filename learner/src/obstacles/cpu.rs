@@ -12,7 +12,7 @@ use rayon::prelude::*;
 
 use knotlab_hw::kinematics::ArmJoints;
 
-use super::check::{SubcellVerdict, moving_hits_env, spheres_meet};
+use super::check::{SubcellVerdict, spheres_meet};
 use super::error::ObstacleError;
 use super::grid::{CellVerdict, GridResult};
 use super::obb::Obb;
@@ -24,16 +24,19 @@ struct Scratch {
     posed: Vec<Obb>,
     candidates: Vec<Vec<u32>>,
     verdicts: Vec<SubcellVerdict>,
+    /// The last separating axis of each self pair, then of each (moving box, environment box) pair.
+    hints: Vec<u8>,
 }
 
 impl Scratch {
-    fn new(subcells: usize, moving: usize) -> Self {
+    fn new(subcells: usize, moving: usize, pairs: usize) -> Self {
         let empty = Obb::new(&IsometryMatrix3::identity(), Vector3::zeros());
         Self {
             joints: vec![None; subcells],
             posed: vec![empty; subcells * moving],
             candidates: vec![Vec::new(); moving],
             verdicts: vec![SubcellVerdict::Free; subcells],
+            hints: vec![u8::MAX; pairs],
         }
     }
 }
@@ -105,19 +108,23 @@ fn evaluate_cell(
         }
         tested += 1;
         let posed = &scratch.posed[k * m..(k + 1) * m];
+        let (pairs, n_env) = (grid.self_pairs.len(), grid.environment.len());
+        let (self_hints, env_hints) = scratch.hints.split_at_mut(pairs);
         let env_hit = grid.moving.iter().enumerate().any(|(b, mb)| {
-            scratch.candidates[b]
-                .iter()
-                .any(|&e| moving_hits_env(mb, &posed[b], &grid.environment[e as usize]))
+            scratch.candidates[b].iter().any(|&e| {
+                let env = &grid.environment[e as usize];
+                spheres_meet(&posed[b].centre_m, mb.radius_m, &env.obb.centre_m, env.radius_m)
+                    && posed[b].intersects_hinted(&env.obb, &mut env_hints[b * n_env + e as usize])
+            })
         });
         let hit = env_hit
-            || grid.self_pairs.iter().any(|&(a, b)| {
+            || grid.self_pairs.iter().zip(self_hints.iter_mut()).any(|(&(a, b), hint)| {
                 spheres_meet(
                     &posed[a].centre_m,
                     grid.moving[a].radius_m,
                     &posed[b].centre_m,
                     grid.moving[b].radius_m,
-                ) && posed[a].intersects(&posed[b])
+                ) && posed[a].intersects_hinted(&posed[b], hint)
             });
         if hit {
             scratch.verdicts[k] = SubcellVerdict::Collides;
@@ -153,7 +160,10 @@ pub fn compute_cpu(grid: &PreparedGrid, keep_subcells: bool) -> GridResult {
     let per_cell: Vec<(CellVerdict, usize, Vec<SubcellVerdict>)> = (0..n * n)
         .into_par_iter()
         .map_init(
-            || Scratch::new(s * s, grid.moving.len()),
+            || {
+                let pairs = grid.self_pairs.len() + grid.moving.len() * grid.environment.len();
+                Scratch::new(s * s, grid.moving.len(), pairs)
+            },
             |scratch, c| {
                 let (verdict, tested) = evaluate_cell(grid, scratch, c % n, c / n, keep_subcells);
                 let kept = if keep_subcells { scratch.verdicts.clone() } else { Vec::new() };

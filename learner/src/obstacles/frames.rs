@@ -4,6 +4,7 @@
 
 use nalgebra::{IsometryMatrix3, Matrix3, Rotation3, Translation3};
 
+use knotlab_hw::kinematics::rv6sl::DhRow;
 use knotlab_hw::kinematics::{ArmJoints, ArmModel, Tool};
 
 /// Number of anchors: base, links 1-6, shaft, wrist, clevis.
@@ -46,6 +47,41 @@ pub fn world_from_anchors(model: &ArmModel, joints: &ArmJoints) -> [IsometryMatr
     for (k, frame) in frames.iter().enumerate() {
         out[k + 1] = model.world_from_base * frame;
     }
+    tool_anchors(model, joints, &mut out);
+    out
+}
+
+/// One arm's forward kinematics to its anchors for many joint vectors: the DH rows' fixed parts
+/// (`Rz(offset) Tz(d) Tx(a) Rx(alpha)`, from `hw`'s [`DhRow::fixed_part`]) computed once, so each call
+/// needs one `sin_cos` per joint. Gives [`world_from_anchors`]' poses (tests hold them within 1e-12).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct AnchorKinematics {
+    model: ArmModel,
+    fixed: [IsometryMatrix3<f64>; 6],
+}
+
+impl AnchorKinematics {
+    /// Precomputes an arm's fixed parts.
+    pub fn new(model: &ArmModel) -> Self {
+        Self { model: *model, fixed: model.geometry.rows().map(|row: DhRow| row.fixed_part()) }
+    }
+
+    /// World poses of all anchors at `joints`, indexed by [`Anchor::index`].
+    pub fn world_from_anchors(&self, joints: &ArmJoints) -> [IsometryMatrix3<f64>; ANCHORS] {
+        let model = &self.model;
+        let mut out = [model.world_from_base; ANCHORS];
+        let mut acc = model.world_from_base;
+        for (k, (fixed, q)) in self.fixed.iter().zip(&joints.arm_rad).enumerate() {
+            acc = acc * turn_after(0.0, 2, *q) * fixed;
+            out[k + 1] = acc;
+        }
+        tool_anchors(model, joints, &mut out);
+        out
+    }
+}
+
+/// Anchors 7-9 from the flange (anchor 6).
+fn tool_anchors(model: &ArmModel, joints: &ArmJoints, out: &mut [IsometryMatrix3<f64>; ANCHORS]) {
     let flange = out[6];
     match &model.tool {
         Tool::Instrument { geometry, .. } => {
@@ -60,7 +96,6 @@ pub fn world_from_anchors(model: &ArmModel, joints: &ArmJoints) -> [IsometryMatr
             out[9] = flange;
         }
     }
-    out
 }
 
 /// `Tz(z_m) R(axis, q_rad)`, the axis 0 (x), 1 (y) or 2 (z): one step of the instrument's chain

@@ -6,7 +6,7 @@ use nalgebra::{IsometryMatrix3, Vector3};
 use knotlab_hw::kinematics::{ArmJoints, ArmModel, TipOrientation, Tool};
 
 use super::error::ObstacleError;
-use super::frames::ANCHORS;
+use super::frames::{ANCHORS, AnchorKinematics};
 use super::obb::Obb;
 use super::request::{GridRequest, SubcellOrientation};
 use super::world::{CollisionWorld, FixedKind};
@@ -71,6 +71,8 @@ pub struct PreparedGrid {
     /// For an instrument held along its shaft: the current tip's yaw axis (world frame), from which
     /// each subcell's yaw axis is derived as `hw`'s solver does (see [`PreparedGrid::solve`]).
     pub current_yaw_axis: Option<Vector3<f64>>,
+    /// The moving arm's forward kinematics to its anchors.
+    pub kinematics: AnchorKinematics,
     /// The moving arm's boxes.
     pub moving: Vec<MovingBox>,
     /// Its self-collision pairs (indices into `moving`).
@@ -164,6 +166,7 @@ impl PreparedGrid {
             current: arm.joints,
             orientation,
             current_yaw_axis,
+            kinematics: AnchorKinematics::new(&arm.model),
             moving,
             self_pairs: arm.self_pairs(),
             environment,
