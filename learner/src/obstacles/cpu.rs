@@ -146,10 +146,10 @@ fn evaluate_cell(
 
 /// A thread pool of `threads` threads for [`compute_cpu`]: `thread_pool(2)?.install(|| compute_cpu(..))`.
 pub fn thread_pool(threads: usize) -> Result<rayon::ThreadPool, ObstacleError> {
-    rayon::ThreadPoolBuilder::new().num_threads(threads.max(1)).build().map_err(|e| ObstacleError::World {
-        what: format!("a pool of {threads} threads"),
-        reason: e.to_string(),
-    })
+    rayon::ThreadPoolBuilder::new()
+        .num_threads(threads.max(1))
+        .build()
+        .map_err(|e| ObstacleError::ThreadPool { threads, reason: e.to_string() })
 }
 
 /// Computes the grid on the CPU. With `keep_subcells`, every subcell is evaluated and its verdict kept

@@ -32,6 +32,14 @@ pub enum ObstacleError {
         /// Why.
         reason: String,
     },
+    /// The CPU backend's thread pool could not be built.
+    #[error("a pool of {threads} threads: {reason}")]
+    ThreadPool {
+        /// Threads asked for.
+        threads: usize,
+        /// What rayon said.
+        reason: String,
+    },
     /// The GPU backend failed (or none is available).
     #[cfg(feature = "gpu")]
     #[error(transparent)]
