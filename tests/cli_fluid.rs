@@ -52,7 +52,7 @@ fn csv(path: &str) -> (String, Vec<Vec<String>>) {
 }
 
 fn ghia_table() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/reference/ghia1982-cavity.csv")
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("scenarios/reference/ghia1982-cavity.csv")
 }
 
 #[test]

@@ -1,7 +1,7 @@
 //! Validation of the Navier-Stokes solver against Ghia, Ghia and Shin (1982): the lid-driven cavity at
 //! n = 128 run to its steady state, centreline velocities within 0.02 (Re 100) and 0.03 (Re 1000) of the
-//! table in ../shared/reference/ghia1982-cavity.csv, and the divergence after every step below the
-//! pressure solve's tolerance.
+//! table in scenarios/reference/ghia1982-cavity.csv (a copy of shared/reference), and the divergence
+//! after every step below the pressure solve's tolerance.
 
 use std::path::PathBuf;
 
@@ -16,7 +16,7 @@ struct Row {
 }
 
 fn reference() -> Vec<Row> {
-    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../shared/reference/ghia1982-cavity.csv");
+    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../scenarios/reference/ghia1982-cavity.csv");
     let text = std::fs::read_to_string(&path)
         .unwrap_or_else(|e| panic!("the Ghia table {} is needed beside the repository: {e}", path.display()));
     let mut rows = Vec::new();
