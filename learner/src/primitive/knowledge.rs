@@ -1,0 +1,136 @@
+//! The knowledge base file: pretty-printed JSON, versioned. Reading checks the format and its version
+//! first, then the schema; errors name the file, the line and the field.
+
+use std::path::Path;
+
+use thiserror::Error;
+
+use super::KnowledgeBase;
+
+/// The value of a knowledge base's `format` field.
+pub const KB_FORMAT: &str = "knotlab-knowledge-base";
+
+/// The knowledge base format version this knotlab writes and reads.
+pub const KB_FORMAT_VERSION: u32 = 1;
+
+/// Why a knowledge base could not be written or read.
+#[derive(Debug, Error)]
+pub enum KnowledgeError {
+    /// The file could not be read or written.
+    #[error("{file}: {action}: {error}")]
+    Io {
+        /// The file.
+        file: String,
+        /// `cannot read` or `cannot write`.
+        action: &'static str,
+        /// The error.
+        error: std::io::Error,
+    },
+    /// The file is malformed.
+    #[error("{file}:{line}: {field}: {reason}")]
+    Invalid {
+        /// The file.
+        file: String,
+        /// 1-based line (0 when unknown).
+        line: usize,
+        /// The field's path.
+        field: String,
+        /// What is wrong.
+        reason: String,
+    },
+}
+
+/// Writes `kb` as pretty-printed JSON.
+pub fn write_knowledge_base(path: &Path, kb: &KnowledgeBase) -> Result<(), KnowledgeError> {
+    let file = path.display().to_string();
+    let text = serde_json::to_string_pretty(kb).map_err(|e| KnowledgeError::Invalid {
+        file: file.clone(),
+        line: 0,
+        field: "(all)".to_owned(),
+        reason: e.to_string(),
+    })?;
+    std::fs::write(path, text + "\n").map_err(|error| KnowledgeError::Io {
+        file,
+        action: "cannot write",
+        error,
+    })
+}
+
+/// Parses knowledge base JSON; `file` names it in errors.
+pub fn parse_knowledge_base(text: &str, file: &str) -> Result<KnowledgeBase, KnowledgeError> {
+    let invalid = |line: usize, field: &str, reason: String| KnowledgeError::Invalid {
+        file: file.to_owned(),
+        line,
+        field: field.to_owned(),
+        reason,
+    };
+    let value: serde_json::Value =
+        serde_json::from_str(text).map_err(|e| invalid(e.line(), "(syntax)", e.to_string()))?;
+    match value.get("format").and_then(|f| f.as_str()) {
+        Some(KB_FORMAT) => {}
+        other => {
+            return Err(invalid(
+                0,
+                "format",
+                format!("{other:?} is not a knowledge base (expected \"{KB_FORMAT}\")"),
+            ));
+        }
+    }
+    match value.get("format_version").and_then(serde_json::Value::as_u64) {
+        Some(v) if v == u64::from(KB_FORMAT_VERSION) => {}
+        other => {
+            return Err(invalid(
+                0,
+                "format_version",
+                format!("{other:?} is not supported (this knotlab reads version {KB_FORMAT_VERSION})"),
+            ));
+        }
+    }
+    let mut deserializer = serde_json::Deserializer::from_str(text);
+    serde_path_to_error::deserialize(&mut deserializer).map_err(|e| {
+        let mut field = e.path().to_string();
+        let inner = e.into_inner();
+        // A primitive is tagged by its type, which hides the field inside it: find it again.
+        if let Some(inside) = field_inside_primitive(&value, &field) {
+            field = format!("{field}.{inside}");
+        }
+        invalid(inner.line(), &field, inner.to_string())
+    })
+}
+
+/// For an error at `instruments[i].primitives[j]`, the path of the offending field inside that
+/// primitive (deserialized again as the struct its `type` names).
+fn field_inside_primitive(value: &serde_json::Value, path: &str) -> Option<String> {
+    let rest = path.strip_prefix("instruments[")?;
+    let (i, rest) = rest.split_once("].primitives[")?;
+    let j = rest.strip_suffix(']')?;
+    let primitive = value
+        .get("instruments")?
+        .get(i.parse::<usize>().ok()?)?
+        .get("primitives")?
+        .get(j.parse::<usize>().ok()?)?;
+    let mut fields = primitive.as_object()?.clone();
+    let kind = fields.remove("type")?;
+    let fields = serde_json::Value::Object(fields);
+    fn inner<T: serde::de::DeserializeOwned>(v: serde_json::Value) -> Option<String> {
+        serde_path_to_error::deserialize::<_, T>(v).err().map(|e| e.path().to_string())
+    }
+    match kind.as_str()? {
+        "2d" => inner::<super::TwoDPrimitive>(fields),
+        "linear" => inner::<super::LinearPrimitive>(fields),
+        "force" => inner::<super::ForcePrimitive>(fields),
+        "synchronized" => inner::<super::SynchronizedPrimitive>(fields),
+        _ => Some("type".to_owned()),
+    }
+}
+
+/// Reads a knowledge base file.
+pub fn load_knowledge_base(path: &Path) -> Result<KnowledgeBase, KnowledgeError> {
+    let file = path.display().to_string();
+    let text = std::fs::read_to_string(path).map_err(|error| KnowledgeError::Io {
+        file: file.clone(),
+        action: "cannot read",
+        error,
+    })?;
+    parse_knowledge_base(&text, &file)
+}

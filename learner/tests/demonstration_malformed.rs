@@ -1,0 +1,212 @@
+//! Each kind of malformed demonstration is refused with an error naming the file, the line and the
+//! field: a truncated file, a missing column, NaN, time that does not increase, a wrong version, and
+//! more (wrong units, an unknown key, a bad grasp word, a non-unit quaternion, a gap, a missing file).
+
+use std::path::{Path, PathBuf};
+
+use knotlab_learner::demonstration::{DemoError, load_demonstration, write_demonstration};
+use knotlab_learner::synthetic::{SyntheticSettings, canonical_demonstration};
+
+struct TempDir(PathBuf);
+
+impl TempDir {
+    /// A directory holding a freshly written valid demonstration.
+    fn with_demo(name: &str) -> Self {
+        let dir = std::env::temp_dir().join(format!("knotlab-demo-malformed-{name}-{}", std::process::id()));
+        std::fs::remove_dir_all(&dir).ok();
+        let (demo, _) = canonical_demonstration(&SyntheticSettings::canonical(11, 100.0));
+        write_demonstration(&dir, &demo).expect("write the valid demonstration");
+        Self(dir)
+    }
+
+    fn edit(&self, file: &str, f: impl FnOnce(String) -> String) {
+        let path = self.0.join(file);
+        let text = std::fs::read_to_string(&path).expect("read");
+        std::fs::write(&path, f(text)).expect("write");
+    }
+
+    fn load_error(&self) -> DemoError {
+        load_demonstration(&self.0).expect_err("the malformed demonstration must be refused")
+    }
+}
+
+impl Drop for TempDir {
+    fn drop(&mut self) {
+        std::fs::remove_dir_all(&self.0).ok();
+    }
+}
+
+/// Replaces line `n` (1-based) of a text.
+fn replace_line(text: &str, n: usize, f: impl FnOnce(&str) -> String) -> String {
+    let mut lines: Vec<String> = text.lines().map(str::to_owned).collect();
+    lines[n - 1] = f(&lines[n - 1]);
+    lines.join("\n") + "\n"
+}
+
+fn assert_names(error: &DemoError, file_suffix: &str, line: usize, field: &str, reason_part: &str) {
+    let text = error.to_string();
+    assert!(error.file().ends_with(file_suffix), "file: {text}");
+    assert_eq!(error.line(), line, "line: {text}");
+    assert_eq!(error.field(), field, "field: {text}");
+    assert!(text.contains(reason_part), "reason should say '{reason_part}': {text}");
+    assert!(
+        text.contains(&format!("{file_suffix}:{line}: {field}:")),
+        "message names file:line: field: {text}"
+    );
+}
+
+#[test]
+fn the_valid_demonstration_loads() {
+    let dir = TempDir::with_demo("valid");
+    load_demonstration(&dir.0).unwrap();
+}
+
+#[test]
+fn a_file_cut_inside_a_row_is_truncated_at_that_line_and_field() {
+    let dir = TempDir::with_demo("cut-row");
+    let mut last_line = 0;
+    dir.edit("right.csv", |text| {
+        // Cut the text in the middle of its 300th row, inside the `qx` column.
+        let start: usize = text.lines().take(300).map(|l| l.len() + 1).sum();
+        let row = text[start..].lines().next().unwrap();
+        let cut = start + row.match_indices(',').nth(3).unwrap().0 + 3;
+        last_line = 301;
+        text[..cut].to_owned()
+    });
+    let error = dir.load_error();
+    assert_names(&error, "right.csv", last_line, "qx", "truncated");
+}
+
+#[test]
+fn a_file_missing_its_last_rows_is_truncated() {
+    let dir = TempDir::with_demo("cut-rows");
+    let mut kept = 0;
+    dir.edit("left.csv", |text| {
+        let lines: Vec<&str> = text.lines().collect();
+        kept = lines.len() - 25;
+        lines[..kept].join("\n") + "\n"
+    });
+    let error = dir.load_error();
+    assert_names(&error, "left.csv", kept + 1, "(rows)", "truncated");
+}
+
+#[test]
+fn a_missing_column_is_named_on_the_header_line() {
+    let dir = TempDir::with_demo("column");
+    dir.edit("assist.csv", |text| {
+        text.lines()
+            .map(|l| {
+                let mut fields: Vec<&str> = l.split(',').collect();
+                fields.remove(8); // jaw_rad
+                fields.join(",")
+            })
+            .collect::<Vec<_>>()
+            .join("\n")
+            + "\n"
+    });
+    assert_names(&dir.load_error(), "assist.csv", 1, "jaw_rad", "missing column");
+}
+
+#[test]
+fn nan_is_named_with_its_line_and_column() {
+    let dir = TempDir::with_demo("nan");
+    dir.edit("left.csv", |text| {
+        replace_line(&text, 77, |l| {
+            let mut fields: Vec<String> = l.split(',').map(str::to_owned).collect();
+            fields[11] = "NaN".to_owned(); // fy_n
+            fields.join(",")
+        })
+    });
+    assert_names(&dir.load_error(), "left.csv", 77, "fy_n", "NaN");
+}
+
+#[test]
+fn time_going_back_is_named_with_its_line() {
+    let dir = TempDir::with_demo("time");
+    dir.edit("right.csv", |text| {
+        let previous_time: String = text.lines().nth(48).unwrap().split(',').next().unwrap().to_owned();
+        replace_line(&text, 50, |l| {
+            let rest = l.split_once(',').unwrap().1;
+            format!("{previous_time},{rest}")
+        })
+    });
+    assert_names(&dir.load_error(), "right.csv", 50, "time_s", "time must increase");
+}
+
+#[test]
+fn a_wrong_version_is_refused_naming_its_line() {
+    let dir = TempDir::with_demo("version");
+    let mut line = 0;
+    dir.edit("demo.toml", |text| {
+        line = text.lines().position(|l| l.starts_with("format_version")).unwrap() + 1;
+        text.replace("format_version = 1", "format_version = 2")
+    });
+    assert_names(&dir.load_error(), "demo.toml", line, "format_version", "version 2 is not supported");
+}
+
+#[test]
+fn other_malformations_are_named_too() {
+    // Units other than the format's.
+    let dir = TempDir::with_demo("units");
+    dir.edit("demo.toml", |text| text.replace("position = \"m\"", "position = \"mm\""));
+    let error = dir.load_error();
+    assert_eq!(error.field(), "units.position", "{error}");
+    assert!(error.line() > 0, "{error}");
+
+    // An unknown key.
+    let dir = TempDir::with_demo("key");
+    dir.edit("demo.toml", |text| text.replace("sample_rate_hz", "sample_rate_hz = 100.0\nsample_rte_hz"));
+    let error = dir.load_error();
+    assert!(error.to_string().contains("sample_rte_hz"), "{error}");
+    assert!(error.line() > 0, "{error}");
+
+    // A grasp state that is none of the three.
+    let dir = TempDir::with_demo("grasp");
+    dir.edit("left.csv", |text| replace_line(&text, 12, |l| l.replace("closed_empty", "shut")));
+    assert_names(&dir.load_error(), "left.csv", 12, "grasp", "not one of open, holding, closed_empty");
+
+    // A quaternion that is not a rotation.
+    let dir = TempDir::with_demo("quaternion");
+    dir.edit("left.csv", |text| {
+        replace_line(&text, 20, |l| {
+            let mut fields: Vec<String> = l.split(',').map(str::to_owned).collect();
+            fields[7] = "3.0".to_owned();
+            fields.join(",")
+        })
+    });
+    assert_names(&dir.load_error(), "left.csv", 20, "qx,qy,qz,qw", "not a unit quaternion");
+
+    // A gap in the recording.
+    let dir = TempDir::with_demo("gap");
+    dir.edit("assist.csv", |text| {
+        let lines: Vec<&str> = text.lines().collect();
+        let mut kept: Vec<&str> = lines[..100].to_vec();
+        kept.extend(&lines[130..]);
+        kept.join("\n") + "\n"
+    });
+    dir.edit("demo.toml", |text| {
+        let n = text.matches("samples = ").count();
+        assert_eq!(n, 3);
+        // The assist is the third instrument: its count drops by 30.
+        let at = text.rfind("samples = ").unwrap();
+        let count: usize = text[at + 10..].trim().parse().unwrap();
+        format!("{}samples = {}\n", &text[..at], count - 30)
+    });
+    assert_names(&dir.load_error(), "assist.csv", 101, "time_s", "gap");
+
+    // A text field where a number belongs.
+    let dir = TempDir::with_demo("number");
+    dir.edit("right.csv", |text| replace_line(&text, 3, |l| l.replacen(',', ",abc", 1)));
+    let error = dir.load_error();
+    assert_eq!((error.line(), error.field()), (3, "x_m"), "{error}");
+
+    // A missing instrument file.
+    let dir = TempDir::with_demo("file");
+    std::fs::remove_file(dir.0.join("right.csv")).unwrap();
+    let error = dir.load_error();
+    assert!(error.file().ends_with("right.csv") && error.to_string().contains("cannot read"), "{error}");
+
+    // Not a directory.
+    let error = load_demonstration(Path::new("/definitely/not/here")).unwrap_err();
+    assert!(error.file().ends_with("demo.toml"), "{error}");
+}
