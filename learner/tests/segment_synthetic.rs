@@ -89,6 +89,20 @@ fn twice_the_tremor_and_force_noise_still_decomposes() {
 }
 
 #[test]
+fn slow_demonstrations_at_surgical_speeds_decompose_as_well() {
+    // A third of the script's speed: reaches at 1-3 cm/s, the winding in about 7 s.
+    let p = pattern();
+    let s = score(
+        &p,
+        (300..306)
+            .map(|seed| SyntheticSettings { speed_scale: 0.3, ..SyntheticSettings::canonical(seed, 100.0) }),
+    );
+    let m = median(&s.errors_s);
+    assert!(m <= 0.020, "median boundary error at a third of the speed {m:.4} s");
+    assert!(s.counts.f1() >= 0.9, "boundary F1 slow: {:?}", s.counts);
+}
+
+#[test]
 fn the_same_seed_gives_the_same_decomposition() {
     let p = pattern();
     let settings = SyntheticSettings::canonical(42, 100.0);

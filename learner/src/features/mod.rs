@@ -137,10 +137,9 @@ pub fn analyse(
     let raw: Vec<Vector3<f64>> = samples.iter().map(|s| s.position_m).collect();
     let positions = gaussian_smooth(&times, &raw, params.smoothing_s);
     let velocity = derivative(&times, &positions);
-    let acceleration = derivative(&times, &velocity);
     let speed: Vec<f64> = velocity.iter().map(|v| v.norm()).collect();
     let steps: Vec<f64> = positions.windows(2).map(|w| (w[1] - w[0]).norm()).collect();
-    let motions = motion::motion_segments(&times, &speed, &steps, params);
+    let motions = motion::motion_segments(&times, &raw, &speed, &steps, params);
 
     let grasp_after = |t: f64| samples[index_at(&times, t + GRASP_SETTLE_S)].grasp;
     let mut features = Vec::new();
@@ -157,12 +156,12 @@ pub fn analyse(
     for m in &motions {
         push(FeatureKind::MotionStart, m.start_s, m.path_length_m);
         push(FeatureKind::MotionStop, m.end_s, m.path_length_m);
-        for f in geometry::shape_features(&times, &positions, &velocity, &acceleration, m, params) {
+        for f in geometry::shape_features(&times, &positions, m, params) {
             match f {
-                ShapeFeature::Inflection { index, magnitude_per_m } => {
-                    push(FeatureKind::Inflection, times[index], magnitude_per_m);
+                ShapeFeature::Inflection { time_s, magnitude_per_m } => {
+                    push(FeatureKind::Inflection, time_s, magnitude_per_m);
                 }
-                ShapeFeature::Loop { index, diameter_m } => push(FeatureKind::Loop, times[index], diameter_m),
+                ShapeFeature::Loop { time_s, diameter_m } => push(FeatureKind::Loop, time_s, diameter_m),
             }
         }
     }

@@ -2,8 +2,10 @@
 //! rests merged, the start and end extrapolated to where the speed left zero), and peaks of the
 //! tangential acceleration.
 
+use nalgebra::Vector3;
+
 use super::params::DetectorParams;
-use super::signal::{crossing_time, derivative_scalar};
+use super::signal::{crossing_time, derivative, derivative_scalar, gaussian_smooth};
 
 /// One motion of the tip between two rests.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -22,10 +24,13 @@ pub struct MotionSegment {
     pub path_length_m: f64,
 }
 
-/// The motions in a smoothed speed signal. `path_step_m[k]` is the smoothed path's length between
-/// samples `k` and `k + 1`.
+/// The motions of a tip: `raw_m` are its recorded positions, `speed_mps` the speed of the positions
+/// smoothed by `params.smoothing_s`, `path_step_m[k]` the smoothed path's length between samples `k`
+/// and `k + 1`. A slow motion's start and end are found on a speed smoothed more (a twenty-fifth of
+/// its duration), where its slow rise stands clear of the tremor.
 pub fn motion_segments(
     times_s: &[f64],
+    raw_m: &[Vector3<f64>],
     speed_mps: &[f64],
     path_step_m: &[f64],
     params: &DetectorParams,
@@ -68,13 +73,38 @@ pub fn motion_segments(
         })
         .collect();
     // 4. Extrapolate each start and end to where the speed left zero, within the rests around it.
+    let base_floor = (4.0 * rest_speed(speed_mps)).max(0.001);
+    let mut resmoothed: Vec<(f64, Vec<f64>, f64)> = Vec::new();
     let mut out = Vec::with_capacity(kept.len());
     for (j, &(s, e)) in kept.iter().enumerate() {
         let lower = if j == 0 { 0 } else { kept[j - 1].1.min(n - 1) };
         let upper = if j + 1 < kept.len() { kept[j + 1].0 } else { n - 1 };
         let peak = speed_mps[s..e].iter().copied().fold(0.0f64, f64::max);
-        let start_s = refine_start(times_s, speed_mps, s, lower, peak, params);
-        let end_s = refine_end(times_s, speed_mps, e.min(n - 1), upper, peak, params);
+        // A slow motion: its speed smoothed more, in steps of 10 ms (computed once per step).
+        let duration = times_s[e.min(n - 1)] - times_s[s];
+        let sigma = ((duration / 25.0 / 0.01).round() * 0.01).min(0.3);
+        let (speed, floor, sigma) = if sigma > 1.25 * params.smoothing_s {
+            if !resmoothed.iter().any(|(x, _, _)| *x == sigma) {
+                let positions = gaussian_smooth(times_s, raw_m, sigma);
+                let speed: Vec<f64> = derivative(times_s, &positions).iter().map(|v| v.norm()).collect();
+                let floor = (4.0 * rest_speed(&speed)).max(0.001);
+                resmoothed.push((sigma, speed, floor));
+            }
+            let (_, speed, floor) = resmoothed
+                .iter()
+                .find(|(x, _, _)| *x == sigma)
+                .expect("the speed for this smoothing was just made");
+            (speed.as_slice(), *floor, sigma)
+        } else {
+            (speed_mps, base_floor, params.smoothing_s)
+        };
+        let fit = Fit {
+            floor,
+            sigma_s: sigma,
+            peak: speed[s..e.min(n - 1).max(s + 1)].iter().copied().fold(0.0, f64::max),
+        };
+        let start_s = refine_start(times_s, speed, s, lower, &fit, params);
+        let end_s = refine_end(times_s, speed, e.min(n - 1), upper, &fit, params);
         out.push(MotionSegment {
             start_s,
             end_s,
@@ -87,13 +117,32 @@ pub fn motion_segments(
     out
 }
 
-/// The two speed levels of the fit, or `None` when the motion is too slow for them (then the threshold
-/// crossing is used).
-fn levels(peak: f64, params: &DetectorParams) -> Option<(f64, f64)> {
+/// What the fit of one motion's start and end works with.
+struct Fit {
+    /// The lowest level that stands clear of the tremor at rest, m/s.
+    floor: f64,
+    /// The smoothing of the speed, s.
+    sigma_s: f64,
+    /// The motion's peak speed, m/s.
+    peak: f64,
+}
+
+/// The two speed levels of the fit: the onset fractions of the peak, the lower one at least `floor`
+/// (above the tremor left at rest), the higher one at least twice the lower; `None` when the motion is
+/// too slow for two levels below 70 % of its peak (then the threshold crossing is used).
+fn levels(peak: f64, floor: f64, params: &DetectorParams) -> Option<(f64, f64)> {
     let [f1, f2] = params.onset_fractions;
-    let low = (f1 * peak).max(2.0 * params.motion_off_mps);
-    let high = low * f2 / f1;
-    (high < 0.8 * peak).then_some((low, high))
+    let low = (f1 * peak).max(floor);
+    let high = (f2 * peak).max(2.0 * low);
+    (high <= 0.7 * peak).then_some((low, high))
+}
+
+/// The speed the smoothed tip shows at rest (tremor, sensor noise): the 20th percentile of the speed,
+/// as an instrument rests much of the time.
+fn rest_speed(speed_mps: &[f64]) -> f64 {
+    let mut sorted = speed_mps.to_vec();
+    sorted.sort_by(f64::total_cmp);
+    sorted[sorted.len() / 5]
 }
 
 /// A minimum-jerk movement of unit duration: its speed relative to the peak, `16 x^2 (1 - x)^2`.
@@ -165,12 +214,12 @@ fn refine_start(
     speed: &[f64],
     on: usize,
     lower: usize,
-    peak: f64,
+    fit: &Fit,
     params: &DetectorParams,
 ) -> f64 {
     let fallback =
         if on > lower { crossing_time(times_s, speed, on - 1, params.motion_on_mps) } else { times_s[on] };
-    let Some((low, high)) = levels(peak, params) else { return fallback };
+    let Some((low, high)) = levels(fit.peak, fit.floor, params) else { return fallback };
     // The high crossing: forward from `on` (or back, if `on` is already above it).
     let mut kb = on;
     while kb > lower && speed[kb - 1] >= high {
@@ -188,7 +237,7 @@ fn refine_start(
     }
     let ta = crossing_time(times_s, speed, ka, low);
     let tb = crossing_time(times_s, speed, kb - 1, high);
-    fit_minimum_jerk_start(ta, tb, low / peak, high / peak, params.smoothing_s)
+    fit_minimum_jerk_start(ta, tb, low / fit.peak, high / fit.peak, fit.sigma_s)
         .map_or(fallback, |t0| t0.clamp(times_s[lower], ta))
 }
 
@@ -198,12 +247,12 @@ fn refine_end(
     speed: &[f64],
     off: usize,
     upper: usize,
-    peak: f64,
+    fit: &Fit,
     params: &DetectorParams,
 ) -> f64 {
     let fallback =
         if off > 0 { crossing_time(times_s, speed, off - 1, params.motion_off_mps) } else { times_s[off] };
-    let Some((low, high)) = levels(peak, params) else { return fallback };
+    let Some((low, high)) = levels(fit.peak, fit.floor, params) else { return fallback };
     let mut kb = off;
     while kb < upper && speed[kb + 1] >= high {
         kb += 1;
@@ -221,7 +270,7 @@ fn refine_end(
     let ta = crossing_time(times_s, speed, ka - 1, low);
     let tb = crossing_time(times_s, speed, kb, high);
     // Time reversed, the end is a start.
-    fit_minimum_jerk_start(-ta, -tb, low / peak, high / peak, params.smoothing_s)
+    fit_minimum_jerk_start(-ta, -tb, low / fit.peak, high / fit.peak, fit.sigma_s)
         .map_or(fallback, |t| (-t).clamp(ta, times_s[upper]))
 }
 

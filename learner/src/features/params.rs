@@ -21,24 +21,26 @@ pub struct DetectorParams {
     pub min_motion_s: f64,
     /// Motions whose path is shorter than this are dropped, m.
     pub min_travel_m: f64,
-    /// The start and end of a motion are extrapolated from where the speed crosses these two fractions of
-    /// the motion's peak speed (the lower one at least twice `motion_off_mps`), assuming the speed grows
-    /// with the square of the time near a start, as a minimum-jerk movement's does.
+    /// The start and end of a motion are found by fitting a minimum-jerk speed profile (as the
+    /// smoothing shows it) to where the speed crosses these two fractions of the motion's peak speed
+    /// (the lower one at least four times the speed the tip shows at rest, the higher one at least
+    /// twice the lower).
     pub onset_fractions: [f64; 2],
     /// Peaks of the tangential acceleration above this are acceleration / deceleration features, m/s^2.
     pub acceleration_mps2: f64,
     /// Curvature below this does not count for inflections, 1/m.
     pub inflection_curvature_per_m: f64,
-    /// Curvature and turning are measured only where the tip moves faster than this, m/s ...
-    pub turning_min_speed_mps: f64,
-    /// ... and faster than this fraction of the motion's peak speed (slow tips turn noisily).
-    pub turning_min_speed_fraction: f64,
+    /// The path's shape is measured on points this far apart along it, m.
+    pub shape_step_m: f64,
+    /// ... smoothed along the path with a Gaussian of this standard deviation (a hand's tremor, a
+    /// fraction of a millimetre, is gone; a loop of 1 cm keeps its shape), m.
+    pub shape_smoothing_m: f64,
+    /// Half the length of path the local plane is fitted to, m.
+    pub plane_window_m: f64,
     /// A loop is counted each time the direction has turned through this many full turns since the
     /// motion's start, the last inflection or the last loop (a little under one, so that a wrap whose
     /// lead-in and lead-out turn back a little still counts).
     pub loop_turns: f64,
-    /// Half-width of the window the local plane is fitted in, s.
-    pub plane_window_s: f64,
     /// Standard deviation of the Gaussian that smooths the force magnitude, s.
     pub force_smoothing_s: f64,
     /// A force episode starts when the smoothed force rises above this, N.
@@ -67,10 +69,10 @@ impl Default for DetectorParams {
             onset_fractions: [0.06, 0.24],
             acceleration_mps2: 0.5,
             inflection_curvature_per_m: 15.0,
-            turning_min_speed_mps: 0.005,
-            turning_min_speed_fraction: 0.15,
+            shape_step_m: 0.0002,
+            shape_smoothing_m: 0.001,
+            plane_window_m: 0.01,
             loop_turns: 0.85,
-            plane_window_s: 0.3,
             force_smoothing_s: 0.01,
             force_onset_n: 0.2,
             force_release_n: 0.1,
@@ -94,9 +96,10 @@ impl DetectorParams {
             ("min_travel_m", self.min_travel_m),
             ("acceleration_mps2", self.acceleration_mps2),
             ("inflection_curvature_per_m", self.inflection_curvature_per_m),
-            ("turning_min_speed_mps", self.turning_min_speed_mps),
+            ("shape_step_m", self.shape_step_m),
+            ("shape_smoothing_m", self.shape_smoothing_m),
+            ("plane_window_m", self.plane_window_m),
             ("loop_turns", self.loop_turns),
-            ("plane_window_s", self.plane_window_s),
             ("force_smoothing_s", self.force_smoothing_s),
             ("force_onset_n", self.force_onset_n),
             ("force_release_n", self.force_release_n),
@@ -124,12 +127,6 @@ impl DetectorParams {
         }
         if self.jaw_closed_rad >= self.jaw_open_rad {
             return Err(("jaw_closed_rad", format!("must be below jaw_open_rad ({})", self.jaw_open_rad)));
-        }
-        if !(0.0..1.0).contains(&self.turning_min_speed_fraction) {
-            return Err((
-                "turning_min_speed_fraction",
-                format!("must be in [0, 1), got {}", self.turning_min_speed_fraction),
-            ));
         }
         let [low, high] = self.onset_fractions;
         if !(low.is_finite() && high.is_finite() && 0.0 < low && low < high && high < 1.0) {

@@ -48,6 +48,9 @@ pub struct SyntheticSettings {
     pub position_noise_m: f64,
     /// Force noise per axis, N: one value drawn per run.
     pub force_noise_n: (f64, f64),
+    /// The nominal speed as a multiple of the script's (1: the winding's two loops in about 2 s, the
+    /// reaches at 5-10 cm/s at their peak; 0.3 is closer to the simulator's comfortable 1-3 cm/s).
+    pub speed_scale: f64,
     /// Relative speed variation from run to run (0.2: speeds between 0.8 and 1.2 times nominal).
     pub speed_variation: f64,
     /// Pause range between primitives, s.
@@ -68,6 +71,7 @@ impl SyntheticSettings {
             tremor_m: (1e-4, 2e-4),
             position_noise_m: 2e-5,
             force_noise_n: (0.01, 0.02),
+            speed_scale: 1.0,
             speed_variation: 0.2,
             pause_s: (0.1, 0.4),
             world_from_stitch: Isometry3::from_parts(
@@ -98,7 +102,7 @@ pub struct TruePrimitive {
 pub struct GroundTruth {
     /// The primitives.
     pub primitives: Vec<TruePrimitive>,
-    /// The speed factor drawn for the run (durations are divided by it).
+    /// The speed factor of the run, `speed_scale` times the variation drawn (durations are divided by it).
     pub speed_factor: f64,
 }
 
@@ -122,7 +126,7 @@ pub fn canonical_demonstration(settings: &SyntheticSettings) -> (Demonstration, 
     let mut rng = ChaCha8Rng::seed_from_u64(settings.seed);
     let rng = &mut rng;
     let v = settings.speed_variation;
-    let speed = rng.random_range(1.0 - v..=1.0 + v);
+    let speed = settings.speed_scale * rng.random_range(1.0 - v..=1.0 + v);
     let duration = |rng: &mut ChaCha8Rng, nominal: f64| nominal / speed * rng.random_range(0.93..1.07);
     let (p0, p1) = settings.pause_s;
     let pause = |rng: &mut ChaCha8Rng| rng.random_range(p0..=p1);
