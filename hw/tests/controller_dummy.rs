@@ -342,7 +342,9 @@ fn an_unreachable_target_faults_the_run_with_the_arm_and_time() {
         }
         other => panic!("expected an IK fault, got {other}"),
     }
-    assert!(error.to_string().contains("insertion depth"), "{error}");
+    // On the way down, the arm runs out of a joint's range or the tool out of insertion first.
+    let text = error.to_string();
+    assert!(text.contains("insertion depth") || text.contains("outside its limits"), "{error}");
 }
 
 #[test]

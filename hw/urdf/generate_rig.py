@@ -42,13 +42,17 @@ WRIST_LIMIT_DEG = 80.0
 JAW_HALF_OPEN_DEG = 30.0
 SCOPE_M = 0.40  # endoscope shaft length from its base to the tip
 
-GANTRY_Z = 2.25  # underside of the gantry beams: arm mounting plane
+GANTRY_Z = 2.0  # underside of the gantry beams: arm mounting plane
 SITE_XY = (0.0, 0.0)
-ARM_MOUNTS = {  # base position on the gantry (x, y), base x axis aimed at the site
-    "left": (-0.30, 0.55),
-    "right": (-0.30, -0.55),
-    "assist": (0.45, 0.35),
-    "camera": (-0.62, 0.0),
+# Base positions on the gantry (x, y), base x axis aimed at the site. About 0.9 m out from the site
+# and 1 m above the chest, so that the wrist centre stays 0.2-0.3 m from axis 1 over the workspace:
+# closer in (0.6 m, gantry at 2.25 m) the arms worked at the shoulder singularity, where a 3 mm tip
+# step asked for 2.7 rad of axis 1 and the IK jumped branch.
+ARM_MOUNTS = {
+    "left": (-0.26, 0.86),
+    "right": (-0.26, -0.86),
+    "assist": (0.83, 0.35),
+    "camera": (-0.90, 0.0),
 }
 INSTRUMENT_ARMS = ("left", "right", "assist")
 
@@ -229,10 +233,10 @@ def main():
     # Ceiling gantry: two rails along x, two cross beams; the arms hang from its underside.
     u.joint("gantry_mount", "fixed", "world", "gantry", (0.0, 0.0, GANTRY_Z))
     u.link("gantry", [
-        ("box", (2.00, 0.12, 0.12), (0.0, 0.55, 0.06), (0, 0, 0)),
-        ("box", (2.00, 0.12, 0.12), (0.0, -0.55, 0.06), (0, 0, 0)),
-        ("box", (0.12, 1.36, 0.12), (-0.62, 0.0, 0.06), (0, 0, 0)),
-        ("box", (0.12, 1.36, 0.12), (0.45, 0.0, 0.06), (0, 0, 0)),
+        ("box", (2.00, 0.12, 0.12), (0.0, 0.86, 0.06), (0, 0, 0)),
+        ("box", (2.00, 0.12, 0.12), (0.0, -0.86, 0.06), (0, 0, 0)),
+        ("box", (0.12, 1.84, 0.12), (-0.90, 0.0, 0.06), (0, 0, 0)),
+        ("box", (0.12, 1.84, 0.12), (0.83, 0.0, 0.06), (0, 0, 0)),
     ])
     for arm in ("left", "right", "assist", "camera"):
         add_arm(u, arm)

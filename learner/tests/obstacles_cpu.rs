@@ -124,31 +124,42 @@ fn an_arm_sweeping_into_another_is_blocked_where_geometry_says() {
     let result = compute_cpu(&grid, false);
     assert_eq!(result.count(CellVerdict::Unreachable), 0, "the whole plane is reachable");
 
-    // Expected: a cell is blocked when, at one of its subcells, the two instrument axes come within
-    // 9.7 mm (between 8 mm, shaft boxes face to face, and 11.3 mm, edge to edge).
+    // Expected: a cell must be blocked when, at one of its subcells, the two instrument axes come
+    // within 8 mm (the 8 mm shaft boxes touch face to face whatever their roll), and may be blocked
+    // when they come within 11.3 mm (edge to edge, depending on the boxes' roll about the shafts).
     let left_trocar = world.arm(ArmName::Left).unwrap().trocar_m;
     let (q0, q1) = instrument_axis(right_tip, right.trocar_m);
     let side = plane.side();
-    let mut expected = vec![false; n * n];
+    let mut must = vec![false; n * n];
+    let mut may = vec![false; n * n];
     for y in 0..side {
         for x in 0..side {
             let (p0, p1) = instrument_axis(plane.subcell_centre_m(x, y), left_trocar);
-            if segment_distance(p0, p1, q0, q1) <= 0.0097 {
-                expected[(y / s) * n + x / s] = true;
+            let d = segment_distance(p0, p1, q0, q1);
+            if d <= 0.008 {
+                must[(y / s) * n + x / s] = true;
+            }
+            if d <= 0.0113 {
+                may[(y / s) * n + x / s] = true;
             }
         }
     }
     let blocked = &result.raw.blocked;
-    let near_expected = dilate(&expected, n, 1);
+    let near_may = dilate(&may, n, 1);
     let near_blocked = dilate(blocked, n, 1);
     let (n_blocked, n_expected) =
-        (blocked.iter().filter(|b| **b).count(), expected.iter().filter(|b| **b).count());
+        (blocked.iter().filter(|b| **b).count(), must.iter().filter(|b| **b).count());
     assert!(n_expected >= 10 && n_expected <= n * n / 2, "the sweep crosses the plane: {n_expected} cells");
     for c in 0..n * n {
-        assert!(!blocked[c] || near_expected[c], "cell {c} blocked, no expected cell within one cell");
-        assert!(!expected[c] || near_blocked[c], "cell {c} expected, no blocked cell within one cell");
+        assert!(
+            !blocked[c] || near_may[c],
+            "cell {c} blocked, no cell within one cell where the shafts can touch"
+        );
+        assert!(!must[c] || near_blocked[c], "cell {c} must be blocked, no blocked cell within one cell");
     }
-    println!("sweep: {n_blocked} cells blocked, {n_expected} expected, every one within a cell of the other");
+    println!(
+        "sweep: {n_blocked} cells blocked, {n_expected} where the shafts must touch; within a cell of the geometric bounds"
+    );
 }
 
 #[test]

@@ -26,6 +26,8 @@ pub struct StressReport {
     pub tunnelling_events: usize,
     /// Of which through an instrument shaft.
     pub shaft_tunnelling_events: usize,
+    /// When the first tunnelling event was seen, s.
+    pub first_tunnelling_at_s: Option<f64>,
     /// Steps in which the thread touched an instrument shaft.
     pub shaft_contact_steps: usize,
     /// Non-finite or exploding bodies (the run stops at the first).
@@ -154,6 +156,7 @@ pub fn run_stress(
         max_stretch_at_s: 0.0,
         tunnelling_events: 0,
         shaft_tunnelling_events: 0,
+        first_tunnelling_at_s: None,
         shaft_contact_steps: 0,
         nan_events: 0,
         failure: None,
@@ -222,6 +225,9 @@ pub fn run_stress(
         let through_shaft = shaft_monitor.update(&caps, shaft_pairs.iter().copied());
         report.tunnelling_events += through_shaft;
         report.shaft_tunnelling_events += through_shaft;
+        if report.tunnelling_events > 0 && report.first_tunnelling_at_s.is_none() {
+            report.first_tunnelling_at_s = Some(world.time_s);
+        }
         let touching = shafts.iter().any(|c| {
             world.physics.narrow_phase.contact_pairs_with(*c).any(|pair| pair.has_any_active_contact())
         });

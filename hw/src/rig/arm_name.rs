@@ -35,10 +35,10 @@ impl ArmName {
     /// current joints are known. Degrees here, radians out.
     pub fn ready_joints(self) -> crate::kinematics::ArmJoints {
         let deg: [f64; 6] = match self {
-            ArmName::Left => [53.0, -40.0, 85.0, 92.0, -50.0, -63.0],
-            ArmName::Right => [-53.0, -40.0, 85.0, -92.0, -50.0, 56.0],
-            ArmName::Assist => [-36.0, -45.0, 78.0, 51.0, 41.0, -20.0],
-            ArmName::Camera => [0.0, -42.0, 81.0, 0.0, 27.0, 0.0],
+            ArmName::Left => [30.0, -23.0, 113.0, 63.0, -50.0, -32.0],
+            ArmName::Right => [-30.0, -23.0, 113.0, -63.0, -50.0, 25.0],
+            ArmName::Assist => [30.0, -23.0, 111.0, 66.0, -49.0, -41.0],
+            ArmName::Camera => [0.0, -26.0, 113.0, 0.0, -18.0, 0.0],
         };
         crate::kinematics::ArmJoints::from_arm(deg.map(f64::to_radians))
     }
