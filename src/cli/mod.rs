@@ -2,6 +2,7 @@
 
 mod fluid;
 mod knot;
+mod learn;
 mod melfa;
 mod numbers;
 mod obstacles;
@@ -38,6 +39,8 @@ enum Command {
     Sim(sim::SimArgs),
     /// Virtual obstacles: the grid cells where an arm's tip would make the arm collide (CPU or GPU).
     Obstacles(obstacles::ObstaclesArgs),
+    /// Learn from one demonstration: cut it into motion primitives by a task pattern (exit 3: rejected).
+    Learn(learn::LearnArgs),
 }
 
 /// Runs a parsed command line.
@@ -50,5 +53,6 @@ pub fn run(cli: Cli) -> anyhow::Result<ExitCode> {
         Command::MelfaEmulator(args) => melfa::run(args, &mut out),
         Command::Sim(args) => sim::run(args, &mut out),
         Command::Obstacles(args) => obstacles::run(args, &mut out),
+        Command::Learn(args) => learn::run(args, &mut out),
     }
 }

@@ -288,21 +288,24 @@ pub fn render_metadata(demo: &Demonstration) -> String {
     out.push_str("# A knotlab demonstration: this file and one CSV file per instrument (see FORMAT.md).\n");
     out.push_str(&format!("format = {}\n", string(FORMAT_NAME)));
     out.push_str(&format!("format_version = {}\n", m.format_version));
-    out.push_str(&format!("source = {}            # who performed it\n", string(&m.source)));
-    out.push_str(&format!("scene = {}             # the scene file it was recorded in\n", string(&m.scene)));
+    out.push_str("# Who performed it, in which scene file.\n");
+    out.push_str(&format!("source = {}\n", string(&m.source)));
+    out.push_str(&format!("scene = {}\n", string(&m.scene)));
     if let Some(seed) = m.seed {
-        out.push_str(&format!("seed = {seed}                # the recording's random draws\n"));
+        out.push_str("# The seed of the recording's random draws.\n");
+        out.push_str(&format!("seed = {seed}\n"));
     }
     out.push_str(&format!("sample_rate_hz = {}\n", float(m.sample_rate_hz)));
     if !m.description.is_empty() {
         out.push_str(&format!("description = {}\n", string(&m.description)));
     }
-    out.push_str("\n[units]                    # fixed by the format version\n");
+    out.push_str("\n# Fixed by the format version.\n[units]\n");
     for (key, unit) in UNITS {
         out.push_str(&format!("{key} = {}\n", string(unit)));
     }
     let s = &m.stitch;
-    out.push_str("\n[stitch]                   # world_from_stitch: x along the wound, y towards the tail's flap, z up\n");
+    out.push_str("\n# world_from_stitch: x along the wound, y across it towards the tail's flap, z out of the tissue.\n");
+    out.push_str("[stitch]\n");
     out.push_str(&format!(
         "position_m = [{}, {}, {}]\n",
         float(s.position_m[0]),
