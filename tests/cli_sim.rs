@@ -8,8 +8,15 @@ use common::{json, knotlab};
 fn sim_json_prints_the_figures() {
     let (code, v) = json(&["sim", "--scene", "scenarios/default.toml", "--seconds", "0.4", "--json"]);
     assert_eq!(code, 0, "{v}");
-    for key in ["max_stretch_ratio", "tunnelling_events", "nan_events", "realtime_factor", "steps", "bodies"]
-    {
+    for key in [
+        "max_stretch_ratio",
+        "tunnelling_events",
+        "nan_events",
+        "realtime_factor",
+        "steps",
+        "bodies",
+        "instrument_contact_steps",
+    ] {
         assert!(v.get(key).is_some(), "no {key} in {v}");
     }
     assert_eq!(v["steps"], 400);

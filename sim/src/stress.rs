@@ -28,8 +28,8 @@ pub struct StressReport {
     pub shaft_tunnelling_events: usize,
     /// When the first tunnelling event was seen, s.
     pub first_tunnelling_at_s: Option<f64>,
-    /// Steps in which the thread touched an instrument shaft.
-    pub shaft_contact_steps: usize,
+    /// Steps in which the thread touched an instrument (shaft, wrist or jaws).
+    pub instrument_contact_steps: usize,
     /// Non-finite or exploding bodies (the run stops at the first).
     pub nan_events: usize,
     /// The health failure, if any.
@@ -138,6 +138,13 @@ pub fn run_stress(
     let moves = script(seconds, world);
     let frame = world.tissue.world_from_tissue;
     let shafts = shaft_colliders(world);
+    let instrument_colliders: Vec<rapier3d::prelude::ColliderHandle> = world
+        .arms
+        .iter()
+        .filter(|a| a.name.carries_instrument())
+        .flat_map(|a| a.instrument_bodies.iter())
+        .flat_map(|b| world.physics.bodies[*b].colliders().iter().copied())
+        .collect();
     let n_thread = world.thread.segments.len();
     let mut monitor = TunnellingMonitor::new(0.002);
     let mut shaft_monitor = TunnellingMonitor::new(0.004);
@@ -157,7 +164,7 @@ pub fn run_stress(
         tunnelling_events: 0,
         shaft_tunnelling_events: 0,
         first_tunnelling_at_s: None,
-        shaft_contact_steps: 0,
+        instrument_contact_steps: 0,
         nan_events: 0,
         failure: None,
         realtime_factor: 0.0,
@@ -228,10 +235,10 @@ pub fn run_stress(
         if report.tunnelling_events > 0 && report.first_tunnelling_at_s.is_none() {
             report.first_tunnelling_at_s = Some(world.time_s);
         }
-        let touching = shafts.iter().any(|c| {
+        let touching = instrument_colliders.iter().any(|c| {
             world.physics.narrow_phase.contact_pairs_with(*c).any(|pair| pair.has_any_active_contact())
         });
-        report.shaft_contact_steps += usize::from(touching);
+        report.instrument_contact_steps += usize::from(touching);
     }
     report.wall_s = clock.elapsed().as_secs_f64();
     report.simulated_s = report.steps as f64 * dt;
