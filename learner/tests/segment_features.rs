@@ -186,3 +186,24 @@ fn nonsense_thresholds_are_refused_naming_the_parameter() {
     let e = DetectorParams { smoothing_s: f64::NAN, ..DetectorParams::default() }.check().unwrap_err();
     assert_eq!(e.0, "smoothing_s");
 }
+
+#[test]
+fn a_slow_grasp_is_read_once_the_jaws_have_closed() {
+    // The jaws close over 0.6 s (from 1.0 s); they hold the thread from 1.6 s on.
+    let jaw = |t: f64| if t < 1.0 { 0.7 } else { 0.7 - 0.67 * minimum_jerk((t - 1.0) / 0.6) };
+    let mut r = record(3.0, |_| Vector3::zeros(), |_| Vector3::zeros(), jaw);
+    for s in &mut r.samples {
+        if s.time_s >= 1.6 {
+            s.grasp = GraspState::Holding;
+        }
+    }
+    let fs = features(&r);
+    let closes = of(&fs, FeatureKind::JawClose);
+    assert_eq!(closes.len(), 1, "{fs:?}");
+    assert!((closes[0].time_s - 1.0).abs() < 0.1, "close at {}", closes[0].time_s);
+    assert_eq!(
+        closes[0].grasp_after,
+        GraspState::Holding,
+        "read after the jaws closed, not 0.15 s after they started"
+    );
+}

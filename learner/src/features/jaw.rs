@@ -2,7 +2,6 @@
 //! one) and closing (the reverse), timed where the angle left its resting value.
 
 use super::params::DetectorParams;
-use super::signal::crossing_time;
 
 /// One jaw movement.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -13,6 +12,9 @@ pub struct JawEvent {
     pub time_s: f64,
     /// The sample nearest that time.
     pub index: usize,
+    /// When the movement ended: after entering the open (or closed) band, the angle changed by less than
+    /// half `jaw_departure_rad` over the next 0.1 s, s.
+    pub ended_s: f64,
     /// Opening: the largest angle before the jaws close again; closing: the angle they closed from, rad.
     pub magnitude_rad: f64,
 }
@@ -37,8 +39,15 @@ pub fn jaw_events(times_s: &[f64], jaw_rad: &[f64], params: &DetectorParams) -> 
         match (state, now) {
             (Some(s), Some(t)) if s == t => last_in_state = k,
             (Some(_), Some(t)) => {
-                let (time_s, index) = departure(times_s, jaw_rad, last_in_state, t, params);
-                out.push(JawEvent { opening: t, time_s, index, magnitude_rad: 0.0 });
+                let floor = out.last().map_or(0, |e| e.index);
+                let (time_s, index) = departure(times_s, jaw_rad, (last_in_state, floor), t, params);
+                out.push(JawEvent {
+                    opening: t,
+                    time_s,
+                    index,
+                    ended_s: ended(times_s, jaw_rad, k, params),
+                    magnitude_rad: 0.0,
+                });
                 state = Some(t);
                 last_in_state = k;
             }
@@ -63,33 +72,57 @@ pub fn jaw_events(times_s: &[f64], jaw_rad: &[f64], params: &DetectorParams) -> 
     out
 }
 
-/// Where the angle left its resting value before leaving the band at `last`: the rest is the median
-/// angle over the 0.2 s up to `last`; going back from `last`, the last sample within
-/// `jaw_departure_rad` of it.
+/// When the jaw movement that entered a band at sample `k` came to rest.
+fn ended(times_s: &[f64], jaw: &[f64], mut k: usize, params: &DetectorParams) -> f64 {
+    let n = jaw.len();
+    loop {
+        let mut j = k;
+        while j + 1 < n && times_s[j + 1] - times_s[k] <= 0.1 {
+            j += 1;
+        }
+        let still = (k..=j).all(|i| (jaw[i] - jaw[k]).abs() < 0.5 * params.jaw_departure_rad);
+        if still || j + 1 >= n {
+            return times_s[k];
+        }
+        k += 1;
+    }
+}
+
+/// Where the angle left its resting value before leaving the band at `last` (the last sample inside
+/// it), not before sample `floor` (the previous event): walking back from `last` while the angle keeps
+/// moving away from the new band finds the resting plateau (0.1 s without further change beyond half
+/// `jaw_departure_rad`); its median is the rest; the movement starts where the angle passes the rest by
+/// `jaw_departure_rad`.
 fn departure(
     times_s: &[f64],
     jaw: &[f64],
-    last: usize,
+    (last, floor): (usize, usize),
     opening: bool,
     params: &DetectorParams,
 ) -> (f64, usize) {
-    let t_last = times_s[last];
-    let first = times_s.partition_point(|t| *t < t_last - 0.2);
-    let mut rest: Vec<f64> = jaw[first..=last].to_vec();
-    rest.sort_by(f64::total_cmp);
-    let rest = rest[rest.len() / 2];
-    let level = if opening { rest + params.jaw_departure_rad } else { rest - params.jaw_departure_rad };
-    let beyond = |a: f64| if opening { a > level } else { a < level };
-    // Forward from the median window to the first sample beyond the level.
-    let mut k = first;
-    while k + 1 < jaw.len() && !beyond(jaw[k + 1]) {
-        k += 1;
-    }
-    while k > first && beyond(jaw[k]) {
+    // In `v` the movement always goes up.
+    let sign = if opening { 1.0 } else { -1.0 };
+    let v = |k: usize| sign * jaw[k];
+    let (mut k, mut lowest) = (last, last);
+    while k > floor {
         k -= 1;
+        if v(k) < v(lowest) - 0.5 * params.jaw_departure_rad {
+            lowest = k;
+        } else if times_s[lowest] - times_s[k] > 0.1 {
+            break;
+        }
     }
-    if k + 1 >= jaw.len() {
-        return (times_s[k], k);
+    let mut plateau: Vec<f64> = (k..=lowest).map(v).collect();
+    plateau.sort_by(f64::total_cmp);
+    let level = plateau[plateau.len() / 2] + params.jaw_departure_rad;
+    let mut j = lowest;
+    while j + 1 < jaw.len() && v(j + 1) <= level {
+        j += 1;
     }
-    (crossing_time(times_s, jaw, k, level), k + 1)
+    if j + 1 >= jaw.len() {
+        return (times_s[j], j);
+    }
+    let (a, b) = (v(j), v(j + 1));
+    let f = if b > a { ((level - a) / (b - a)).clamp(0.0, 1.0) } else { 0.0 };
+    (times_s[j] + f * (times_s[j + 1] - times_s[j]), j + 1)
 }

@@ -29,7 +29,8 @@ use crate::demonstration::{Demonstration, GraspState, InstrumentRecord};
 use self::geometry::ShapeFeature;
 use self::signal::{derivative, gaussian_smooth, index_at, vector_at};
 
-/// How long after a feature its grasp state is read (the jaws have settled), s.
+/// How long after a feature its grasp state is read (for a jaw movement: after the jaws reached the
+/// open or closed band), s.
 pub const GRASP_SETTLE_S: f64 = 0.15;
 
 /// A feature found in a demonstration.
@@ -45,7 +46,8 @@ pub struct Feature {
     pub position_m: Vector3<f64>,
     /// How strong (the unit depends on the kind: [`FeatureKind::magnitude_unit`]).
     pub magnitude: f64,
-    /// The grasp state [`GRASP_SETTLE_S`] after the feature (what the jaws hold once settled).
+    /// The grasp state [`GRASP_SETTLE_S`] after the feature, or after a jaw movement ended (what the
+    /// jaws hold once settled).
     pub grasp_after: GraspState,
 }
 
@@ -143,46 +145,48 @@ pub fn analyse(
 
     let grasp_after = |t: f64| samples[index_at(&times, t + GRASP_SETTLE_S)].grasp;
     let mut features = Vec::new();
-    let mut push = |kind: FeatureKind, time_s: f64, magnitude: f64| {
+    let mut push = |kind: FeatureKind, time_s: f64, magnitude: f64, settled_s: f64| {
         features.push(Feature {
             instrument,
             kind,
             time_s,
             position_m: vector_at(&times, &positions, time_s),
             magnitude,
-            grasp_after: grasp_after(time_s),
+            grasp_after: grasp_after(settled_s),
         });
     };
     for m in &motions {
-        push(FeatureKind::MotionStart, m.start_s, m.path_length_m);
-        push(FeatureKind::MotionStop, m.end_s, m.path_length_m);
+        push(FeatureKind::MotionStart, m.start_s, m.path_length_m, m.start_s);
+        push(FeatureKind::MotionStop, m.end_s, m.path_length_m, m.end_s);
         for f in geometry::shape_features(&times, &positions, m, params) {
             match f {
                 ShapeFeature::Inflection { time_s, magnitude_per_m } => {
-                    push(FeatureKind::Inflection, time_s, magnitude_per_m);
+                    push(FeatureKind::Inflection, time_s, magnitude_per_m, time_s);
                 }
-                ShapeFeature::Loop { time_s, diameter_m } => push(FeatureKind::Loop, time_s, diameter_m),
+                ShapeFeature::Loop { time_s, diameter_m } => {
+                    push(FeatureKind::Loop, time_s, diameter_m, time_s)
+                }
             }
         }
     }
     for (kind, sign) in [(FeatureKind::Acceleration, 1.0), (FeatureKind::Deceleration, -1.0)] {
         for (index, a) in motion::acceleration_peaks(&times, &speed, &motions, params, sign) {
-            push(kind, times[index], a);
+            push(kind, times[index], a, times[index]);
         }
     }
     let force_raw: Vec<f64> = samples.iter().map(|s| s.force_n.norm()).collect();
     let force = gaussian_smooth(&times, &force_raw, params.force_smoothing_s);
     for e in force::force_episodes(&times, &force, params) {
-        push(FeatureKind::ForceOnset, e.onset_s, e.peak_n);
-        push(FeatureKind::ForcePeak, times[e.peak_index], e.peak_n);
+        push(FeatureKind::ForceOnset, e.onset_s, e.peak_n, e.onset_s);
+        push(FeatureKind::ForcePeak, times[e.peak_index], e.peak_n, times[e.peak_index]);
         if let Some((t, _)) = e.release {
-            push(FeatureKind::ForceRelease, t, e.peak_n);
+            push(FeatureKind::ForceRelease, t, e.peak_n, t);
         }
     }
     let jaw: Vec<f64> = samples.iter().map(|s| s.jaw_rad).collect();
     for e in jaw::jaw_events(&times, &jaw, params) {
         let kind = if e.opening { FeatureKind::JawOpen } else { FeatureKind::JawClose };
-        push(kind, e.time_s, e.magnitude_rad);
+        push(kind, e.time_s, e.magnitude_rad, e.ended_s);
     }
     features.sort_by(|a, b| a.time_s.total_cmp(&b.time_s).then(a.kind.cmp(&b.kind)));
     Ok(InstrumentAnalysis {
