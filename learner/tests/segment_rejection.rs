@@ -87,3 +87,15 @@ fn a_recording_cut_before_the_pulls_is_rejected_for_the_missing_pull() {
         assert!(r.to_string().contains("pulling"), "the reason names the pull: {r}");
     }
 }
+
+#[test]
+fn a_demonstration_without_an_instrument_the_pattern_needs_says_so() {
+    let p = pattern();
+    let (mut demo, _) = canonical_demonstration(&SyntheticSettings::canonical(2, 100.0));
+    demo.instruments.retain(|r| r.instrument != ArmName::Assist);
+    let features = detect(&demo, &p.detector).unwrap();
+    let r = decompose(&p, &features).unwrap_err();
+    let f = r.failures.iter().find(|f| f.instrument == ArmName::Assist).unwrap();
+    assert!(r.to_string().contains("no record of the assist instrument"), "{r}");
+    assert_eq!(f.element, "A_release");
+}

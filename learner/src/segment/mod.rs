@@ -141,14 +141,23 @@ pub fn decompose(pattern: &TaskPattern, features: &FeatureSet) -> Result<Decompo
         let fs = features_of(ip.instrument);
         match alignment {
             Alignment::Partial { matched, assignment } => {
-                failures.push(rejection::not_found(
+                let mut failure = rejection::not_found(
                     pattern,
                     ip,
                     (*matched, assignment),
                     fs,
                     &times,
                     (recording_start_s, recording_end_s),
-                ));
+                );
+                if features.instrument(ip.instrument).is_none() {
+                    failure.reason = FailureReason::NotFound {
+                        instead: Some(format!(
+                            "the demonstration has no record of the {} instrument",
+                            ip.instrument
+                        )),
+                    };
+                }
+                failures.push(failure);
             }
             Alignment::Complete { .. } => {
                 if let Some(f) = rejection::unmet_after(pattern, ip, &times, recording_end_s) {
