@@ -20,3 +20,4 @@ pub mod melfa;
 pub mod rig;
 pub mod rig_config;
 pub mod skill;
+pub mod toml_file;

@@ -38,27 +38,13 @@ pub enum RigConfigError {
     },
 }
 
-fn line_of(text: &str, offset: usize) -> usize {
-    text[..offset.min(text.len())].matches('\n').count() + 1
-}
-
 /// Parses rig config TOML; `file` names it in errors.
 pub fn parse_rig_config(text: &str, file: &str) -> Result<RigConfig, RigConfigError> {
-    let schema = |line: usize, key: String, reason: String| RigConfigError::Schema {
+    let config: RigConfig = crate::toml_file::deserialize(text).map_err(|p| RigConfigError::Schema {
         file: file.to_owned(),
-        line,
-        key,
-        reason,
-    };
-    let deserializer = toml::Deserializer::parse(text).map_err(|e| {
-        let line = e.span().map_or(0, |s| line_of(text, s.start));
-        schema(line, "(syntax)".to_owned(), e.message().to_owned())
-    })?;
-    let config: RigConfig = serde_path_to_error::deserialize(deserializer).map_err(|e| {
-        let key = e.path().to_string();
-        let inner = e.into_inner();
-        let line = inner.span().map_or(0, |s| line_of(text, s.start));
-        schema(line, if key == "." { "(top level)".to_owned() } else { key }, inner.message().to_owned())
+        line: p.line,
+        key: p.key,
+        reason: p.reason,
     })?;
     let problems = config.problems();
     if problems.is_empty() {

@@ -7,6 +7,7 @@ use serde::Deserialize;
 use toml::Spanned;
 
 use knotlab_hw::rig::ArmName;
+use knotlab_hw::toml_file::{line_of, syntax_problem};
 
 use super::error::DemoError;
 use super::{Demonstration, FORMAT_VERSION, MIN_SAMPLE_RATE_HZ, Metadata, StitchPose};
@@ -87,18 +88,13 @@ struct RawInstrument {
     samples: Spanned<i64>,
 }
 
-/// 1-based line of a byte offset.
-pub(crate) fn line_of(text: &str, offset: usize) -> usize {
-    text[..offset.min(text.len())].matches('\n').count() + 1
-}
-
 /// Parses `demo.toml`; `file` names it in errors.
 pub fn parse_metadata(text: &str, file: &str) -> Result<MetadataFile, DemoError> {
     let err = |line: usize, field: &str, reason: String| DemoError::format(file, line, field, reason);
     let line = |span: std::ops::Range<usize>| line_of(text, span.start);
     let syntax = |e: toml::de::Error| {
-        let l = e.span().map_or(0, |s| line_of(text, s.start));
-        err(l, "(syntax)", e.message().to_owned())
+        let p = syntax_problem(text, &e);
+        err(p.line, &p.key, p.reason)
     };
 
     // 1. Format and version, before anything else.
@@ -132,17 +128,7 @@ pub fn parse_metadata(text: &str, file: &str) -> Result<MetadataFile, DemoError>
     }
 
     // 2. The schema.
-    let deserializer = toml::Deserializer::parse(text).map_err(syntax)?;
-    let raw: Raw = serde_path_to_error::deserialize(deserializer).map_err(|e| {
-        let key = e
-            .path()
-            .to_string()
-            .replace(".$__serde_spanned_private_value", "")
-            .replace("$__serde_spanned_private_value.", "");
-        let inner = e.into_inner();
-        let l = inner.span().map_or(0, |s| line_of(text, s.start));
-        err(l, if key == "." { "(top level)" } else { &key }, inner.message().to_owned())
-    })?;
+    let raw: Raw = knotlab_hw::toml_file::deserialize(text).map_err(|p| err(p.line, &p.key, p.reason))?;
 
     // 3. The values.
     let units_line = line(raw.units.span());

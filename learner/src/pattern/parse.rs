@@ -11,6 +11,7 @@ use thiserror::Error;
 use toml::Spanned;
 
 use knotlab_hw::rig::ArmName;
+use knotlab_hw::toml_file::line_of;
 
 use super::{Element, InstrumentPattern, PrimitiveSpec, PrimitiveType, TaskPattern};
 use crate::demonstration::GraspState;
@@ -127,10 +128,6 @@ struct RawPrimitive {
     description: String,
 }
 
-fn line_of(text: &str, offset: usize) -> usize {
-    text[..offset.min(text.len())].matches('\n').count() + 1
-}
-
 /// Reads and parses a pattern file.
 pub fn load_pattern(path: &Path) -> Result<TaskPattern, PatternError> {
     let file = path.display().to_string();
@@ -175,17 +172,8 @@ pub fn parse_pattern(text: &str, file: &str) -> Result<TaskPattern, PatternError
         ));
     }
 
-    let deserializer = toml::Deserializer::parse(text).map_err(syntax)?;
-    let raw: RawPattern = serde_path_to_error::deserialize(deserializer).map_err(|e| {
-        let key = e
-            .path()
-            .to_string()
-            .replace(".$__serde_spanned_private_value", "")
-            .replace("$__serde_spanned_private_value.", "");
-        let inner = e.into_inner();
-        let l = inner.span().map_or(0, &line);
-        err(l, if key == "." { "(top level)" } else { &key }, inner.message().to_owned())
-    })?;
+    let raw: RawPattern =
+        knotlab_hw::toml_file::deserialize(text).map_err(|p| err(p.line, &p.key, p.reason))?;
 
     if raw.name.get_ref().trim().is_empty() {
         return Err(err(line(raw.name.span()), "name", "must not be empty".to_owned()));

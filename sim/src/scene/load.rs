@@ -38,27 +38,13 @@ pub enum SceneError {
     },
 }
 
-fn line_of(text: &str, offset: usize) -> usize {
-    text[..offset.min(text.len())].matches('\n').count() + 1
-}
-
 /// Parses scene TOML; `file` names it in errors.
 pub fn parse_scene(text: &str, file: &str) -> Result<SceneConfig, SceneError> {
-    let schema = |line: usize, key: String, reason: String| SceneError::Schema {
+    let config: SceneConfig = knotlab_hw::toml_file::deserialize(text).map_err(|p| SceneError::Schema {
         file: file.to_owned(),
-        line,
-        key,
-        reason,
-    };
-    let deserializer = toml::Deserializer::parse(text).map_err(|e| {
-        let line = e.span().map_or(0, |s| line_of(text, s.start));
-        schema(line, "(syntax)".to_owned(), e.message().to_owned())
-    })?;
-    let config: SceneConfig = serde_path_to_error::deserialize(deserializer).map_err(|e| {
-        let key = e.path().to_string();
-        let inner = e.into_inner();
-        let line = inner.span().map_or(0, |s| line_of(text, s.start));
-        schema(line, if key == "." { "(top level)".to_owned() } else { key }, inner.message().to_owned())
+        line: p.line,
+        key: p.key,
+        reason: p.reason,
     })?;
     let problems = config.range_problems();
     if problems.is_empty() { Ok(config) } else { Err(SceneError::Range { file: file.to_owned(), problems }) }
