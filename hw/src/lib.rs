@@ -15,6 +15,7 @@
 
 pub mod controller;
 pub mod device;
+pub mod geometry;
 pub mod kinematics;
 pub mod melfa;
 pub mod rig;

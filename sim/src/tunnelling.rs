@@ -17,38 +17,7 @@ pub struct Capsule {
     pub radius_m: f64,
 }
 
-/// Closest points of segments `p0 + s d1` and `q0 + t d2`, `s, t` in [0, 1].
-pub fn closest_parameters(
-    p0: &Vector3<f64>,
-    d1: &Vector3<f64>,
-    q0: &Vector3<f64>,
-    d2: &Vector3<f64>,
-) -> (f64, f64) {
-    let r = p0 - q0;
-    let (a, e, f) = (d1.dot(d1), d2.dot(d2), d2.dot(&r));
-    if a < 1e-24 && e < 1e-24 {
-        return (0.0, 0.0);
-    }
-    if a < 1e-24 {
-        return (0.0, (f / e).clamp(0.0, 1.0));
-    }
-    let c = d1.dot(&r);
-    if e < 1e-24 {
-        return ((-c / a).clamp(0.0, 1.0), 0.0);
-    }
-    let b = d1.dot(d2);
-    let denom = a * e - b * b;
-    let mut s = if denom > 1e-24 { ((b * f - c * e) / denom).clamp(0.0, 1.0) } else { 0.0 };
-    let mut t = (b * s + f) / e;
-    if t < 0.0 {
-        t = 0.0;
-        s = (-c / a).clamp(0.0, 1.0);
-    } else if t > 1.0 {
-        t = 1.0;
-        s = ((b - c) / a).clamp(0.0, 1.0);
-    }
-    (s, t)
-}
+pub use knotlab_hw::geometry::segment_closest_parameters as closest_parameters;
 
 /// The side of `b` relative to `a` along their common normal (0 when the separation along it is
 /// within a tenth of the two radii: too close to call, as for two strands lying side by side on one

@@ -174,33 +174,7 @@ impl Square {
     }
 }
 
-/// Distance between the segments `p1`-`q1` and `p2`-`q2` (Ericson, Real-Time Collision Detection, 5.1.9).
+/// Distance between the segments `p1`-`q1` and `p2`-`q2`.
 fn segment_segment(p1: &Vector3<f64>, q1: &Vector3<f64>, p2: &Vector3<f64>, q2: &Vector3<f64>) -> f64 {
-    let (d1, d2, r) = (q1 - p1, q2 - p2, p1 - p2);
-    let (a, e, f) = (d1.dot(&d1), d2.dot(&d2), d2.dot(&r));
-    let eps = 1e-18;
-    let (s, t) = if a <= eps && e <= eps {
-        (0.0, 0.0)
-    } else if a <= eps {
-        (0.0, (f / e).clamp(0.0, 1.0))
-    } else {
-        let c = d1.dot(&r);
-        if e <= eps {
-            ((-c / a).clamp(0.0, 1.0), 0.0)
-        } else {
-            let b = d1.dot(&d2);
-            let denom = a * e - b * b;
-            let mut s = if denom > eps { ((b * f - c * e) / denom).clamp(0.0, 1.0) } else { 0.0 };
-            let mut t = (b * s + f) / e;
-            if t < 0.0 {
-                t = 0.0;
-                s = (-c / a).clamp(0.0, 1.0);
-            } else if t > 1.0 {
-                t = 1.0;
-                s = ((b - c) / a).clamp(0.0, 1.0);
-            }
-            (s, t)
-        }
-    };
-    ((p1 + d1 * s) - (p2 + d2 * t)).norm()
+    knotlab_hw::geometry::segment_distance(p1, q1, p2, q2)
 }
