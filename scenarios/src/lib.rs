@@ -1,3 +1,6 @@
 //! knotlab's scenarios: scene files and their randomization, the scripted expert who demonstrates, and
-//! the task patterns. It grows with the scenario issues; today it only fixes the crate's place in the
-//! workspace (`hw`, `sim`, `learner` <- `scenarios`).
+//! the task patterns (the files live in `scenarios/`, the code here).
+//!
+//! - [`expert`]: the scripted surgeon who ties the knot in the simulator and leaves a demonstration.
+
+pub mod expert;

@@ -69,7 +69,11 @@ impl Grasp {
             (i, false, d - reach_m - 0.5 * thread.segment_length_m)
         });
         let needle = needle_m.iter().map(|p| (0, true, (p - jaw_centre.coords).norm() - reach_m));
-        let (segment, on_needle, beyond) = segments.chain(needle).min_by(|a, b| a.2.total_cmp(&b.2))?;
+        let (segment, mut on_needle, beyond) = segments.chain(needle).min_by(|a, b| a.2.total_cmp(&b.2))?;
+        // The first segment carries the needle, swaged on: jaws that reach the needle too hold it.
+        if segment == 0 && needle_m.iter().any(|p| (p - jaw_centre.coords).norm() <= reach_m) {
+            on_needle = true;
+        }
         if beyond > 0.0 {
             return None;
         }

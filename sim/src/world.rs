@@ -72,6 +72,9 @@ pub struct SimArm {
     pub grasp: Option<Grasp>,
     /// A grasp that slipped stays lost until the jaws reopen.
     pub slipped: bool,
+    /// Jaws that closed on nothing stay empty until they reopen: what later touches closed jaws is
+    /// not grasped (and collides with them).
+    pub closed_empty: bool,
     /// Force on the instrument from contacts and grasps in the last step, world frame, N.
     pub force_n: Vector3<f64>,
     /// The bodies of the instrument (the flange and every link below it): what the gauge feels.
@@ -189,6 +192,7 @@ impl SimWorld {
                     command: ready,
                     grasp: None,
                     slipped: false,
+                    closed_empty: false,
                     force_n: Vector3::zeros(),
                     instrument_bodies: Vec::new(),
                     jaw_colliders: Vec::new(),
@@ -364,7 +368,7 @@ impl SimWorld {
             if let Some(grasp) = &arm.grasp {
                 near.extend(grasp.segment.saturating_sub(2)..=grasp.segment + 2);
             }
-            if arm.command.tool.jaw_rad < Self::JAW_OPEN_RAD {
+            if arm.command.tool.jaw_rad < self.jaw_closed_rad && arm.grasp.is_none() && !arm.closed_empty {
                 let tip = poses[self.rig.arm(arm.name).tip_link];
                 let centre = (tip * Point3::new(0.0, 0.0, -JAW_CENTRE_OFFSET_M)).coords;
                 for (i, h) in self.thread.segments.iter().enumerate() {
@@ -456,12 +460,15 @@ impl SimWorld {
                     self.events.push(GraspEvent::Released { arm: name, time_s: self.time_s });
                 }
                 self.arms[a].slipped = false;
+                self.arms[a].closed_empty = false;
                 continue;
             }
-            if !closed || self.arms[a].grasp.is_some() || self.arms[a].slipped {
+            if !closed || self.arms[a].grasp.is_some() || self.arms[a].slipped || self.arms[a].closed_empty {
                 continue;
             }
-            self.try_grasp(name, poses);
+            if !self.try_grasp(name, poses) {
+                self.arms[a].closed_empty = true;
+            }
         }
     }
 

@@ -1,5 +1,6 @@
 //! Command-line parsing and dispatch; each command group lives in its own file.
 
+mod demo;
 mod fluid;
 mod knot;
 mod learn;
@@ -39,6 +40,8 @@ enum Command {
     Sim(sim::SimArgs),
     /// Virtual obstacles: the grid cells where an arm's tip would make the arm collide (CPU or GPU).
     Obstacles(obstacles::ObstaclesArgs),
+    /// The scripted expert ties the knot in the simulator: record a demonstration, evaluate the knot.
+    Demo(demo::DemoArgs),
     /// Learn from one demonstration: cut it into motion primitives by a task pattern (exit 3: rejected).
     Learn(learn::LearnArgs),
 }
@@ -54,5 +57,6 @@ pub fn run(cli: Cli) -> anyhow::Result<ExitCode> {
         Command::Sim(args) => sim::run(args, &mut out),
         Command::Obstacles(args) => obstacles::run(args, &mut out),
         Command::Learn(args) => learn::run(args, &mut out),
+        Command::Demo(args) => demo::run(args, &mut out),
     }
 }

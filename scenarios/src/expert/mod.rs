@@ -1,0 +1,10 @@
+//! The scripted expert: a surgeon played by a program. It plans the knot-tying task as a Skill
+//! ([`plan`]), with human-like motion ([`motion`]): the controller runs it on the simulated devices,
+//! and what the devices read meanwhile is the demonstration ([`record`]).
+
+pub mod motion;
+pub mod plan;
+pub mod record;
+
+pub use plan::{TieGeometry, Variation, plan_instrument_tie};
+pub use record::{DemoError, DemoRun, RecordOptions, demonstrate, record_demonstration};

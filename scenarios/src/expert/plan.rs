@@ -1,0 +1,224 @@
+//! The scripted expert's plan: the instrument tie of a surgeon's knot, as one Skill for the controller.
+//!
+//! Everything is placed in the stitch (tissue) frame of the scene (x along the wound, y across it
+//! towards the tail's flap, z out of the tissue) and turned into world-frame keys, so the same plan
+//! ties at any stitch. The sequence is the canonical task of `scenarios/patterns/knot_tying.toml`:
+//! L1 to the winding point (the right takes up the long end meanwhile), the left's jaws close; R2 winds
+//! the long end twice around them; the assist presents the tail in front of the left's jaws, which
+//! open; L3 to the tail, close; the assist lets go and retreats (A1); L4 and R3 pull the ends apart
+//! until the set force, then let go.
+
+use knotlab_hw::rig::ArmName;
+use knotlab_hw::skill::{ForceAction, ForceEvent, Skill};
+use knotlab_sim::tissue::Flap;
+use knotlab_sim::world::{JAW_CENTRE_OFFSET_M, SimWorld, trocar_of};
+use nalgebra::{Isometry3, Point3, Unit, Vector3};
+use rand::{Rng, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+
+use super::motion::{Path, TrackBuilder, Tremor};
+
+/// Where the expert puts things, in the stitch frame (m), and how hard it pulls.
+#[derive(Clone, Debug, PartialEq)]
+pub struct TieGeometry {
+    /// The left's jaw centre while the long end is wound around its jaws.
+    pub winding_point_m: [f64; 3],
+    /// Distance of the right's jaws from the left's jaw axis while winding, m.
+    pub winding_radius_m: f64,
+    /// The winding starts this far (about the left's jaw axis) before the point opposite the exit,
+    /// where the long end runs straight over the jaws, rad.
+    pub winding_lead_rad: f64,
+    /// The winding first moves this way (made perpendicular to the axis): it picks the sense of the
+    /// turns about the left's jaws.
+    pub winding_towards: [f64; 3],
+    /// The winding circles this far behind the left's jaw centre (towards its wrist), m.
+    pub winding_behind_m: f64,
+    /// Turns of the winding (a surgeon's knot: 2).
+    pub winding_turns: f64,
+    /// The assist presents the tail this far ahead of the left's jaw centre, along its jaws, m.
+    pub tail_ahead_m: f64,
+    /// While the right winds, the assist moves the tail this fraction of the way to the entry
+    /// point, giving thread.
+    pub tail_give_fraction: f64,
+    /// The left pulls the tail towards here.
+    pub left_pull_to_m: [f64; 3],
+    /// The right pulls the long end towards here.
+    pub right_pull_to_m: [f64; 3],
+    /// Where the assist retreats to.
+    pub assist_retreat_m: [f64; 3],
+    /// Both pulls let go at this force, N.
+    pub pull_force_n: f64,
+}
+
+impl Default for TieGeometry {
+    fn default() -> Self {
+        Self {
+            winding_point_m: [0.0, -0.02, 0.045],
+            winding_radius_m: 0.02,
+            winding_lead_rad: 1.6,
+            winding_towards: [0.0, 0.0, 1.0],
+            winding_behind_m: 0.003,
+            winding_turns: 2.0,
+            tail_ahead_m: 0.012,
+            tail_give_fraction: 0.0,
+            left_pull_to_m: [0.0, 0.035, 0.01],
+            right_pull_to_m: [0.0, -0.045, 0.01],
+            assist_retreat_m: [0.04, 0.04, 0.04],
+            pull_force_n: 1.0,
+        }
+    }
+}
+
+/// How a human performance varies from run to run.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Variation {
+    /// Every duration is multiplied by this.
+    pub slowness: f64,
+    /// The pauses between primitives, s.
+    pub pauses_s: [f64; 6],
+    /// Tremor of each instrument (left, right, assist).
+    pub tremor: [Tremor; 3],
+    /// Where the expert puts the winding point, off the nominal one, m.
+    pub winding_offset_m: Vector3<f64>,
+}
+
+impl Variation {
+    /// A machine-like performance: nominal speed, 0.25 s pauses, no tremor.
+    pub fn none() -> Self {
+        Self {
+            slowness: 1.0,
+            pauses_s: [0.25; 6],
+            tremor: [Tremor::none(), Tremor::none(), Tremor::none()],
+            winding_offset_m: Vector3::zeros(),
+        }
+    }
+
+    /// A human one drawn from `seed`: speed within +-15 %, pauses of 0.15-0.4 s, a 0.1 mm tremor,
+    /// the winding point within 1 mm.
+    pub fn human(seed: u64) -> Self {
+        let mut rng = ChaCha8Rng::seed_from_u64(seed);
+        let slowness = rng.random_range(0.85..1.15);
+        let pauses_s = std::array::from_fn(|_| rng.random_range(0.15..0.4));
+        let mut tremor = || Tremor {
+            amplitude_m: 1e-4,
+            sines: std::array::from_fn(|_| {
+                std::array::from_fn(|_| {
+                    (rng.random_range(8.0..12.0), rng.random_range(0.0..std::f64::consts::TAU))
+                })
+            }),
+        };
+        let tremor = [tremor(), tremor(), tremor()];
+        let winding_offset_m = Vector3::from_fn(|_, _| rng.random_range(-0.001..0.001));
+        Self { slowness, pauses_s, tremor, winding_offset_m }
+    }
+}
+
+fn track_arm(track: &TrackBuilder) -> ArmName {
+    track.arm()
+}
+
+/// The jaw centre of an arm as its links stand (world frame, m).
+fn jaw_centre_m(world: &SimWorld, arm: ArmName) -> Vector3<f64> {
+    (world.world_from_tip(arm) * Point3::new(0.0, 0.0, -JAW_CENTRE_OFFSET_M)).coords
+}
+
+/// The plan as a skill, for the world as it stands (its start condition).
+pub fn plan_instrument_tie(world: &SimWorld, geometry: &TieGeometry, variation: &Variation) -> Skill {
+    let world_from_stitch: Isometry3<f64> = world.tissue.world_from_tissue;
+    let at = |p: [f64; 3]| (world_from_stitch * Point3::from(Vector3::from(p))).coords;
+    let dir = |d: [f64; 3]| world_from_stitch.rotation * Vector3::from(d);
+    let open = SimWorld::JAW_OPEN_RAD;
+    let key_period_s = 0.01;
+    let d = |s: f64| s * variation.slowness;
+    let builder = |arm: ArmName, jaw: f64, tremor: &Tremor| {
+        TrackBuilder::new(
+            arm,
+            jaw_centre_m(world, arm),
+            jaw,
+            key_period_s,
+            tremor.clone(),
+            trocar_of(&world.config, arm),
+        )
+    };
+    let mut left = builder(ArmName::Left, open, &variation.tremor[0]);
+    let mut right = builder(ArmName::Right, 0.0, &variation.tremor[1]);
+    let mut assist = builder(ArmName::Assist, 0.0, &variation.tremor[2]);
+    let pause = &variation.pauses_s;
+
+    // L1: the left to the winding point; the right takes up the long end meanwhile, to where the
+    // winding starts: the long end then runs from the stitch past the left's jaws.
+    let winding_point = at(geometry.winding_point_m) + variation.winding_offset_m;
+    // The left's jaws point at the right's trocar: the right's shaft then circles them at a distance.
+    let jaws = Unit::new_normalize(trocar_of(&world.config, ArmName::Right) - winding_point);
+    let axis = jaws;
+    let across = |d: Vector3<f64>| Unit::new_normalize(d - axis.into_inner() * d.dot(&axis));
+    // The winding starts opposite the exit point, so that the long end already lies across the
+    // left's jaws, a little before the point where it would run straight over them.
+    let exit = world.tissue.hole_m(&world.physics, Flap::B);
+    let over = across(winding_point - exit);
+    let towards = across(dir(geometry.winding_towards));
+    // The turns' sense: right-handed about the axis that moves `over` towards `towards`.
+    let axis = if axis.cross(&over).dot(&towards) >= 0.0 { axis } else { -axis };
+    let start_dir =
+        nalgebra::Rotation3::from_axis_angle(&axis, -geometry.winding_lead_rad) * over.into_inner();
+    let start_dir = Unit::new_normalize(start_dir);
+    let centre = winding_point - jaws.into_inner() * geometry.winding_behind_m;
+    left.go_pointing(Path::To(winding_point), d(2.0), jaws.into_inner());
+    right.go(Path::To(centre + start_dir.into_inner() * geometry.winding_radius_m), d(2.0));
+    left.wait_until(left.time_s() + pause[0]);
+    left.jaw(0.0, d(0.3));
+    left.wait_until(left.time_s() + d(0.3) + pause[1]);
+
+    // R2: the right winds the long end around the left's jaws, after the left is there.
+    right.wait_until(left.time_s() + pause[2]);
+    right.go(Path::Around { centre_m: centre, axis, turns: geometry.winding_turns, pitch_m: 0.0 }, d(8.0));
+    let wound_s = right.time_s();
+    // Meanwhile the assist gives the winding thread, moving the tail towards the entry point.
+    let entry = world.tissue.hole_m(&world.physics, Flap::A);
+    let tail_now = assist.position_m();
+    assist.wait_until(left.time_s() + pause[2]);
+    assist
+        .go(Path::To(tail_now + (entry - tail_now) * geometry.tail_give_fraction), wound_s - assist.time_s());
+
+    // The assist presents the tail ahead of the left's jaws; the left opens, goes there, closes.
+    assist.wait_until(wound_s + pause[3]);
+    let tail_point = winding_point + jaws.into_inner() * geometry.tail_ahead_m;
+    assist.go(Path::To(tail_point + jaws.into_inner() * 0.004), d(1.2));
+    left.wait_until(wound_s + pause[3]);
+    left.jaw(open, d(0.3));
+    left.wait_until(assist.time_s());
+    left.go(Path::To(tail_point), d(1.0));
+    left.wait_until(left.time_s() + pause[4]);
+    left.jaw(0.0, d(0.3));
+    left.wait_until(left.time_s() + d(0.3) + 0.1);
+    let grasped_s = left.time_s();
+
+    // The assist lets go and retreats (A1).
+    assist.wait_until(grasped_s);
+    assist.jaw(open, d(0.2));
+    assist.wait_until(grasped_s + d(0.2) + pause[5]);
+    assist.go(Path::To(at(geometry.assist_retreat_m)), d(1.2));
+
+    // L4 and R3: both pull until the set force, then let go.
+    let pull_s = assist.time_s().max(grasped_s + d(0.4));
+    for (track, to) in [(&mut left, geometry.left_pull_to_m), (&mut right, geometry.right_pull_to_m)] {
+        track.wait_until(pull_s);
+        let from_s = track.time_s();
+        let to = at(to);
+        let along_shaft = to - trocar_of(&world.config, track_arm(track));
+        track.go_pointing(Path::To(to), d(2.5), along_shaft);
+        track.event(ForceEvent {
+            name: "set force".into(),
+            from_s: from_s + d(0.5),
+            until_s: track.time_s() + 1.0,
+            threshold_n: geometry.pull_force_n,
+            action: ForceAction::OpenJaw { jaw_rad: open },
+        });
+        track.wait_until(track.time_s() + 1.0);
+    }
+    assist.wait_until(left.time_s());
+    Skill {
+        name: "instrument tie: surgeon's knot".into(),
+        tracks: vec![left.build(), right.build(), assist.build()],
+    }
+}

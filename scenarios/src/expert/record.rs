@@ -1,0 +1,227 @@
+//! Recording a demonstration: the controller runs the expert's skill on the simulated rig (the device
+//! traits, as on the robots), and every 10th cycle (100 Hz at the scene's 1 ms step) what the devices
+//! read is kept: tip pose, jaw angle, grasp state and force, per instrument. Then the knot the thread
+//! holds is evaluated.
+
+use std::time::Instant;
+
+use knotlab_hw::controller::{ControllerError, CycleRecord, Status};
+use knotlab_hw::rig::{ArmName, Rig};
+use knotlab_hw::rig_config::{RigBuildError, RigConfig, build_rig};
+use knotlab_hw::skill::Skill;
+use knotlab_learner::demonstration::{
+    Demonstration, FORMAT_VERSION, GraspState, InstrumentRecord, Metadata, Sample, StitchPose,
+};
+use knotlab_sim::backend::SimBackend;
+use knotlab_sim::evaluate::{KnotEvaluation, evaluate_knot};
+use knotlab_sim::knot::{FailureMode, Verdict};
+use knotlab_sim::snapshot::{View, render_png};
+use knotlab_sim::world::SimWorld;
+use nalgebra::UnitQuaternion;
+
+/// Why a recording could not be made (a knot that was not tied is a verdict, not an error).
+#[derive(Debug, thiserror::Error)]
+pub enum RecordError {
+    /// The rig config does not build on the scene.
+    #[error("the rig does not build on the scene: {0}")]
+    Rig(#[from] RigBuildError),
+    /// The controller refused the skill or could not start.
+    #[error("the controller: {0}")]
+    Controller(#[from] ControllerError),
+}
+
+/// What recording options ask for besides the demonstration.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct RecordOptions {
+    /// Draw the scene at these skill times, s.
+    pub snapshot_times_s: Vec<f64>,
+    /// Cycles between samples (10: 100 Hz at a 1 ms step).
+    pub cycles_per_sample: u64,
+    /// Half the width of each snapshot view, m (0: the default 8 cm).
+    pub snapshot_half_width_m: f64,
+}
+
+fn view(world: &SimWorld, options: &RecordOptions) -> View {
+    let mut view = View::around_wound(world);
+    if options.snapshot_half_width_m > 0.0 {
+        view.half_width_m = options.snapshot_half_width_m;
+    }
+    view
+}
+
+/// One recorded run.
+pub struct DemoRun {
+    /// What the devices read.
+    pub demonstration: Demonstration,
+    /// The knot the run left.
+    pub evaluation: KnotEvaluation,
+    /// Why the controller stopped early, if it did.
+    pub fault: Option<String>,
+    /// Simulated time of the skill, s.
+    pub simulated_s: f64,
+    /// Wall-clock time, s.
+    pub wall_s: f64,
+    /// PNG pictures at the asked times.
+    pub snapshots: Vec<(f64, Vec<u8>)>,
+    /// The scene's grasp events (grasped, released, slipped) in order, as text.
+    pub events: Vec<String>,
+}
+
+fn grasp_state(world: &SimWorld, arm: ArmName) -> GraspState {
+    let a = world.arm(arm);
+    if a.grasp.is_some() {
+        GraspState::Holding
+    } else if a.actual().tool.jaw_rad < world.jaw_closed_rad {
+        GraspState::ClosedEmpty
+    } else {
+        GraspState::Open
+    }
+}
+
+/// Sees every control cycle's record and the scene after it (for debugging, logging, diagnostics).
+pub type CycleObserver<'a> = dyn FnMut(&CycleRecord, &SimWorld) + 'a;
+
+/// Runs `skill` on `world` through the rig `config` and records it; `observer`, if any, sees every
+/// cycle.
+pub fn record_demonstration(
+    world: SimWorld,
+    rig: &Rig,
+    config: &RigConfig,
+    skill: Skill,
+    metadata: Metadata,
+    options: &RecordOptions,
+    mut observer: Option<&mut CycleObserver<'_>>,
+) -> Result<DemoRun, RecordError> {
+    let started = Instant::now();
+    let mut backend = SimBackend::new(world);
+    let (mut controller, _handles) = build_rig(config, rig, Some(&mut backend))?.into_controller()?;
+    controller.load_skill(skill)?;
+    let instruments = [ArmName::Left, ArmName::Right, ArmName::Assist];
+    let mut records: Vec<InstrumentRecord> =
+        instruments.iter().map(|&instrument| InstrumentRecord { instrument, samples: Vec::new() }).collect();
+    let every = options.cycles_per_sample.max(1);
+    let mut snapshot_times = options.snapshot_times_s.clone();
+    snapshot_times.sort_by(f64::total_cmp);
+    let mut snapshots = Vec::new();
+    let mut fault = None;
+    loop {
+        let record = match controller.step() {
+            Ok(record) => record.clone(),
+            Err(error) => {
+                fault = Some(error.to_string());
+                break;
+            }
+        };
+        let world = backend.world();
+        if let Some(observe) = observer.as_mut() {
+            observe(&record, &world);
+        }
+        if record.cycle % every == 0 {
+            for (r, &arm) in records.iter_mut().zip(&instruments) {
+                let Some(a) = record.arm(arm) else { continue };
+                let q = UnitQuaternion::from_rotation_matrix(&a.world_from_tip.rotation);
+                r.samples.push(Sample {
+                    time_s: record.time_s,
+                    position_m: a.world_from_tip.translation.vector,
+                    quaternion_xyzw: [q.i, q.j, q.k, q.w],
+                    jaw_rad: a.measured.tool.jaw_rad,
+                    grasp: grasp_state(&world, arm),
+                    force_n: a.world_force_n,
+                });
+            }
+        }
+        while snapshot_times.first().is_some_and(|t| *t <= record.skill_time_s) {
+            let t = snapshot_times.remove(0);
+            if let Ok(png) = render_png(&world, &view(&world, options)) {
+                snapshots.push((t, png));
+            }
+        }
+        drop(world);
+        if matches!(record.status, Status::Finished) {
+            break;
+        }
+    }
+    let simulated_s = controller.record().skill_time_s;
+    drop(controller);
+    let mut world = backend.world();
+    let evaluation = if fault.is_some() {
+        KnotEvaluation {
+            verdict: Verdict::Failure(FailureMode::DeviceFault),
+            knot_before: None,
+            knot_after: None,
+            height_m: None,
+            stitch_distance_m: None,
+            gap_before_m: world.wound_gap_m(),
+            gap_after_m: None,
+        }
+    } else {
+        let params = world.config.evaluation.clone();
+        evaluate_knot(&mut world, &params)
+    };
+    for t in snapshot_times {
+        if let Ok(png) = render_png(&world, &view(&world, options)) {
+            snapshots.push((t, png));
+        }
+    }
+    let events = world.events.iter().map(|e| format!("{e:?}")).collect();
+    let demonstration = Demonstration { metadata, instruments: records };
+    let wall_s = started.elapsed().as_secs_f64();
+    Ok(DemoRun { demonstration, evaluation, fault, simulated_s, wall_s, snapshots, events })
+}
+
+/// The metadata of a scripted-expert recording.
+pub fn expert_metadata(world: &SimWorld, scene: &str, seed: Option<u64>, sample_rate_hz: f64) -> Metadata {
+    Metadata {
+        format_version: FORMAT_VERSION,
+        source: "scripted expert".into(),
+        scene: scene.into(),
+        seed,
+        sample_rate_hz,
+        stitch: StitchPose::from_isometry(&world.tissue.world_from_tissue),
+        description: "instrument tie of a surgeon's knot (knotlab's scripted expert)".into(),
+    }
+}
+
+/// The simulated rig the expert performs on (`scenarios/rigs/sim.toml`).
+pub const SIM_RIG_TOML: &str = include_str!("../../rigs/sim.toml");
+
+/// Why the expert could not perform at all.
+#[derive(Debug, thiserror::Error)]
+pub enum DemoError {
+    /// The scene cannot be built.
+    #[error("{scene}: {source}")]
+    World {
+        /// The scene file.
+        scene: String,
+        /// Why.
+        source: knotlab_sim::world::WorldError,
+    },
+    /// The shipped rig or its config is broken.
+    #[error("the shipped rig: {0}")]
+    Rig(String),
+    /// The recording failed.
+    #[error(transparent)]
+    Record(#[from] RecordError),
+}
+
+/// The scripted expert performs the task once in `scene` (named `scene_name` in the metadata): with
+/// human-like variation drawn from `seed` (or none), the sensor noise seeded by `seed` too.
+pub fn demonstrate(
+    scene: knotlab_sim::scene::SceneConfig,
+    scene_name: &str,
+    seed: u64,
+    human: bool,
+    options: &RecordOptions,
+) -> Result<DemoRun, DemoError> {
+    let rig = Rig::shipped().map_err(|e| DemoError::Rig(e.to_string()))?;
+    let config = knotlab_hw::rig_config::parse_rig_config(SIM_RIG_TOML, "scenarios/rigs/sim.toml")
+        .map_err(|e| DemoError::Rig(e.to_string()))?;
+    let mut world = SimWorld::new(scene, rig.clone())
+        .map_err(|source| DemoError::World { scene: scene_name.to_owned(), source })?;
+    world.reseed(seed);
+    let variation = if human { super::Variation::human(seed) } else { super::Variation::none() };
+    let skill = super::plan_instrument_tie(&world, &super::TieGeometry::default(), &variation);
+    let rate_hz = 1.0 / (world.config.solver.dt_s * options.cycles_per_sample.max(1) as f64);
+    let metadata = expert_metadata(&world, scene_name, Some(seed), rate_hz);
+    Ok(record_demonstration(world, &rig, &config, skill, metadata, options, None)?)
+}

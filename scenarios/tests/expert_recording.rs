@@ -1,0 +1,91 @@
+//! The scripted expert: its plan stays within the robots' reach at the nominal scene whatever the
+//! human-like variation, and a recorded run is a valid demonstration (100 Hz, every instrument, the
+//! grasps seen) that survives writing and loading unchanged.
+
+use knotlab_hw::rig::{ArmName, Rig};
+use knotlab_learner::demonstration::{GraspState, load_demonstration, write_demonstration};
+use knotlab_scenarios::expert::{RecordOptions, TieGeometry, Variation, demonstrate, plan_instrument_tie};
+use knotlab_sim::scene::parse_scene;
+use knotlab_sim::world::{SimWorld, trocar_of};
+use nalgebra::Vector3;
+
+fn scene() -> knotlab_sim::scene::SceneConfig {
+    parse_scene(include_str!("../default.toml"), "default.toml").expect("the shipped scene")
+}
+
+#[test]
+fn the_plan_is_reachable_for_every_variation() {
+    let rig = Rig::shipped().expect("the shipped rig");
+    let world = SimWorld::new(scene(), rig.clone()).expect("the scene builds");
+    for seed in 0..4 {
+        let skill = plan_instrument_tie(&world, &TieGeometry::default(), &Variation::human(seed));
+        skill.check().expect("a well-formed skill");
+        assert_eq!(skill.tracks.len(), 3, "left, right and assist");
+        for track in &skill.tracks {
+            let model = &rig.arm(track.arm).model;
+            let trocar = trocar_of(&world.config, track.arm);
+            let mut joints = world.arm(track.arm).command;
+            for key in &track.poses {
+                let target = track.target_at(key.time_s).expect("a target");
+                joints = model.solve_tip(&target, &trocar, &joints).unwrap_or_else(|e| {
+                    panic!(
+                        "seed {seed}: the {} arm cannot reach its key at {:.2} s: {e}",
+                        track.arm, key.time_s
+                    )
+                });
+            }
+        }
+        let right = skill.track(ArmName::Right).expect("the right winds");
+        let path_m: f64 = right
+            .poses
+            .windows(2)
+            .map(|w| (Vector3::from(w[1].world_position_m) - Vector3::from(w[0].world_position_m)).norm())
+            .sum();
+        assert!(
+            path_m > 0.2,
+            "seed {seed}: two turns of winding and the pulls make a long path, not {path_m} m"
+        );
+    }
+    let slow = plan_instrument_tie(
+        &world,
+        &TieGeometry::default(),
+        &Variation { slowness: 1.1, ..Variation::none() },
+    );
+    let fast = plan_instrument_tie(
+        &world,
+        &TieGeometry::default(),
+        &Variation { slowness: 0.9, ..Variation::none() },
+    );
+    assert!(slow.duration_s() > fast.duration_s(), "the variation changes the pace");
+}
+
+#[test]
+fn a_recorded_run_is_a_valid_100_hz_demonstration_that_round_trips() {
+    let options = RecordOptions { cycles_per_sample: 10, ..RecordOptions::default() };
+    let run = demonstrate(scene(), "scenarios/default.toml", 3, true, &options).expect("records");
+    assert_eq!(run.fault, None, "the controller ran the skill to its end");
+    let demo = &run.demonstration;
+    demo.validate().expect("what the loader accepts");
+    assert_eq!(demo.metadata.sample_rate_hz, 100.0);
+    assert_eq!(demo.metadata.seed, Some(3));
+    for record in &demo.instruments {
+        let dt: Vec<f64> = record.samples.windows(2).map(|w| w[1].time_s - w[0].time_s).collect();
+        assert!(dt.iter().all(|d| (d - 0.01).abs() < 1e-9), "{}: samples 10 ms apart", record.instrument);
+        assert!(record.samples.len() as f64 >= 100.0 * run.simulated_s - 1.0);
+    }
+    let right = demo.instrument(ArmName::Right).expect("the right");
+    assert_eq!(right.samples[0].grasp, GraspState::Holding, "the right starts holding the needle");
+    let left = demo.instrument(ArmName::Left).expect("the left");
+    assert!(
+        left.samples.iter().any(|s| s.grasp == GraspState::ClosedEmpty),
+        "the left closes its jaws to wind"
+    );
+    let moved = (left.samples.last().expect("samples").position_m - left.samples[0].position_m).norm();
+    assert!(moved > 0.02, "the left moved {moved} m");
+
+    let dir = std::env::temp_dir().join(format!("knotlab-expert-{}", std::process::id()));
+    write_demonstration(&dir, demo).expect("writes");
+    let loaded = load_demonstration(&dir).expect("loads");
+    assert_eq!(&loaded, demo, "record, save, load gives identical data");
+    let _ = std::fs::remove_dir_all(&dir);
+}

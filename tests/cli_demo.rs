@@ -1,0 +1,42 @@
+//! `knotlab demo`: the scripted expert's runs, each written as a demonstration that `knotlab learn`
+//! reads, and the JSON report with the success rate and each run's verdict; bad seeds are refused.
+
+mod common;
+
+use common::{json, knotlab};
+
+#[test]
+fn demo_json_reports_each_run_and_writes_loadable_demonstrations() {
+    let dir = std::env::temp_dir().join(format!("knotlab-demo-{}", std::process::id()));
+    let out = dir.to_str().unwrap();
+    let (code, v) = json(&["demo", "--scene", "scenarios/default.toml", "--seeds", "5..6", "--out", out, "--json"]);
+    assert_eq!(code, 0, "{v}");
+    assert_eq!(v["runs"], 1, "{v}");
+    let rate = v["success_rate"].as_f64().unwrap();
+    assert!((0.0..=1.0).contains(&rate));
+    let run = &v["results"][0];
+    assert_eq!(run["seed"], 5);
+    assert!(run["verdict"].is_string(), "{run}");
+    assert_eq!(run["fault"], serde_json::Value::Null, "{run}");
+    assert!(run["samples"].as_u64().unwrap() > 3000, "three instruments at 100 Hz for 10 s or more: {run}");
+    // The learner reads what the expert wrote (and accepts or rejects it with its reason).
+    let demo = dir.join("seed-5");
+    let (code, out, err) = knotlab(&[
+        "learn",
+        "--demo",
+        demo.to_str().unwrap(),
+        "--out",
+        dir.join("kb.json").to_str().unwrap(),
+    ]);
+    assert!(code == 0 || code == 3, "read as a demonstration (0 accepted, 3 rejected): {out}{err}");
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn bad_seed_ranges_are_refused() {
+    for range in ["5..5", "7..3", "a..4", "3"] {
+        let (code, out, err) = knotlab(&["demo", "--seeds", range, "--out", "/tmp/never"]);
+        assert_eq!(code, 2, "{range}: {out}");
+        assert!(err.contains("--seeds"), "{range}: {err}");
+    }
+}
