@@ -9,7 +9,8 @@ use common::{json, knotlab};
 fn demo_json_reports_each_run_and_writes_loadable_demonstrations() {
     let dir = std::env::temp_dir().join(format!("knotlab-demo-{}", std::process::id()));
     let out = dir.to_str().unwrap();
-    let (code, v) = json(&["demo", "--scene", "scenarios/default.toml", "--seeds", "5..6", "--out", out, "--json"]);
+    let (code, v) =
+        json(&["demo", "--scene", "scenarios/default.toml", "--seeds", "5..6", "--out", out, "--json"]);
     assert_eq!(code, 0, "{v}");
     assert_eq!(v["runs"], 1, "{v}");
     let rate = v["success_rate"].as_f64().unwrap();
@@ -21,13 +22,8 @@ fn demo_json_reports_each_run_and_writes_loadable_demonstrations() {
     assert!(run["samples"].as_u64().unwrap() > 3000, "three instruments at 100 Hz for 10 s or more: {run}");
     // The learner reads what the expert wrote (and accepts or rejects it with its reason).
     let demo = dir.join("seed-5");
-    let (code, out, err) = knotlab(&[
-        "learn",
-        "--demo",
-        demo.to_str().unwrap(),
-        "--out",
-        dir.join("kb.json").to_str().unwrap(),
-    ]);
+    let (code, out, err) =
+        knotlab(&["learn", "--demo", demo.to_str().unwrap(), "--out", dir.join("kb.json").to_str().unwrap()]);
     assert!(code == 0 || code == 3, "read as a demonstration (0 accepted, 3 rejected): {out}{err}");
     let _ = std::fs::remove_dir_all(&dir);
 }
