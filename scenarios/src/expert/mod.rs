@@ -1,7 +1,9 @@
 //! The scripted expert: a surgeon played by a program. It plans the knot-tying task as a Skill
 //! ([`plan`]), with human-like motion ([`motion`]): the controller runs it on the simulated devices,
-//! and what the devices read meanwhile is the demonstration ([`record`]).
+//! and what the devices read meanwhile is the demonstration ([`record`]); [`diagnose`] measures what a run
+//! did to the thread.
 
+pub mod diagnose;
 pub mod motion;
 pub mod plan;
 pub mod record;

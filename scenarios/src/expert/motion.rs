@@ -1,10 +1,11 @@
 //! Human-like motion for the scripted expert: minimum-jerk segments (straight or along an arc), a small
 //! tremor, and a builder that turns them into a track's time-stamped keys.
 
+use knotlab_hw::kinematics::{ArmJoints, ArmModel};
 use knotlab_hw::rig::ArmName;
 use knotlab_hw::skill::{ForceEvent, JawKey, Orientation, PoseKey, Track};
 use knotlab_sim::world::JAW_CENTRE_OFFSET_M;
-use nalgebra::{UnitVector3, Vector3};
+use nalgebra::{Rotation3, UnitQuaternion, UnitVector3, Vector3};
 
 /// Minimum-jerk blend from 0 to 1 (Flash and Hogan's profile of a reaching hand).
 pub fn min_jerk(s: f64) -> f64 {
@@ -63,6 +64,52 @@ pub enum Path {
     },
 }
 
+/// How the jaws are held during a move.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Hold {
+    /// Along the shaft (a straight wrist).
+    AlongShaft,
+    /// Pointing this way (world frame); the solver picks the roll.
+    Pointing(Vector3<f64>),
+    /// The whole tip frame, `world_from_tip`.
+    Frame(UnitQuaternion<f64>),
+}
+
+/// What a builder needs to keep a move within the arm's speed: its model, the joints at the last key,
+/// and the fraction of each joint's rated speed a move may ask for.
+pub struct Follow {
+    /// The arm.
+    pub model: ArmModel,
+    /// The trocar, world frame, m.
+    pub trocar_m: Vector3<f64>,
+    /// The joints at the last key.
+    pub joints: ArmJoints,
+    /// Fraction of the rated joint speeds a move may use.
+    pub speed_fraction: f64,
+}
+
+impl Follow {
+    /// The joints along `keys` (seeded from the last) and how much faster than allowed the fastest joint
+    /// goes between keys (1 or less: the arm can follow); `None` if a key is out of reach.
+    fn check(&self, keys: &[PoseKey], period_s: f64) -> Option<(ArmJoints, f64)> {
+        let mut joints = self.joints;
+        let mut worst: f64 = 0.0;
+        let mut last_time = None;
+        for key in keys {
+            let target = knotlab_hw::skill::keys::pose_at(std::slice::from_ref(key), key.time_s)?;
+            let next = self.model.solve_tip(&target, &self.trocar_m, &joints).ok()?;
+            let dt = last_time.map_or(period_s, |t: f64| (key.time_s - t).max(1e-6));
+            for j in 0..6 {
+                let allowed = self.model.limits[j].max_velocity_rad_s * self.speed_fraction * dt;
+                worst = worst.max((next.arm_rad[j] - joints.arm_rad[j]).abs() / allowed);
+            }
+            joints = next;
+            last_time = Some(key.time_s);
+        }
+        Some((joints, worst))
+    }
+}
+
 /// Builds one arm's track: jaw-centre moves turned into tip keys every `key_period_s`.
 pub struct TrackBuilder {
     arm: ArmName,
@@ -72,9 +119,11 @@ pub struct TrackBuilder {
     key_period_s: f64,
     /// The trocar the instrument passes through (world frame, m).
     trocar_m: Vector3<f64>,
-    /// Where the jaws point (world frame), or `None`: along the shaft.
-    jaw_direction: Option<Vector3<f64>>,
+    /// How the jaws are held: along the shaft, pointing a way, or a whole frame.
+    hold: Hold,
     tremor: Tremor,
+    /// The arm's model and its joints at the last key: moves are slowed until the arm can follow.
+    follow: Option<Follow>,
     poses: Vec<PoseKey>,
     jaw: Vec<JawKey>,
     events: Vec<ForceEvent>,
@@ -97,14 +146,20 @@ impl TrackBuilder {
             time_s: 0.0,
             key_period_s,
             trocar_m,
-            jaw_direction: None,
+            hold: Hold::AlongShaft,
             tremor,
+            follow: None,
             poses: Vec::new(),
             jaw: vec![JawKey { time_s: 0.0, jaw_rad }],
             events: Vec::new(),
         };
         builder.key(0.0, position_m);
         builder
+    }
+
+    /// Slows every later move until the arm can follow it (see [`Follow`]).
+    pub fn follow(&mut self, follow: Follow) {
+        self.follow = Some(follow);
     }
 
     /// The arm.
@@ -123,23 +178,39 @@ impl TrackBuilder {
     }
 
     fn key(&mut self, time_s: f64, centre_m: Vector3<f64>) {
-        self.key_pointing(time_s, centre_m, self.jaw_direction);
+        let key = self.make_key(time_s, centre_m, self.hold);
+        self.poses.push(key);
     }
 
-    /// A key with the jaw centre at `centre_m` and the jaws along `direction` (`None`: the shaft).
-    fn key_pointing(&mut self, time_s: f64, centre_m: Vector3<f64>, direction: Option<Vector3<f64>>) {
+    fn make_key(&self, time_s: f64, centre_m: Vector3<f64>, hold: Hold) -> PoseKey {
         let centre = centre_m + self.tremor.at(time_s);
-        let (along, orientation) = match direction {
-            Some(d) => (d.normalize(), Orientation::JawDirection { direction: d.normalize().into() }),
-            None => ((centre - self.trocar_m).normalize(), Orientation::AlongShaft),
+        let (along, orientation) = match hold {
+            Hold::Pointing(d) => {
+                (d.normalize(), Orientation::JawDirection { direction: d.normalize().into() })
+            }
+            Hold::Frame(q) => {
+                (q * Vector3::z(), Orientation::Frame { quaternion_xyzw: [q.i, q.j, q.k, q.w] })
+            }
+            Hold::AlongShaft => ((centre - self.trocar_m).normalize(), Orientation::AlongShaft),
         };
         let tip = centre + along * JAW_CENTRE_OFFSET_M;
-        self.poses.push(PoseKey { time_s, world_position_m: tip.into(), orientation });
+        PoseKey { time_s, world_position_m: tip.into(), orientation }
     }
 
-    /// The jaws' direction now: the one set, or along the shaft.
+    /// The jaws' direction now.
     pub fn jaw_direction(&self) -> Vector3<f64> {
-        self.jaw_direction.unwrap_or_else(|| (self.position_m - self.trocar_m).normalize())
+        match self.hold {
+            Hold::Pointing(d) => d.normalize(),
+            Hold::Frame(q) => q * Vector3::z(),
+            Hold::AlongShaft => (self.position_m - self.trocar_m).normalize(),
+        }
+    }
+
+    /// The tip frame at the last key, `world_from_tip`, from the arm's model (`None` without one).
+    pub fn tip_frame(&self) -> Option<UnitQuaternion<f64>> {
+        let follow = self.follow.as_ref()?;
+        let r = follow.model.world_from_tip(&follow.joints).rotation;
+        Some(UnitQuaternion::from_rotation_matrix(&r))
     }
 
     /// Moves along `path` in `duration_s` (minimum jerk) while the jaws turn to point along
@@ -147,11 +218,20 @@ impl TrackBuilder {
     pub fn go_pointing(&mut self, path: Path, duration_s: f64, direction: Vector3<f64>) {
         let from = self.jaw_direction();
         let to = direction.normalize();
-        let t0 = self.time_s;
-        let start = self.position_m;
-        self.go_with(path, duration_s, |s| Some(from.lerp(&to, min_jerk(s))));
-        debug_assert!(self.time_s > t0 || duration_s <= 0.0 || start == self.position_m);
-        self.jaw_direction = Some(to);
+        self.go_with(path, duration_s, |s| Hold::Pointing(from.lerp(&to, min_jerk(s))));
+        self.hold = Hold::Pointing(to);
+    }
+
+    /// Moves along `path` while the tip frame turns to `world_from_tip` (the jaws along its z, their
+    /// hinge along its y). Needs the arm's model ([`TrackBuilder::follow`]) for the frame it starts from.
+    pub fn go_framing(&mut self, path: Path, duration_s: f64, world_from_tip: Rotation3<f64>) {
+        let to = UnitQuaternion::from_rotation_matrix(&world_from_tip);
+        let from = match self.hold {
+            Hold::Frame(q) => q,
+            _ => self.tip_frame().unwrap_or(to),
+        };
+        self.go_with(path, duration_s, |s| Hold::Frame(from.slerp(&to, min_jerk(s))));
+        self.hold = Hold::Frame(to);
     }
 
     /// Holds still until `time_s` (a pause, or waiting for another instrument).
@@ -168,29 +248,49 @@ impl TrackBuilder {
 
     /// Moves along `path` in `duration_s` with a minimum-jerk profile, the jaws as they point.
     pub fn go(&mut self, path: Path, duration_s: f64) {
-        let direction = self.jaw_direction;
-        self.go_with(path, duration_s, |_| direction);
+        let hold = self.hold;
+        self.go_with(path, duration_s, |_| hold);
     }
 
-    fn go_with(&mut self, path: Path, duration_s: f64, direction: impl Fn(f64) -> Option<Vector3<f64>>) {
+    fn go_with(&mut self, path: Path, duration_s: f64, hold: impl Fn(f64) -> Hold) {
         let start = self.position_m;
         let at = |s: f64| -> Vector3<f64> {
             match path {
                 Path::To(end) => start + (end - start) * min_jerk(s),
                 Path::Around { centre_m, axis, turns, pitch_m } => {
                     let angle = std::f64::consts::TAU * turns * min_jerk(s);
-                    let rotation = nalgebra::Rotation3::from_axis_angle(&axis, angle);
+                    let rotation = Rotation3::from_axis_angle(&axis, angle);
                     let along = axis.into_inner() * pitch_m * turns * min_jerk(s);
                     centre_m + rotation * (start - centre_m) + along
                 }
             }
         };
-        let steps = (duration_s / self.key_period_s).ceil().max(1.0) as usize;
         let t0 = self.time_s;
-        for i in 1..=steps {
-            let s = i as f64 / steps as f64;
-            self.key_pointing(t0 + s * duration_s, at(s), direction(s));
-        }
+        let asked_s = duration_s.max(self.key_period_s);
+        let mut duration_s = asked_s;
+        // Slower until the arm can follow (at most 8 times the asked duration).
+        let keys = loop {
+            let steps = (duration_s / self.key_period_s).ceil().max(1.0) as usize;
+            let keys: Vec<PoseKey> = (1..=steps)
+                .map(|i| {
+                    let s = i as f64 / steps as f64;
+                    self.make_key(t0 + s * duration_s, at(s), hold(s))
+                })
+                .collect();
+            let Some(follow) = &self.follow else { break keys };
+            match follow.check(&keys, self.key_period_s) {
+                Some((joints, worst)) if worst <= 1.0 || duration_s >= 8.0 * asked_s => {
+                    if let Some(f) = &mut self.follow {
+                        f.joints = joints;
+                    }
+                    break keys;
+                }
+                Some((_, worst)) => duration_s *= worst.min(8.0) * 1.05,
+                // Out of reach: keep the keys, the controller will say so.
+                None => break keys,
+            }
+        };
+        self.poses.extend(keys);
         self.time_s = t0 + duration_s;
         self.position_m = at(1.0);
     }

@@ -16,7 +16,7 @@ use nalgebra::{Isometry3, Point3, Unit, Vector3};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
-use super::motion::{Path, TrackBuilder, Tremor};
+use super::motion::{Follow, Path, TrackBuilder, Tremor};
 
 /// Where the expert puts things, in the stitch frame (m), and how hard it pulls.
 #[derive(Clone, Debug, PartialEq)]
@@ -33,10 +33,16 @@ pub struct TieGeometry {
     pub winding_towards: [f64; 3],
     /// The winding circles this far behind the left's jaw centre (towards its wrist), m.
     pub winding_behind_m: f64,
+    /// How long the winding takes, s (slow enough for the arm to follow the circle).
+    pub winding_s: f64,
     /// Turns of the winding (a surgeon's knot: 2).
     pub winding_turns: f64,
     /// The assist presents the tail this far ahead of the left's jaw centre, along its jaws, m.
     pub tail_ahead_m: f64,
+    /// The assist first draws the tail this much tauter, m.
+    pub tail_tension_m: f64,
+    /// The assist holds the tail this far beyond the point the left's jaws close on, m.
+    pub tail_beyond_m: f64,
     /// While the right winds, the assist moves the tail this fraction of the way to the entry
     /// point, giving thread.
     pub tail_give_fraction: f64,
@@ -46,6 +52,8 @@ pub struct TieGeometry {
     pub right_pull_to_m: [f64; 3],
     /// Where the assist retreats to.
     pub assist_retreat_m: [f64; 3],
+    /// Every move is slowed until no joint needs more than this fraction of its rated speed.
+    pub speed_fraction: f64,
     /// Both pulls let go at this force, N.
     pub pull_force_n: f64,
 }
@@ -58,12 +66,16 @@ impl Default for TieGeometry {
             winding_lead_rad: 1.6,
             winding_towards: [0.0, 0.0, 1.0],
             winding_behind_m: 0.003,
+            winding_s: 8.0,
             winding_turns: 2.0,
             tail_ahead_m: 0.012,
+            tail_beyond_m: 0.008,
+            tail_tension_m: 0.003,
             tail_give_fraction: 0.0,
             left_pull_to_m: [0.0, 0.035, 0.01],
             right_pull_to_m: [0.0, -0.045, 0.01],
             assist_retreat_m: [0.04, 0.04, 0.04],
+            speed_fraction: 0.3,
             pull_force_n: 1.0,
         }
     }
@@ -131,14 +143,16 @@ pub fn plan_instrument_tie(world: &SimWorld, geometry: &TieGeometry, variation: 
     let key_period_s = 0.01;
     let d = |s: f64| s * variation.slowness;
     let builder = |arm: ArmName, jaw: f64, tremor: &Tremor| {
-        TrackBuilder::new(
-            arm,
-            jaw_centre_m(world, arm),
-            jaw,
-            key_period_s,
-            tremor.clone(),
-            trocar_of(&world.config, arm),
-        )
+        let trocar_m = trocar_of(&world.config, arm);
+        let mut b =
+            TrackBuilder::new(arm, jaw_centre_m(world, arm), jaw, key_period_s, tremor.clone(), trocar_m);
+        b.follow(Follow {
+            model: world.rig.arm(arm).model,
+            trocar_m,
+            joints: world.arm(arm).command,
+            speed_fraction: geometry.speed_fraction,
+        });
+        b
     };
     let mut left = builder(ArmName::Left, open, &variation.tremor[0]);
     let mut right = builder(ArmName::Right, 0.0, &variation.tremor[1]);
@@ -163,7 +177,20 @@ pub fn plan_instrument_tie(world: &SimWorld, geometry: &TieGeometry, variation: 
         nalgebra::Rotation3::from_axis_angle(&axis, -geometry.winding_lead_rad) * over.into_inner();
     let start_dir = Unit::new_normalize(start_dir);
     let centre = winding_point - jaws.into_inner() * geometry.winding_behind_m;
-    left.go_pointing(Path::To(winding_point), d(2.0), jaws.into_inner());
+    // The jaws' hinge lies across the line from the entry point to where the tail will be held, so
+    // that the tail then runs between the open jaws.
+    let entry = world.tissue.hole_m(&world.physics, Flap::A);
+    let tail_point = winding_point + jaws.into_inner() * geometry.tail_ahead_m;
+    let hinge = {
+        let d = tail_point - entry;
+        Unit::new_normalize(d - jaws.into_inner() * d.dot(&jaws))
+    };
+    let left_frame = nalgebra::Rotation3::from_basis_unchecked(&[
+        hinge.cross(&jaws),
+        hinge.into_inner(),
+        jaws.into_inner(),
+    ]);
+    left.go_framing(Path::To(winding_point), d(2.0), left_frame);
     right.go(Path::To(centre + start_dir.into_inner() * geometry.winding_radius_m), d(2.0));
     left.wait_until(left.time_s() + pause[0]);
     left.jaw(0.0, d(0.3));
@@ -171,10 +198,12 @@ pub fn plan_instrument_tie(world: &SimWorld, geometry: &TieGeometry, variation: 
 
     // R2: the right winds the long end around the left's jaws, after the left is there.
     right.wait_until(left.time_s() + pause[2]);
-    right.go(Path::Around { centre_m: centre, axis, turns: geometry.winding_turns, pitch_m: 0.0 }, d(8.0));
+    right.go(
+        Path::Around { centre_m: centre, axis, turns: geometry.winding_turns, pitch_m: 0.0 },
+        d(geometry.winding_s),
+    );
     let wound_s = right.time_s();
     // Meanwhile the assist gives the winding thread, moving the tail towards the entry point.
-    let entry = world.tissue.hole_m(&world.physics, Flap::A);
     let tail_now = assist.position_m();
     assist.wait_until(left.time_s() + pause[2]);
     assist
@@ -182,8 +211,22 @@ pub fn plan_instrument_tie(world: &SimWorld, geometry: &TieGeometry, variation: 
 
     // The assist presents the tail ahead of the left's jaws; the left opens, goes there, closes.
     assist.wait_until(wound_s + pause[3]);
-    let tail_point = winding_point + jaws.into_inner() * geometry.tail_ahead_m;
-    assist.go(Path::To(tail_point + jaws.into_inner() * 0.004), d(1.2));
+    // Beside the coils first, then across in front of the jaws: the tail crosses the plane of the
+    // coils away from them and from the long end below them.
+    // The assist holds the tail beyond the jaws' centre, on the line from the entry point.
+    let tail_hold = tail_point + (tail_point - entry).normalize() * geometry.tail_beyond_m;
+    // The tail swung taut about the entry point (so it neither sags onto the tissue nor catches on
+    // the flap), then brought in to where the left will take it.
+    let radius = (assist.position_m() - entry).norm() + geometry.tail_tension_m;
+    let outward = (assist.position_m() - entry).normalize();
+    assist.go(Path::To(entry + outward * radius), d(0.4));
+    let towards = (tail_hold - entry).normalize();
+    let swing_axis = outward.cross(&towards);
+    if let Some(axis) = Unit::try_new(swing_axis, 1e-9) {
+        let turns = outward.dot(&towards).clamp(-1.0, 1.0).acos() / std::f64::consts::TAU;
+        assist.go(Path::Around { centre_m: entry, axis, turns, pitch_m: 0.0 }, d(1.5));
+    }
+    assist.go(Path::To(tail_hold), d(0.6));
     left.wait_until(wound_s + pause[3]);
     left.jaw(open, d(0.3));
     left.wait_until(assist.time_s());

@@ -1,0 +1,60 @@
+//! What the expert's developer needs to see in a run: how many times the thread winds around an
+//! instrument's jaws (the winding number of the centreline about the jaw axis).
+
+use knotlab_hw::rig::ArmName;
+use knotlab_sim::world::{JAW_CENTRE_OFFSET_M, SimWorld};
+use nalgebra::{Point3, Vector3};
+
+/// Signed turns of the polyline `points` about the line through `centre_m` along `axis`: the angle
+/// its points sweep around the line, projected on the plane at right angles to it, over 2 pi.
+/// Positive is right-handed about `axis`.
+pub fn turns_about(points: &[Vector3<f64>], centre_m: &Vector3<f64>, axis: &Vector3<f64>) -> f64 {
+    let a = axis.normalize();
+    let helper = if a.x.abs() < 0.9 { Vector3::x() } else { Vector3::y() };
+    let e1 = a.cross(&helper).normalize();
+    let e2 = a.cross(&e1);
+    let angles: Vec<f64> = points
+        .iter()
+        .map(|p| {
+            let q = p - centre_m;
+            q.dot(&e2).atan2(q.dot(&e1))
+        })
+        .collect();
+    let total: f64 = angles
+        .windows(2)
+        .map(|w| {
+            let d = w[1] - w[0];
+            (d + std::f64::consts::PI).rem_euclid(std::f64::consts::TAU) - std::f64::consts::PI
+        })
+        .sum();
+    total / std::f64::consts::TAU
+}
+
+/// Turns of the thread (needle end to tail end) around `arm`'s jaws, as they stand.
+pub fn thread_turns_around_jaws(world: &SimWorld, arm: ArmName) -> f64 {
+    let tip = world.world_from_tip(arm);
+    let axis = tip.rotation * Vector3::z();
+    let centre = (tip * Point3::new(0.0, 0.0, -JAW_CENTRE_OFFSET_M)).coords;
+    turns_about(&world.thread.centreline(&world.physics), &centre, &axis)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_helix_of_two_turns_counts_two() {
+        let points: Vec<Vector3<f64>> = (0..=200)
+            .map(|i| {
+                let t = i as f64 / 200.0 * 2.0 * std::f64::consts::TAU;
+                Vector3::new(0.01 * t.cos(), 0.01 * t.sin(), 0.001 * t)
+            })
+            .collect();
+        let turns = turns_about(&points, &Vector3::zeros(), &Vector3::z());
+        assert!((turns - 2.0).abs() < 1e-9, "{turns}");
+        let mirrored = turns_about(&points, &Vector3::zeros(), &-Vector3::z());
+        assert!((mirrored + 2.0).abs() < 1e-9, "{mirrored}");
+        let beside = turns_about(&points, &Vector3::new(0.05, 0.0, 0.0), &Vector3::z());
+        assert!(beside.abs() < 0.5, "a line beside the helix is not wound around: {beside}");
+    }
+}
