@@ -6,7 +6,9 @@ use nalgebra::{IsometryMatrix3, Vector3};
 use rapier3d::prelude::*;
 
 use crate::physics::Physics;
-use crate::thread::{Thread, to_na};
+use knotlab_hw::geometry::segment_distance;
+
+use crate::thread::Thread;
 
 /// What happened to a grasp.
 #[derive(Clone, Debug, PartialEq)]
@@ -50,9 +52,10 @@ pub struct Grasp {
 }
 
 impl Grasp {
-    /// Attaches the thread segment or the needle nearest the jaw centre (`jaw_offset_m` behind the tip
-    /// along the jaws), if it lies within reach of the jaws; it is held where it is. `needle_m` are
-    /// points along the needle (world frame), which is part of the first segment's body.
+    /// Attaches the thread segment or the needle that passes nearest the jaws' line (from their hinge,
+    /// twice `jaw_offset_m` behind the tip, to the tip), if it comes within reach of it: what lies
+    /// between the jaws, not what is wound around them. It is held where it is. `needle_m` are points
+    /// along the needle (world frame), which is part of the first segment's body.
     pub fn try_close(
         physics: &mut Physics,
         thread: &Thread,
@@ -61,17 +64,19 @@ impl Grasp {
         world_from_tip: &IsometryMatrix3<f64>,
         jaw_offset_m: f64,
     ) -> Option<Self> {
-        let jaw_centre = world_from_tip * nalgebra::Point3::new(0.0, 0.0, -jaw_offset_m);
+        let hinge = (world_from_tip * nalgebra::Point3::new(0.0, 0.0, -2.0 * jaw_offset_m)).coords;
+        let tip = world_from_tip.translation.vector;
         let reach_m = crate::world::GRASP_REACH_M;
-        // (segment, how far beyond its reach the jaw centre is)
-        let segments = thread.segments.iter().enumerate().map(|(i, h)| {
-            let d = (to_na(physics.bodies[*h].translation()) - jaw_centre.coords).norm();
-            (i, false, d - reach_m - 0.5 * thread.segment_length_m)
-        });
-        let needle = needle_m.iter().map(|p| (0, true, (p - jaw_centre.coords).norm() - reach_m));
+        // (segment, on the needle, how far beyond reach of the jaws' line it passes)
+        let segments = thread
+            .capsules(physics, 0.0)
+            .into_iter()
+            .enumerate()
+            .map(|(i, c)| (i, false, segment_distance(&c.a_m, &c.b_m, &hinge, &tip) - reach_m));
+        let needle = needle_m.iter().map(|p| (0, true, segment_distance(p, p, &hinge, &tip) - reach_m));
         let (segment, mut on_needle, beyond) = segments.chain(needle).min_by(|a, b| a.2.total_cmp(&b.2))?;
         // The first segment carries the needle, swaged on: jaws that reach the needle too hold it.
-        if segment == 0 && needle_m.iter().any(|p| (p - jaw_centre.coords).norm() <= reach_m) {
+        if segment == 0 && needle_m.iter().any(|p| segment_distance(p, p, &hinge, &tip) <= reach_m) {
             on_needle = true;
         }
         if beyond > 0.0 {

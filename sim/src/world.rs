@@ -359,7 +359,7 @@ impl SimWorld {
             let inside: Vec<ColliderHandle> = range.flat_map(colliders_of).collect();
             filter.exclude_all(&self.tissue.flap_colliders, &inside);
         }
-        let reach = GRASP_REACH_M + self.thread.segment_length_m;
+        let reach = GRASP_REACH_M;
         for arm in &self.arms {
             if arm.jaw_colliders.is_empty() {
                 continue;
@@ -369,11 +369,12 @@ impl SimWorld {
                 near.extend(grasp.segment.saturating_sub(2)..=grasp.segment + 2);
             }
             if arm.command.tool.jaw_rad < self.jaw_closed_rad && arm.grasp.is_none() && !arm.closed_empty {
+                // What passes between the closing jaws (near their line), as the grasp will judge it.
                 let tip = poses[self.rig.arm(arm.name).tip_link];
-                let centre = (tip * Point3::new(0.0, 0.0, -JAW_CENTRE_OFFSET_M)).coords;
-                for (i, h) in self.thread.segments.iter().enumerate() {
-                    let t = self.physics.bodies[*h].translation();
-                    if (Vector3::new(t.x, t.y, t.z) - centre).norm() < reach {
+                let hinge = (tip * Point3::new(0.0, 0.0, -2.0 * JAW_CENTRE_OFFSET_M)).coords;
+                let end = tip.translation.vector;
+                for (i, c) in self.thread.capsules(&self.physics, 0.0).iter().enumerate() {
+                    if knotlab_hw::geometry::segment_distance(&c.a_m, &c.b_m, &hinge, &end) < reach {
                         near.push(i);
                     }
                 }

@@ -268,7 +268,9 @@ impl TrackBuilder {
         let t0 = self.time_s;
         let asked_s = duration_s.max(self.key_period_s);
         let mut duration_s = asked_s;
-        // Slower until the arm can follow (at most 8 times the asked duration).
+        // Slower until the arm can follow (at most 30 times the asked duration). A jump that slowing
+        // does not shrink is a discontinuity of the solution, not a speed: slowing stops there.
+        let mut last_worst = f64::INFINITY;
         let keys = loop {
             let steps = (duration_s / self.key_period_s).ceil().max(1.0) as usize;
             let keys: Vec<PoseKey> = (1..=steps)
@@ -278,17 +280,16 @@ impl TrackBuilder {
                 })
                 .collect();
             let Some(follow) = &self.follow else { break keys };
-            match follow.check(&keys, self.key_period_s) {
-                Some((joints, worst)) if worst <= 1.0 || duration_s >= 8.0 * asked_s => {
-                    if let Some(f) = &mut self.follow {
-                        f.joints = joints;
-                    }
-                    break keys;
+            // Out of reach: keep the keys, the controller will say so.
+            let Some((joints, worst)) = follow.check(&keys, self.key_period_s) else { break keys };
+            if worst <= 1.0 || duration_s >= 30.0 * asked_s || worst > 0.7 * last_worst {
+                if let Some(f) = &mut self.follow {
+                    f.joints = joints;
                 }
-                Some((_, worst)) => duration_s *= worst.min(8.0) * 1.05,
-                // Out of reach: keep the keys, the controller will say so.
-                None => break keys,
+                break keys;
             }
+            last_worst = worst;
+            duration_s *= worst.min(8.0) * 1.05;
         };
         self.poses.extend(keys);
         self.time_s = t0 + duration_s;

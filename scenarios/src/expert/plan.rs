@@ -39,6 +39,14 @@ pub struct TieGeometry {
     pub winding_turns: f64,
     /// The assist presents the tail this far ahead of the left's jaw centre, along its jaws, m.
     pub tail_ahead_m: f64,
+    /// If not empty, the assist takes the tail along these points (stitch frame) instead of the swing.
+    pub tail_via_m: Vec<[f64; 3]>,
+    /// The tail's swing about the entry point leans this way off the shortest arc (stitch frame).
+    pub tail_swing_lean: [f64; 3],
+    /// After winding, the right moves this much towards the left's jaws to loosen the coils, m.
+    pub loosen_m: f64,
+    /// The left opens its jaws this far to take the tail, rad (wide jaws let the coils slip between).
+    pub take_tail_jaw_rad: f64,
     /// The assist first draws the tail this much tauter, m.
     pub tail_tension_m: f64,
     /// The assist holds the tail this far beyond the point the left's jaws close on, m.
@@ -71,6 +79,10 @@ impl Default for TieGeometry {
             tail_ahead_m: 0.012,
             tail_beyond_m: 0.008,
             tail_tension_m: 0.003,
+            take_tail_jaw_rad: 0.35,
+            loosen_m: 0.004,
+            tail_swing_lean: [0.8, 0.0, 0.0],
+            tail_via_m: Vec::new(),
             tail_give_fraction: 0.0,
             left_pull_to_m: [0.0, 0.035, 0.01],
             right_pull_to_m: [0.0, -0.045, 0.01],
@@ -202,6 +214,10 @@ pub fn plan_instrument_tie(world: &SimWorld, geometry: &TieGeometry, variation: 
         Path::Around { centre_m: centre, axis, turns: geometry.winding_turns, pitch_m: 0.0 },
         d(geometry.winding_s),
     );
+    // Then it gives a little thread back, so the coils loosen enough to slide along the jaws.
+    right.wait_until(right.time_s() + pause[2]);
+    let slack_dir = (centre - right.position_m()).normalize();
+    right.go(Path::To(right.position_m() + slack_dir * geometry.loosen_m), d(0.5));
     let wound_s = right.time_s();
     // Meanwhile the assist gives the winding thread, moving the tail towards the entry point.
     let tail_now = assist.position_m();
@@ -211,24 +227,33 @@ pub fn plan_instrument_tie(world: &SimWorld, geometry: &TieGeometry, variation: 
 
     // The assist presents the tail ahead of the left's jaws; the left opens, goes there, closes.
     assist.wait_until(wound_s + pause[3]);
-    // Beside the coils first, then across in front of the jaws: the tail crosses the plane of the
-    // coils away from them and from the long end below them.
-    // The assist holds the tail beyond the jaws' centre, on the line from the entry point.
-    let tail_hold = tail_point + (tail_point - entry).normalize() * geometry.tail_beyond_m;
     // The tail swung taut about the entry point (so it neither sags onto the tissue nor catches on
-    // the flap), then brought in to where the left will take it.
-    let radius = (assist.position_m() - entry).norm() + geometry.tail_tension_m;
+    // the flap) until it runs straight through the point ahead of the left's jaws; the assist holds it
+    // there, beyond that point (at least `tail_beyond_m`).
+    let radius = ((assist.position_m() - entry).norm() + geometry.tail_tension_m)
+        .max((tail_point - entry).norm() + geometry.tail_beyond_m);
     let outward = (assist.position_m() - entry).normalize();
-    assist.go(Path::To(entry + outward * radius), d(0.4));
-    let towards = (tail_hold - entry).normalize();
-    let swing_axis = outward.cross(&towards);
-    if let Some(axis) = Unit::try_new(swing_axis, 1e-9) {
-        let turns = outward.dot(&towards).clamp(-1.0, 1.0).acos() / std::f64::consts::TAU;
-        assist.go(Path::Around { centre_m: entry, axis, turns, pitch_m: 0.0 }, d(1.5));
+    let towards = (tail_point - entry).normalize();
+    if !geometry.tail_via_m.is_empty() {
+        // A route given in the stitch frame, then up to the hold.
+        for p in &geometry.tail_via_m {
+            assist.go(Path::To(at(*p)), d(0.8));
+        }
+        assist.go(Path::To(entry + towards * radius), d(0.8));
+    } else {
+        assist.go(Path::To(entry + outward * radius), d(0.4));
+        // Through a direction leaning off the shortest arc, where the assist's wrist is far from its
+        // singular pose.
+        let via = (outward + towards).normalize() + dir(geometry.tail_swing_lean);
+        for (from, to) in [(outward, via.normalize()), (via.normalize(), towards)] {
+            if let Some(axis) = Unit::try_new(from.cross(&to), 1e-9) {
+                let turns = from.dot(&to).clamp(-1.0, 1.0).acos() / std::f64::consts::TAU;
+                assist.go(Path::Around { centre_m: entry, axis, turns, pitch_m: 0.0 }, d(0.8));
+            }
+        }
     }
-    assist.go(Path::To(tail_hold), d(0.6));
     left.wait_until(wound_s + pause[3]);
-    left.jaw(open, d(0.3));
+    left.jaw(geometry.take_tail_jaw_rad, d(0.3));
     left.wait_until(assist.time_s());
     left.go(Path::To(tail_point), d(1.0));
     left.wait_until(left.time_s() + pause[4]);
