@@ -556,9 +556,10 @@ pub fn tip_for_jaw_centre(trocar_m: &Vector3<f64>, jaw_centre_m: &Vector3<f64>) 
     }
 }
 
-/// The jaws close on what lies within this distance of their centre (beyond a segment's half
-/// length), m.
-pub const GRASP_REACH_M: f64 = 0.003;
+/// The jaws close on what passes within this distance of their line (hinge to tip), m: about a jaw's
+/// radius, so what lies between them, not a coil wound around them (the thread touching the outside
+/// of closed jaws is a jaw radius plus its own radius, 1.9 mm, from that line).
+pub const GRASP_REACH_M: f64 = 0.0016;
 
 /// The jaws hold what lies this far behind the tip, along the tip's z axis, m.
 pub const JAW_CENTRE_OFFSET_M: f64 = 0.005;

@@ -31,6 +31,9 @@ pub struct TieGeometry {
     /// The winding first moves this way (made perpendicular to the axis): it picks the sense of the
     /// turns about the left's jaws.
     pub winding_towards: [f64; 3],
+    /// Where the left's jaws point while the long end is wound around them (stitch frame); `None`: at
+    /// the right's trocar, so that the right's shaft circles them at a distance.
+    pub left_jaw_direction: Option<[f64; 3]>,
     /// The winding circles this far behind the left's jaw centre (towards its wrist), m.
     pub winding_behind_m: f64,
     /// How long the winding takes, s (slow enough for the arm to follow the circle).
@@ -73,6 +76,7 @@ impl Default for TieGeometry {
             winding_radius_m: 0.02,
             winding_lead_rad: 1.6,
             winding_towards: [0.0, 0.0, 1.0],
+            left_jaw_direction: None,
             winding_behind_m: 0.003,
             winding_s: 8.0,
             winding_turns: 2.0,
@@ -175,7 +179,10 @@ pub fn plan_instrument_tie(world: &SimWorld, geometry: &TieGeometry, variation: 
     // winding starts: the long end then runs from the stitch past the left's jaws.
     let winding_point = at(geometry.winding_point_m) + variation.winding_offset_m;
     // The left's jaws point at the right's trocar: the right's shaft then circles them at a distance.
-    let jaws = Unit::new_normalize(trocar_of(&world.config, ArmName::Right) - winding_point);
+    let jaws = match geometry.left_jaw_direction {
+        Some(d) => Unit::new_normalize(dir(d)),
+        None => Unit::new_normalize(trocar_of(&world.config, ArmName::Right) - winding_point),
+    };
     let axis = jaws;
     let across = |d: Vector3<f64>| Unit::new_normalize(d - axis.into_inner() * d.dot(&axis));
     // The winding starts opposite the exit point, so that the long end already lies across the
