@@ -44,6 +44,8 @@ pub struct TieGeometry {
     pub tail_ahead_m: f64,
     /// If not empty, the assist takes the tail along these points (stitch frame) instead of the swing.
     pub tail_via_m: Vec<[f64; 3]>,
+    /// Where the assist's jaws point along the tail's route (stitch frame); `None`: along its shaft.
+    pub assist_jaw_direction: Option<[f64; 3]>,
     /// The tail's swing about the entry point leans this way off the shortest arc (stitch frame).
     pub tail_swing_lean: [f64; 3],
     /// After winding, the right moves this much towards the left's jaws to loosen the coils, m.
@@ -87,6 +89,7 @@ impl Default for TieGeometry {
             loosen_m: 0.004,
             tail_swing_lean: [0.8, 0.0, 0.0],
             tail_via_m: Vec::new(),
+            assist_jaw_direction: None,
             tail_give_fraction: 0.0,
             left_pull_to_m: [0.0, 0.035, 0.01],
             right_pull_to_m: [0.0, -0.045, 0.01],
@@ -244,7 +247,10 @@ pub fn plan_instrument_tie(world: &SimWorld, geometry: &TieGeometry, variation: 
     if !geometry.tail_via_m.is_empty() {
         // A route given in the stitch frame, then up to the hold.
         for p in &geometry.tail_via_m {
-            assist.go(Path::To(at(*p)), d(0.8));
+            match geometry.assist_jaw_direction {
+                Some(j) => assist.go_pointing(Path::To(at(*p)), d(0.8), dir(j)),
+                None => assist.go(Path::To(at(*p)), d(0.8)),
+            }
         }
         assist.go(Path::To(entry + towards * radius), d(0.8));
     } else {
