@@ -368,7 +368,11 @@ impl SimWorld {
             if let Some(grasp) = &arm.grasp {
                 near.extend(grasp.segment.saturating_sub(2)..=grasp.segment + 2);
             }
-            if arm.command.tool.jaw_rad < self.jaw_closed_rad && arm.grasp.is_none() && !arm.closed_empty {
+            // Closing (told to close, or closing now): what lies between the jaws does not push them
+            // apart; the grasp takes it once they are closed.
+            let closing = arm.command.tool.jaw_rad < self.jaw_closed_rad
+                || arm.command.tool.jaw_rad < arm.actual().tool.jaw_rad - 1e-3;
+            if closing && arm.grasp.is_none() && !arm.closed_empty {
                 // What passes between the closing jaws (near their line), as the grasp will judge it.
                 let tip = poses[self.rig.arm(arm.name).tip_link];
                 let hinge = (tip * Point3::new(0.0, 0.0, -2.0 * JAW_CENTRE_OFFSET_M)).coords;

@@ -31,6 +31,8 @@ pub struct TieGeometry {
     /// The winding first moves this way (made perpendicular to the axis): it picks the sense of the
     /// turns about the left's jaws.
     pub winding_towards: [f64; 3],
+    /// If set, the left takes its coils to the tail instead of the assist bringing the tail.
+    pub left_fetches: Option<LeftFetch>,
     /// Where the left's jaws point while the long end is wound around them (stitch frame); `None`: at
     /// the right's trocar, so that the right's shaft circles them at a distance.
     pub left_jaw_direction: Option<[f64; 3]>,
@@ -67,6 +69,10 @@ pub struct TieGeometry {
     pub assist_retreat_m: [f64; 3],
     /// Every move is slowed until no joint needs more than this fraction of its rated speed.
     pub speed_fraction: f64,
+    /// Before the pulls, the left draws the tail back this far along its jaws, m.
+    pub draw_back_m: f64,
+    /// ... while the right moves this fraction of the same way.
+    pub right_follows_draw: f64,
     /// Both pulls let go at this force, N.
     pub pull_force_n: f64,
 }
@@ -75,17 +81,22 @@ impl Default for TieGeometry {
     fn default() -> Self {
         Self {
             winding_point_m: [0.0, -0.02, 0.045],
-            winding_radius_m: 0.02,
+            winding_radius_m: 0.011,
             winding_lead_rad: 1.6,
             winding_towards: [0.0, 0.0, 1.0],
             left_jaw_direction: None,
+            left_fetches: Some(LeftFetch {
+                along_tail: 0.6,
+                jaw_direction: [0.0, 0.0, -1.0],
+                approach_m: 0.012,
+            }),
             winding_behind_m: 0.003,
             winding_s: 8.0,
             winding_turns: 2.0,
             tail_ahead_m: 0.012,
             tail_beyond_m: 0.008,
             tail_tension_m: 0.003,
-            take_tail_jaw_rad: 0.35,
+            take_tail_jaw_rad: 0.6,
             loosen_m: 0.004,
             tail_swing_lean: [0.8, 0.0, 0.0],
             tail_via_m: Vec::new(),
@@ -95,9 +106,23 @@ impl Default for TieGeometry {
             right_pull_to_m: [0.0, -0.045, 0.01],
             assist_retreat_m: [0.04, 0.04, 0.04],
             speed_fraction: 0.3,
-            pull_force_n: 1.0,
+            draw_back_m: 0.032,
+            right_follows_draw: 0.0,
+            pull_force_n: 1.9,
         }
     }
+}
+
+/// How the left goes to the tail with the coils on its jaws.
+#[derive(Clone, Debug, PartialEq)]
+pub struct LeftFetch {
+    /// Where on the tail the left closes: this fraction of the way from the entry point to the
+    /// assist's jaws.
+    pub along_tail: f64,
+    /// Where the left's jaws point to take it (stitch frame).
+    pub jaw_direction: [f64; 3],
+    /// The last stretch onto the tail, along the jaws, m.
+    pub approach_m: f64,
 }
 
 /// How a human performance varies from run to run.
@@ -235,43 +260,66 @@ pub fn plan_instrument_tie(world: &SimWorld, geometry: &TieGeometry, variation: 
     assist
         .go(Path::To(tail_now + (entry - tail_now) * geometry.tail_give_fraction), wound_s - assist.time_s());
 
-    // The assist presents the tail ahead of the left's jaws; the left opens, goes there, closes.
-    assist.wait_until(wound_s + pause[3]);
-    // The tail swung taut about the entry point (so it neither sags onto the tissue nor catches on
-    // the flap) until it runs straight through the point ahead of the left's jaws; the assist holds it
-    // there, beyond that point (at least `tail_beyond_m`).
-    let radius = ((assist.position_m() - entry).norm() + geometry.tail_tension_m)
-        .max((tail_point - entry).norm() + geometry.tail_beyond_m);
-    let outward = (assist.position_m() - entry).normalize();
-    let towards = (tail_point - entry).normalize();
-    if !geometry.tail_via_m.is_empty() {
-        // A route given in the stitch frame, then up to the hold.
-        for p in &geometry.tail_via_m {
-            match geometry.assist_jaw_direction {
-                Some(j) => assist.go_pointing(Path::To(at(*p)), d(0.8), dir(j)),
-                None => assist.go(Path::To(at(*p)), d(0.8)),
-            }
-        }
-        assist.go(Path::To(entry + towards * radius), d(0.8));
+    if let Some(fetch) = &geometry.left_fetches {
+        // The left takes its coils to the tail where the assist holds it (the right follows, so the
+        // coils stay as they are): to a point behind the tail along the new jaw direction, then onto
+        // the tail, jaws open.
+        let tail_hold = assist.position_m();
+        let on_tail = entry + (tail_hold - entry) * fetch.along_tail;
+        let jaws_to = dir(fetch.jaw_direction).normalize();
+        let behind = on_tail - jaws_to * fetch.approach_m;
+        left.wait_until(wound_s + pause[3]);
+        left.jaw(geometry.take_tail_jaw_rad, d(0.3));
+        left.wait_until(left.time_s() + d(0.3));
+        let shift = behind - left.position_m();
+        let relocate_from = left.time_s();
+        left.go_pointing(Path::To(behind), d(1.5), jaws_to);
+        right.wait_until(relocate_from);
+        right.go(Path::To(right.position_m() + shift), left.time_s() - relocate_from);
+        left.wait_until(left.time_s() + pause[4]);
+        left.go(Path::To(on_tail), d(0.8));
+        left.wait_until(left.time_s() + pause[4]);
+        left.jaw(0.0, d(0.3));
+        left.wait_until(left.time_s() + d(0.3) + 0.1);
     } else {
-        assist.go(Path::To(entry + outward * radius), d(0.4));
-        // Through a direction leaning off the shortest arc, where the assist's wrist is far from its
-        // singular pose.
-        let via = (outward + towards).normalize() + dir(geometry.tail_swing_lean);
-        for (from, to) in [(outward, via.normalize()), (via.normalize(), towards)] {
-            if let Some(axis) = Unit::try_new(from.cross(&to), 1e-9) {
-                let turns = from.dot(&to).clamp(-1.0, 1.0).acos() / std::f64::consts::TAU;
-                assist.go(Path::Around { centre_m: entry, axis, turns, pitch_m: 0.0 }, d(0.8));
+        // The assist presents the tail ahead of the left's jaws; the left opens, goes there, closes.
+        assist.wait_until(wound_s + pause[3]);
+        // The tail swung taut about the entry point (so it neither sags onto the tissue nor catches on
+        // the flap) until it runs straight through the point ahead of the left's jaws; the assist holds it
+        // there, beyond that point (at least `tail_beyond_m`).
+        let radius = ((assist.position_m() - entry).norm() + geometry.tail_tension_m)
+            .max((tail_point - entry).norm() + geometry.tail_beyond_m);
+        let outward = (assist.position_m() - entry).normalize();
+        let towards = (tail_point - entry).normalize();
+        if !geometry.tail_via_m.is_empty() {
+            // A route given in the stitch frame, then up to the hold.
+            for p in &geometry.tail_via_m {
+                match geometry.assist_jaw_direction {
+                    Some(j) => assist.go_pointing(Path::To(at(*p)), d(0.8), dir(j)),
+                    None => assist.go(Path::To(at(*p)), d(0.8)),
+                }
+            }
+            assist.go(Path::To(entry + towards * radius), d(0.8));
+        } else {
+            assist.go(Path::To(entry + outward * radius), d(0.4));
+            // Through a direction leaning off the shortest arc, where the assist's wrist is far from its
+            // singular pose.
+            let via = (outward + towards).normalize() + dir(geometry.tail_swing_lean);
+            for (from, to) in [(outward, via.normalize()), (via.normalize(), towards)] {
+                if let Some(axis) = Unit::try_new(from.cross(&to), 1e-9) {
+                    let turns = from.dot(&to).clamp(-1.0, 1.0).acos() / std::f64::consts::TAU;
+                    assist.go(Path::Around { centre_m: entry, axis, turns, pitch_m: 0.0 }, d(0.8));
+                }
             }
         }
+        left.wait_until(wound_s + pause[3]);
+        left.jaw(geometry.take_tail_jaw_rad, d(0.3));
+        left.wait_until(assist.time_s());
+        left.go(Path::To(tail_point), d(1.0));
+        left.wait_until(left.time_s() + pause[4]);
+        left.jaw(0.0, d(0.3));
+        left.wait_until(left.time_s() + d(0.3) + 0.1);
     }
-    left.wait_until(wound_s + pause[3]);
-    left.jaw(geometry.take_tail_jaw_rad, d(0.3));
-    left.wait_until(assist.time_s());
-    left.go(Path::To(tail_point), d(1.0));
-    left.wait_until(left.time_s() + pause[4]);
-    left.jaw(0.0, d(0.3));
-    left.wait_until(left.time_s() + d(0.3) + 0.1);
     let grasped_s = left.time_s();
 
     // The assist lets go and retreats (A1).
@@ -280,11 +328,20 @@ pub fn plan_instrument_tie(world: &SimWorld, geometry: &TieGeometry, variation: 
     assist.wait_until(grasped_s + d(0.2) + pause[5]);
     assist.go(Path::To(at(geometry.assist_retreat_m)), d(1.2));
 
-    // L4 and R3: both pull until the set force, then let go.
-    let pull_s = assist.time_s().max(grasped_s + d(0.4));
+    // L4 and R3. First the left draws the tail back out of its coils, along its jaws, while the right
+    // follows a little so that the coils stay loose and slide off the jaws onto the tail; then both
+    // pull apart until the set force, and let go.
+    let draw_s = assist.time_s().max(grasped_s + d(0.4));
+    left.wait_until(draw_s);
+    right.wait_until(draw_s);
+    let first_s = left.time_s();
+    let draw = -left.jaw_direction() * geometry.draw_back_m;
+    left.go(Path::To(left.position_m() + draw), d(1.2));
+    right.go(Path::To(right.position_m() + draw * geometry.right_follows_draw), left.time_s() - first_s);
+    let pull_s = left.time_s() + pause[4];
     for (track, to) in [(&mut left, geometry.left_pull_to_m), (&mut right, geometry.right_pull_to_m)] {
         track.wait_until(pull_s);
-        let from_s = track.time_s();
+        let from_s = pull_s;
         let to = at(to);
         let along_shaft = to - trocar_of(&world.config, track_arm(track));
         track.go_pointing(Path::To(to), d(2.5), along_shaft);
