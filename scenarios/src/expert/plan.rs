@@ -52,6 +52,8 @@ pub struct TieGeometry {
     pub tail_swing_lean: [f64; 3],
     /// After winding, the right moves this much towards the left's jaws to loosen the coils, m.
     pub loosen_m: f64,
+    /// ... and this much back along the left's jaws, drawing the coils towards their hinge, m.
+    pub coils_back_m: f64,
     /// The left opens its jaws this far to take the tail, rad (wide jaws let the coils slip between).
     pub take_tail_jaw_rad: f64,
     /// The assist first draws the tail this much tauter, m.
@@ -89,6 +91,7 @@ impl Default for TieGeometry {
                 along_tail: 0.6,
                 jaw_direction: [0.0, 0.0, -1.0],
                 approach_m: 0.012,
+                stop_short_m: 0.0,
             }),
             winding_behind_m: 0.003,
             winding_s: 8.0,
@@ -98,6 +101,7 @@ impl Default for TieGeometry {
             tail_tension_m: 0.003,
             take_tail_jaw_rad: 0.6,
             loosen_m: 0.004,
+            coils_back_m: 0.0,
             tail_swing_lean: [0.8, 0.0, 0.0],
             tail_via_m: Vec::new(),
             assist_jaw_direction: None,
@@ -123,6 +127,8 @@ pub struct LeftFetch {
     pub jaw_direction: [f64; 3],
     /// The last stretch onto the tail, along the jaws, m.
     pub approach_m: f64,
+    /// The jaws' centre stops this far short of the tail, m.
+    pub stop_short_m: f64,
 }
 
 /// How a human performance varies from run to run.
@@ -252,7 +258,9 @@ pub fn plan_instrument_tie(world: &SimWorld, geometry: &TieGeometry, variation: 
     // Then it gives a little thread back, so the coils loosen enough to slide along the jaws.
     right.wait_until(right.time_s() + pause[2]);
     let slack_dir = (centre - right.position_m()).normalize();
-    right.go(Path::To(right.position_m() + slack_dir * geometry.loosen_m), d(0.5));
+    // ... and draws the coils back along the left's jaws, towards their hinge.
+    let back = -jaws.into_inner() * geometry.coils_back_m;
+    right.go(Path::To(right.position_m() + slack_dir * geometry.loosen_m + back), d(0.5));
     let wound_s = right.time_s();
     // Meanwhile the assist gives the winding thread, moving the tail towards the entry point.
     let tail_now = assist.position_m();
@@ -277,7 +285,9 @@ pub fn plan_instrument_tie(world: &SimWorld, geometry: &TieGeometry, variation: 
         right.wait_until(relocate_from);
         right.go(Path::To(right.position_m() + shift), left.time_s() - relocate_from);
         left.wait_until(left.time_s() + pause[4]);
-        left.go(Path::To(on_tail), d(0.8));
+        // The jaws' centre stops short of the tail, so the tail lies towards their tips, ahead of
+        // the coils: every coil then passes over it when the jaws draw back.
+        left.go(Path::To(on_tail - jaws_to * fetch.stop_short_m), d(0.8));
         left.wait_until(left.time_s() + pause[4]);
         left.jaw(0.0, d(0.3));
         left.wait_until(left.time_s() + d(0.3) + 0.1);
@@ -336,7 +346,11 @@ pub fn plan_instrument_tie(world: &SimWorld, geometry: &TieGeometry, variation: 
     right.wait_until(draw_s);
     let first_s = left.time_s();
     let draw = -left.jaw_direction() * geometry.draw_back_m;
-    left.go(Path::To(left.position_m() + draw), d(1.2));
+    // The wrist straightens a little on the way (a bent wrist drawn back runs into its limit).
+    let drawn_to = left.position_m() + draw;
+    let shaft = (drawn_to - trocar_of(&world.config, ArmName::Left)).normalize();
+    let relaxed = left.jaw_direction().lerp(&shaft, 0.4);
+    left.go_pointing(Path::To(drawn_to), d(1.2), relaxed);
     right.go(Path::To(right.position_m() + draw * geometry.right_follows_draw), left.time_s() - first_s);
     let pull_s = left.time_s() + pause[4];
     for (track, to) in [(&mut left, geometry.left_pull_to_m), (&mut right, geometry.right_pull_to_m)] {
