@@ -36,3 +36,26 @@ fn bad_seed_ranges_are_refused() {
         assert!(err.contains("--seeds"), "{range}: {err}");
     }
 }
+
+#[test]
+fn the_learner_accepts_the_canonical_demonstration_by_default() {
+    let dir = std::env::temp_dir().join(format!("knotlab-canonical-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let kb = dir.join("kb.json");
+    let (code, v) = json(&["learn", "--out", kb.to_str().unwrap(), "--json"]);
+    assert_eq!(code, 0, "scenarios/demos/instrument-tie is a demonstration of the task: {v}");
+    assert_eq!(v["accepted"], true, "{v}");
+    assert_eq!(v["demo"], "scenarios/demos/instrument-tie", "{v}");
+    let names: Vec<String> = v["instruments"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .flat_map(|i| {
+            i["primitives"].as_array().unwrap().iter().map(|p| p["name"].as_str().unwrap().to_owned())
+        })
+        .collect();
+    for name in ["L1", "L2", "L3", "L4", "R2", "R3", "A1"] {
+        assert!(names.iter().any(|n| n == name), "no {name} in {names:?}");
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -367,6 +367,9 @@ pub fn plan_instrument_tie(world: &SimWorld, geometry: &TieGeometry, variation: 
             action: ForceAction::OpenJaw { jaw_rad: open },
         });
         track.wait_until(track.time_s() + 1.0);
+        // Both let go at the end, whether or not the set force was reached.
+        track.jaw(open, d(0.2));
+        track.wait_until(track.time_s() + d(0.2) + 0.3);
     }
     assist.wait_until(left.time_s());
     Skill {
