@@ -345,8 +345,8 @@ impl SimWorld {
     }
 
     /// The pairs that must not touch this step: segments inside the tissue and the flaps; the jaws and
-    /// what they hold or are closing on (the held segment and its neighbours, and any segment within
-    /// the jaws' reach while they are told to close).
+    /// what they hold (the held segment and its neighbours), are closing on (what lies between them)
+    /// or just lost (what is near their centre). Jaws that closed on nothing touch everything.
     fn contact_filter(&self, poses: &[IsometryMatrix3<f64>]) -> ContactFilter {
         let mut filter = ContactFilter::default();
         let colliders_of = |i: usize| -> Vec<ColliderHandle> {
@@ -367,6 +367,21 @@ impl SimWorld {
             let mut near: Vec<usize> = Vec::new();
             if let Some(grasp) = &arm.grasp {
                 near.extend(grasp.segment.saturating_sub(2)..=grasp.segment + 2);
+            }
+            if arm.slipped {
+                // Slipped, until the jaws reopen: the thread found inside the jaws the moment it slipped
+                // out would be thrown out at speed, so what is near their centre passes. (Holding jaws
+                // do touch the rest of the thread: coils wound around them must slide off over their
+                // tips.)
+                let tip = poses[self.rig.arm(arm.name).tip_link];
+                let centre = (tip * Point3::new(0.0, 0.0, -JAW_CENTRE_OFFSET_M)).coords;
+                let clearance = HELD_CLEARANCE_M + self.thread.segment_length_m;
+                for (i, h) in self.thread.segments.iter().enumerate() {
+                    let t = self.physics.bodies[*h].translation();
+                    if (Vector3::new(t.x, t.y, t.z) - centre).norm() < clearance {
+                        near.push(i);
+                    }
+                }
             }
             // Closing (told to close, or closing now): what lies between the jaws does not push them
             // apart; the grasp takes it once they are closed.
@@ -564,6 +579,10 @@ pub fn tip_for_jaw_centre(trocar_m: &Vector3<f64>, jaw_centre_m: &Vector3<f64>) 
 /// radius, so what lies between them, not a coil wound around them (the thread touching the outside
 /// of closed jaws is a jaw radius plus its own radius, 1.9 mm, from that line).
 pub const GRASP_REACH_M: f64 = 0.0016;
+
+/// Thread within this distance of the centre of jaws whose grasp slipped (beyond a segment's length)
+/// does not collide with them until they reopen, m.
+pub const HELD_CLEARANCE_M: f64 = 0.003;
 
 /// The jaws hold what lies this far behind the tip, along the tip's z axis, m.
 pub const JAW_CENTRE_OFFSET_M: f64 = 0.005;
