@@ -1,14 +1,14 @@
 //! The scripted expert knots the simulated thread: seed 1 of the nominal scene, with the human-like
-//! variation on, leaves the thread knotted (a single throw at the time of writing; the surgeon's double
-//! throw that issue 6 asks for comes out in about one run in sixteen, see the issue's notes). A change
-//! to the scene, the grasp model or the plan that stops the thread from being knotted fails here.
+//! variation on, leaves a surgeon's double throw that is down on the tissue by the scene's limits. (It
+//! does not yet hold the wound closed once released, so it is not a success: see issue 6's notes.)
+//! A change to the scene, the grasp model or the plan that stops the expert from tying it fails here.
 
 use knotlab_scenarios::expert::{RecordOptions, demonstrate};
 use knotlab_sim::knot::KnotType;
 use knotlab_sim::scene::parse_scene;
 
 #[test]
-fn seed_1_leaves_the_thread_knotted() {
+fn seed_1_ties_a_surgeons_double_throw_down_on_the_tissue() {
     let scene = parse_scene(include_str!("../default.toml"), "default.toml").expect("the shipped scene");
     let options = RecordOptions { cycles_per_sample: 10, ..RecordOptions::default() };
     let run = demonstrate(scene, "scenarios/default.toml", 1, true, &options).expect("records");
@@ -23,6 +23,10 @@ fn seed_1_leaves_the_thread_knotted() {
         run.wall_s
     );
     assert_eq!(run.fault, None, "the controller ran the skill to its end");
-    let knot = e.knot_before.expect("a centreline the classifier reads");
-    assert_ne!(knot, KnotType::Unknot, "the thread is not knotted: {:?}", run.events);
+    assert_eq!(e.knot_before, Some(KnotType::Surgeons), "the knot: {:?}", run.events);
+    let limits = parse_scene(include_str!("../default.toml"), "default.toml").expect("the scene").evaluation;
+    let height = e.height_m.expect("a knot has a height");
+    let distance = e.stitch_distance_m.expect("and a distance from the stitch");
+    assert!(height <= limits.max_knot_height_m, "{height} m above the tissue");
+    assert!(distance <= limits.max_stitch_distance_m, "{distance} m from the stitch");
 }

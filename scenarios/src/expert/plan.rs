@@ -99,7 +99,7 @@ impl Default for TieGeometry {
             tail_ahead_m: 0.012,
             tail_beyond_m: 0.008,
             tail_tension_m: 0.003,
-            take_tail_jaw_rad: 0.6,
+            take_tail_jaw_rad: 0.5,
             loosen_m: 0.004,
             coils_back_m: 0.0,
             tail_swing_lean: [0.8, 0.0, 0.0],
