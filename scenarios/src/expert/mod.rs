@@ -9,4 +9,4 @@ pub mod plan;
 pub mod record;
 
 pub use plan::{TieGeometry, Variation, plan_instrument_tie};
-pub use record::{DemoError, DemoRun, RecordOptions, demonstrate, record_demonstration};
+pub use record::{DemoRun, ExpertError, RecordOptions, demonstrate, record_demonstration};

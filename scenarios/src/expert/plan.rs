@@ -175,10 +175,6 @@ impl Variation {
     }
 }
 
-fn track_arm(track: &TrackBuilder) -> ArmName {
-    track.arm()
-}
-
 /// The jaw centre of an arm as its links stand (world frame, m).
 fn jaw_centre_m(world: &SimWorld, arm: ArmName) -> Vector3<f64> {
     (world.world_from_tip(arm) * Point3::new(0.0, 0.0, -JAW_CENTRE_OFFSET_M)).coords
@@ -357,7 +353,7 @@ pub fn plan_instrument_tie(world: &SimWorld, geometry: &TieGeometry, variation: 
         track.wait_until(pull_s);
         let from_s = pull_s;
         let to = at(to);
-        let along_shaft = to - trocar_of(&world.config, track_arm(track));
+        let along_shaft = to - trocar_of(&world.config, track.arm());
         track.go_pointing(Path::To(to), d(2.5), along_shaft);
         track.event(ForceEvent {
             name: "set force".into(),

@@ -187,7 +187,7 @@ pub const SIM_RIG_TOML: &str = include_str!("../../rigs/sim.toml");
 
 /// Why the expert could not perform at all.
 #[derive(Debug, thiserror::Error)]
-pub enum DemoError {
+pub enum ExpertError {
     /// The scene cannot be built.
     #[error("{scene}: {source}")]
     World {
@@ -212,12 +212,12 @@ pub fn demonstrate(
     seed: u64,
     human: bool,
     options: &RecordOptions,
-) -> Result<DemoRun, DemoError> {
-    let rig = Rig::shipped().map_err(|e| DemoError::Rig(e.to_string()))?;
+) -> Result<DemoRun, ExpertError> {
+    let rig = Rig::shipped().map_err(|e| ExpertError::Rig(e.to_string()))?;
     let config = knotlab_hw::rig_config::parse_rig_config(SIM_RIG_TOML, "scenarios/rigs/sim.toml")
-        .map_err(|e| DemoError::Rig(e.to_string()))?;
+        .map_err(|e| ExpertError::Rig(e.to_string()))?;
     let mut world = SimWorld::new(scene, rig.clone())
-        .map_err(|source| DemoError::World { scene: scene_name.to_owned(), source })?;
+        .map_err(|source| ExpertError::World { scene: scene_name.to_owned(), source })?;
     world.reseed(seed);
     let variation = if human { super::Variation::human(seed) } else { super::Variation::none() };
     let skill = super::plan_instrument_tie(&world, &super::TieGeometry::default(), &variation);
