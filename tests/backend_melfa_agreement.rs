@@ -23,6 +23,7 @@ use knotlab_hw::melfa::emulator::{DropPolicy, Emulator, EmulatorConfig};
 use knotlab_hw::melfa::{CR750_CYCLE_S, Layout};
 use knotlab_hw::rig::{ArmName, Rig};
 use knotlab_hw::rig_config::{build_rig, parse_rig_config};
+use knotlab_hw::skill::profile::min_jerk;
 use knotlab_hw::skill::{JawKey, Orientation, PoseKey, Skill, Track};
 use knotlab_sim::backend::SimBackend;
 use knotlab_sim::scene::parse_scene;
@@ -31,10 +32,6 @@ use nalgebra::{UnitQuaternion, Vector3};
 
 const ARM: ArmName = ArmName::Left;
 const DURATION_S: f64 = 4.0;
-
-fn min_jerk(t: f64) -> f64 {
-    t * t * t * (10.0 - 15.0 * t + 6.0 * t * t)
-}
 
 /// From the tip's start pose: 1.5 cm along a minimum-jerk profile over 4 s while the tip frame turns by
 /// 0.15 rad about its x axis; the jaw closes from 0.6 to 0.2 rad over the second half.

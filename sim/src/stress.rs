@@ -8,6 +8,7 @@
 use std::time::Instant;
 
 use knotlab_hw::rig::ArmName;
+use knotlab_hw::skill::profile::min_jerk;
 use nalgebra::{Point3, Vector3};
 use serde::Serialize;
 
@@ -67,12 +68,6 @@ struct Move {
     until_s: f64,
     to_m: [f64; 3],
     jaw_rad: f64,
-}
-
-/// Minimum-jerk blend from 0 to 1.
-fn min_jerk(s: f64) -> f64 {
-    let s = s.clamp(0.0, 1.0);
-    s * s * s * (10.0 - 15.0 * s + 6.0 * s * s)
 }
 
 fn script(seconds: f64, world: &SimWorld) -> Vec<Move> {

@@ -4,6 +4,7 @@
 //!
 //! - [`keys`]: pose and jaw keys and how the controller interpolates between them.
 //! - [`event`]: force-triggered events ("open the jaw when the force exceeds F").
+//! - [`profile`]: motion profiles for skill generators (minimum jerk).
 //! - [`check`]: the checks a skill must pass before it runs, naming each bad field.
 //!
 //! Room to grow: events carry names, and what triggers an event is its own type, so a later trigger
@@ -13,6 +14,7 @@
 pub mod check;
 pub mod event;
 pub mod keys;
+pub mod profile;
 mod serde_arm;
 
 pub use check::{SkillError, SkillProblem};

@@ -14,6 +14,7 @@ use knotlab_hw::kinematics::{ArmJoints, TipOrientation, TipTarget};
 use knotlab_hw::melfa::emulator::{DropPolicy, Emulator, EmulatorConfig, EmulatorError, EmulatorReport};
 use knotlab_hw::melfa::{CR750_CYCLE_S, Layout};
 use knotlab_hw::rig::{ArmName, Rig};
+use knotlab_hw::skill::profile::min_jerk;
 use knotlab_hw::skill::{JawKey, Orientation, PoseKey, Skill, Track};
 use nalgebra::{UnitQuaternion, Vector3};
 
@@ -44,11 +45,6 @@ pub fn parked(arm: ArmName) -> (ArmJoints, Vector3<f64>) {
         joints.tool.jaw_rad = 0.6;
     }
     (joints, tip)
-}
-
-/// Minimum-jerk progress 0..1 over 0..1.
-fn min_jerk(t: f64) -> f64 {
-    t * t * t * (10.0 - 15.0 * t + 6.0 * t * t)
 }
 
 /// A gentle skill for one instrument: from `start` the tip moves by `offset_m` along a minimum-jerk

@@ -1,5 +1,5 @@
-//! Human-like motion for the scripted expert: minimum-jerk segments (straight or along an arc), a small
-//! tremor, and a builder that turns them into a track's time-stamped keys.
+//! Human-like motion for the scripted expert: minimum-jerk segments (`hw`'s profile), straight or
+//! along an arc, a small tremor, and a builder that turns them into a track's time-stamped keys.
 
 use knotlab_hw::kinematics::{ArmJoints, ArmModel};
 use knotlab_hw::rig::ArmName;
@@ -7,11 +7,7 @@ use knotlab_hw::skill::{ForceEvent, JawKey, Orientation, PoseKey, Track};
 use knotlab_sim::world::JAW_CENTRE_OFFSET_M;
 use nalgebra::{Rotation3, UnitQuaternion, UnitVector3, Vector3};
 
-/// Minimum-jerk blend from 0 to 1 (Flash and Hogan's profile of a reaching hand).
-pub fn min_jerk(s: f64) -> f64 {
-    let s = s.clamp(0.0, 1.0);
-    s * s * s * (10.0 - 15.0 * s + 6.0 * s * s)
-}
+pub use knotlab_hw::skill::profile::min_jerk;
 
 /// Physiological tremor: a sum of three sines between 8 and 12 Hz per axis, of a given amplitude.
 #[derive(Clone, Debug, PartialEq)]
@@ -317,15 +313,6 @@ impl TrackBuilder {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn min_jerk_starts_and_ends_at_rest() {
-        assert_eq!(min_jerk(0.0), 0.0);
-        assert_eq!(min_jerk(1.0), 1.0);
-        assert!((min_jerk(0.5) - 0.5).abs() < 1e-12);
-        let h = 1e-6;
-        assert!((min_jerk(h) - min_jerk(0.0)) / h < 1e-6, "no speed at the start");
-    }
 
     #[test]
     fn a_circle_comes_back_after_whole_turns() {
