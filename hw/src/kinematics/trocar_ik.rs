@@ -19,7 +19,7 @@
 use nalgebra::{IsometryMatrix3, Matrix3, Rotation3, Translation3, Vector3};
 use std::f64::consts::{PI, TAU};
 
-use super::arm_ik::{arm_branches, joint_distance_sq};
+use super::arm_ik::{joint_distance_sq, visit_branches};
 use super::error::IkError;
 use super::joints::{ArmJoints, ToolJoints};
 use super::limits::{JointId, JointLimit, wrap_angle};
@@ -230,35 +230,43 @@ impl ArmModel {
             Rotation3::from_matrix_unchecked(Matrix3::from_columns(&[x_roll, y_roll, shaft])),
         );
         let base_from_flange = self.base_from_world * world_from_flange;
-        let branches = arm_branches(&self.geometry, &self.limits, &base_from_flange, &current.arm_rad);
         let now = current.tool;
         let mut best: Option<(ArmJoints, f64)> = None;
-        for branch in branches.as_slice() {
-            let mut arm = *branch;
-            arm[5] = current.arm_rad[5];
-            let arm_cost = joint_distance_sq(&arm, &current.arm_rad);
-            for (pitch, yaw, turn) in wrists[..n_wrists].iter().filter(|w| wrist_ok(w)) {
-                let Some((q6, roll, split_cost)) = split_shaft_rotation(
-                    branch[5] + turn,
-                    &self.limits[5],
-                    &limits.roll,
-                    current.arm_rad[5],
-                    now.roll_rad,
-                ) else {
-                    continue;
-                };
-                let cost =
-                    arm_cost + split_cost + (pitch - now.pitch_rad).powi(2) + (yaw - now.yaw_rad).powi(2);
-                if best.as_ref().is_none_or(|(_, c)| cost < *c) {
-                    arm[5] = q6;
-                    let tool =
-                        ToolJoints { roll_rad: roll, pitch_rad: *pitch, yaw_rad: *yaw, jaw_rad: now.jaw_rad };
-                    best = Some((ArmJoints { arm_rad: arm, tool }, cost));
+        let searched =
+            visit_branches(&self.geometry, &self.limits, &base_from_flange, &current.arm_rad, |branch| {
+                let mut arm = *branch;
+                arm[5] = current.arm_rad[5];
+                let arm_cost = joint_distance_sq(&arm, &current.arm_rad);
+                for (pitch, yaw, turn) in wrists[..n_wrists].iter().filter(|w| wrist_ok(w)) {
+                    let Some((q6, roll, split_cost)) = split_shaft_rotation(
+                        branch[5] + turn,
+                        &self.limits[5],
+                        &limits.roll,
+                        current.arm_rad[5],
+                        now.roll_rad,
+                    ) else {
+                        continue;
+                    };
+                    let cost =
+                        arm_cost + split_cost + (pitch - now.pitch_rad).powi(2) + (yaw - now.yaw_rad).powi(2);
+                    if best.as_ref().is_none_or(|(_, c)| cost < *c) {
+                        arm[5] = q6;
+                        let tool = ToolJoints {
+                            roll_rad: roll,
+                            pitch_rad: *pitch,
+                            yaw_rad: *yaw,
+                            jaw_rad: now.jaw_rad,
+                        };
+                        best = Some((ArmJoints { arm_rad: arm, tool }, cost));
+                    }
                 }
-            }
+                best.as_ref().map_or(f64::INFINITY, |(_, c)| *c)
+            });
+        match (best, searched) {
+            (Some((joints, _)), _) => Ok(joints),
+            (None, Err(Some(failure))) => Err(failure),
+            (None, _) => Err(limit_error(JointId::Roll, now.roll_rad, &limits.roll)),
         }
-        best.map(|(joints, _)| joints)
-            .ok_or_else(|| branches.failure.unwrap_or(limit_error(JointId::Roll, now.roll_rad, &limits.roll)))
     }
 
     /// The endoscope: the shaft from the trocar to the tip fixes everything but the turn about the
@@ -283,20 +291,22 @@ impl ArmModel {
             Rotation3::from_matrix_unchecked(Matrix3::from_columns(&[x, shaft.cross(&x), shaft])),
         );
         let base_from_flange = self.base_from_world * world_from_flange;
-        let branches = arm_branches(&self.geometry, &self.limits, &base_from_flange, &current.arm_rad);
         let q6 = current.arm_rad[5].clamp(self.limits[5].lower_rad, self.limits[5].upper_rad);
         let mut best: Option<([f64; 6], f64)> = None;
-        for branch in branches.as_slice() {
-            let mut arm = *branch;
-            arm[5] = q6;
-            let cost = joint_distance_sq(&arm, &current.arm_rad);
-            if best.is_none_or(|(_, c)| cost < c) {
-                best = Some((arm, cost));
-            }
-        }
-        match best {
-            Some((arm_rad, _)) => Ok(ArmJoints { arm_rad, tool: ToolJoints::default() }),
-            None => Err(branches.failure.unwrap_or(IkError::NoBranch)),
+        let searched =
+            visit_branches(&self.geometry, &self.limits, &base_from_flange, &current.arm_rad, |branch| {
+                let mut arm = *branch;
+                arm[5] = q6;
+                let cost = joint_distance_sq(&arm, &current.arm_rad);
+                if best.is_none_or(|(_, c)| cost < c) {
+                    best = Some((arm, cost));
+                }
+                best.map_or(f64::INFINITY, |(_, c)| c)
+            });
+        match (best, searched) {
+            (Some((arm_rad, _)), _) => Ok(ArmJoints { arm_rad, tool: ToolJoints::default() }),
+            (None, Err(Some(failure))) => Err(failure),
+            (None, _) => Err(IkError::NoBranch),
         }
     }
 }

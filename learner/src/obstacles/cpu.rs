@@ -1,7 +1,9 @@
 //! The CPU backend: cells in parallel with rayon, each cell's subcells together. A cell's subcells are
-//! solved first (one unreachable subcell settles it), then posed; the boxes each moving box sweeps over
-//! the cell bound which environment boxes it can reach at all, and only those are tested per subcell
-//! (bounding spheres, then the separating-axis test), stopping at the first collision.
+//! solved first (one unreachable subcell settles it), then their arm links are posed. Where each moving
+//! box's centre goes over the cell bounds which environment boxes and which of its own boxes it can
+//! reach at all (bounding spheres); each box left is grown to hold itself in every subcell and tested
+//! once for the whole cell. Only the pairs left after that are tested per subcell (bounding spheres,
+//! then the separating-axis test), stopping at the first collision, and only their boxes are posed.
 //!
 //! The pruning is conservative, so the verdicts are exactly those of the plain per-subcell reference
 //! ([`PreparedGrid::verdict_at`]), and each cell is computed alone, so the grid is the same whatever the
@@ -14,15 +16,21 @@ use knotlab_hw::kinematics::ArmJoints;
 
 use super::check::{SubcellVerdict, spheres_meet};
 use super::error::ObstacleError;
+use super::frames::ANCHORS;
 use super::grid::{CellVerdict, GridResult};
 use super::obb::Obb;
-use super::prepare::PreparedGrid;
+use super::prepare::{MAX_MOVING_BOXES, PreparedGrid};
 
 /// Per-thread work space for one cell.
 struct Scratch {
     joints: Vec<Option<ArmJoints>>,
+    /// Each subcell's anchor poses.
+    anchors: Vec<[IsometryMatrix3<f64>; ANCHORS]>,
+    /// One subcell's posed moving boxes (only those `needed`).
     posed: Vec<Obb>,
     candidates: Vec<Vec<u32>>,
+    /// The self pairs whose boxes can meet anywhere in the cell (indices into `self_pairs`).
+    self_candidates: Vec<u32>,
     verdicts: Vec<SubcellVerdict>,
     /// The last separating axis of each self pair, then of each (moving box, environment box) pair.
     hints: Vec<u8>,
@@ -33,17 +41,20 @@ impl Scratch {
         let empty = Obb::new(&IsometryMatrix3::identity(), Vector3::zeros());
         Self {
             joints: vec![None; subcells],
-            posed: vec![empty; subcells * moving],
+            anchors: vec![[IsometryMatrix3::identity(); ANCHORS]; subcells],
+            posed: vec![empty; moving],
             candidates: vec![Vec::new(); moving],
+            self_candidates: Vec::new(),
             verdicts: vec![SubcellVerdict::Free; subcells],
             hints: vec![u8::MAX; pairs],
         }
     }
 }
 
-/// Distance from a point to an axis-aligned box, squared.
-fn distance_sq_to_aabb(p: &Vector3<f64>, lo: &Vector3<f64>, hi: &Vector3<f64>) -> f64 {
-    (0..3).map(|k| (lo[k] - p[k]).max(p[k] - hi[k]).max(0.0)).map(|d| d * d).sum()
+/// Moving box `b` in the world, from its anchor's pose.
+fn box_at(grid: &PreparedGrid, anchors: &[IsometryMatrix3<f64>; ANCHORS], b: usize) -> Obb {
+    let mb = &grid.moving[b];
+    Obb::new(&(anchors[mb.anchor] * mb.anchor_from_box), mb.half_extents_m)
 }
 
 /// One cell: its verdict, how many subcells were collision-tested, and (with `keep`) every subcell's
@@ -71,34 +82,83 @@ fn evaluate_cell(
             }
         }
     }
-    // Pose every reachable subcell, and bound each moving box's centre over the cell.
-    let mut lo = [Vector3::repeat(f64::INFINITY); super::prepare::MAX_MOVING_BOXES];
-    let mut hi = [Vector3::repeat(f64::NEG_INFINITY); super::prepare::MAX_MOVING_BOXES];
+    let Some(k0) = (0..s * s).find(|&k| scratch.joints[k].is_some()) else {
+        return (verdict_of(unreachable, false), 0);
+    };
+    // Pose every reachable subcell's anchors, and bound how far each anchor moves over the cell.
     for k in 0..s * s {
         if let Some(joints) = &scratch.joints[k] {
-            let posed = &mut scratch.posed[k * m..(k + 1) * m];
-            grid.pose_moving(joints, posed);
-            for (b, obb) in posed.iter().enumerate() {
-                lo[b] = lo[b].inf(&obb.centre_m);
-                hi[b] = hi[b].sup(&obb.centre_m);
-            }
+            scratch.anchors[k] = grid.kinematics.world_from_anchors(joints);
         }
     }
-    // Environment boxes each moving box can reach anywhere in the cell.
+    let view = Posed { joints: &scratch.joints, anchors: &scratch.anchors };
+    let motions: [(f64, f64); ANCHORS] = std::array::from_fn(|anchor| anchor_motion(view, anchor, k0));
+    // Each box's centre at `k0` and how far the centre strays from it over the cell.
+    let mut centre = [Vector3::zeros(); MAX_MOVING_BOXES];
+    let mut stray_m = [0.0; MAX_MOVING_BOXES];
+    for (b, mb) in grid.moving.iter().enumerate() {
+        let on_anchor = mb.anchor_from_box.translation.vector;
+        let pose = &view.anchors[k0][mb.anchor];
+        centre[b] = pose.rotation * on_anchor + pose.translation.vector;
+        let (dt, dr) = motions[mb.anchor];
+        stray_m[b] = dt + dr * on_anchor.norm();
+    }
+    // Environment boxes each moving box can reach anywhere in the cell: the groups' spheres first.
     for (b, mb) in grid.moving.iter().enumerate() {
         let list = &mut scratch.candidates[b];
         list.clear();
-        if !mb.tests_environment || lo[b].x > hi[b].x {
+        if !mb.tests_environment {
             continue;
         }
-        for (e, env) in grid.environment.iter().enumerate() {
-            let reach = mb.radius_m + env.radius_m;
-            if !(mb.inserted && env.patient)
-                && distance_sq_to_aabb(&env.obb.centre_m, &lo[b], &hi[b]) <= reach * reach
-            {
-                list.push(e as u32);
+        let within = |other_m: &Vector3<f64>, other_radius_m: f64| {
+            let reach = mb.radius_m + stray_m[b] + other_radius_m;
+            (other_m - centre[b]).norm_squared() <= reach * reach
+        };
+        for g in grid.groups.iter().filter(|g| within(&g.centre_m, g.radius_m)) {
+            for (e, env) in grid.environment[g.start..g.end].iter().enumerate() {
+                if !(mb.inserted && env.patient) && within(&env.obb.centre_m, env.radius_m) {
+                    list.push((g.start + e) as u32);
+                }
             }
         }
+    }
+    // Self pairs whose bounding spheres can meet anywhere in the cell.
+    scratch.self_candidates.clear();
+    for (p, &(a, b)) in grid.self_pairs.iter().enumerate() {
+        let reach = grid.moving[a].radius_m + stray_m[a] + grid.moving[b].radius_m + stray_m[b];
+        if (centre[a] - centre[b]).norm_squared() <= reach * reach {
+            scratch.self_candidates.push(p as u32);
+        }
+    }
+    // Tighter: each box that still has a candidate, grown to hold itself in every subcell of the cell
+    // (and `PRUNE_MARGIN_M` more), tested against it once for the whole cell.
+    let mut grown = [None; MAX_MOVING_BOXES];
+    let mut grow = |b: usize| -> Obb {
+        *grown[b].get_or_insert_with(|| grown_box(grid, motions[grid.moving[b].anchor], b, &view.anchors[k0]))
+    };
+    for (b, list) in scratch.candidates.iter_mut().enumerate() {
+        if !list.is_empty() {
+            let big = grow(b);
+            list.retain(|&e| big.intersects(&grid.environment[e as usize].obb));
+        }
+    }
+    scratch.self_candidates.retain(|&p| {
+        let (a, b) = grid.self_pairs[p as usize];
+        grow(a).intersects(&grow(b))
+    });
+    // The boxes the remaining pairs need.
+    let mut needed = [false; MAX_MOVING_BOXES];
+    for (b, list) in scratch.candidates.iter().enumerate() {
+        needed[b] |= !list.is_empty();
+    }
+    for &p in &scratch.self_candidates {
+        let (a, b) = grid.self_pairs[p as usize];
+        needed[a] = true;
+        needed[b] = true;
+    }
+    if !needed[..m].iter().any(|&n| n) {
+        let tested = scratch.joints.iter().filter(|j| j.is_some()).count();
+        return (verdict_of(unreachable, false), tested);
     }
     let mut tested = 0;
     let mut collides = false;
@@ -107,7 +167,10 @@ fn evaluate_cell(
             continue;
         }
         tested += 1;
-        let posed = &scratch.posed[k * m..(k + 1) * m];
+        for b in (0..m).filter(|&b| needed[b]) {
+            scratch.posed[b] = box_at(grid, &scratch.anchors[k], b);
+        }
+        let posed = &scratch.posed;
         let (pairs, n_env) = (grid.self_pairs.len(), grid.environment.len());
         let (self_hints, env_hints) = scratch.hints.split_at_mut(pairs);
         let env_hit = grid.moving.iter().enumerate().any(|(b, mb)| {
@@ -118,13 +181,14 @@ fn evaluate_cell(
             })
         });
         let hit = env_hit
-            || grid.self_pairs.iter().zip(self_hints.iter_mut()).any(|(&(a, b), hint)| {
+            || scratch.self_candidates.iter().any(|&p| {
+                let (a, b) = grid.self_pairs[p as usize];
                 spheres_meet(
                     &posed[a].centre_m,
                     grid.moving[a].radius_m,
                     &posed[b].centre_m,
                     grid.moving[b].radius_m,
-                ) && posed[a].intersects_hinted(&posed[b], hint)
+                ) && posed[a].intersects_hinted(&posed[b], &mut self_hints[p as usize])
             });
         if hit {
             scratch.verdicts[k] = SubcellVerdict::Collides;
@@ -134,14 +198,61 @@ fn evaluate_cell(
             }
         }
     }
-    let verdict = if unreachable {
+    (verdict_of(unreachable, collides), tested)
+}
+
+/// What [`grown_box`] reads of the scratch space.
+#[derive(Clone, Copy)]
+struct Posed<'a> {
+    joints: &'a [Option<ArmJoints>],
+    anchors: &'a [[IsometryMatrix3<f64>; ANCHORS]],
+}
+
+fn verdict_of(unreachable: bool, collides: bool) -> CellVerdict {
+    if unreachable {
         CellVerdict::Unreachable
     } else if collides {
         CellVerdict::Collides
     } else {
         CellVerdict::Free
-    };
-    (verdict, tested)
+    }
+}
+
+/// Added to a grown box all round, m: a pair whose grown boxes are apart is at least this far apart in
+/// every subcell, far beyond the separating-axis test's tolerance, so the plain per-subcell test finds
+/// it apart too.
+const PRUNE_MARGIN_M: f64 = 1e-3;
+
+/// How far an anchor moves over the cell from subcell `k0`: the largest `|t_k - t_0|` and the largest
+/// `|R_k - R_0|_F` over the reachable subcells.
+fn anchor_motion(view: Posed<'_>, anchor: usize, k0: usize) -> (f64, f64) {
+    let (t0, r0) = (view.anchors[k0][anchor].translation.vector, view.anchors[k0][anchor].rotation.matrix());
+    let (mut dt, mut dr): (f64, f64) = (0.0, 0.0);
+    for (k, j) in view.joints.iter().enumerate() {
+        if j.is_some() {
+            let pose = &view.anchors[k][anchor];
+            dt = dt.max((pose.translation.vector - t0).norm_squared());
+            dr = dr.max((pose.rotation.matrix() - r0).norm_squared());
+        }
+    }
+    (dt.sqrt(), dr.sqrt())
+}
+
+/// Moving box `b` as posed at subcell `k0`, grown to hold the box as posed at every reachable subcell.
+/// A point of the box sits at `t + R (p + u)` on its anchor (`p` the box centre on the anchor, `|u_i| <=
+/// h_i`), so it lies within `|t_k - t_0| + |R_k - R_0|_F (|p| + |h|)` of where it is at `k0`: growing
+/// every half extent by the anchor's largest such distance (and the margin) holds them all.
+fn grown_box(
+    grid: &PreparedGrid,
+    motion: (f64, f64),
+    b: usize,
+    k0_anchors: &[IsometryMatrix3<f64>; ANCHORS],
+) -> Obb {
+    let base = box_at(grid, k0_anchors, b);
+    let mb = &grid.moving[b];
+    let lever_m = mb.anchor_from_box.translation.vector.norm() + mb.half_extents_m.norm();
+    let grow_m = motion.0 + motion.1 * lever_m;
+    Obb { half_extents_m: base.half_extents_m.add_scalar(grow_m + PRUNE_MARGIN_M), ..base }
 }
 
 /// A thread pool of `threads` threads for [`compute_cpu`]: `thread_pool(2)?.install(|| compute_cpu(..))`.

@@ -72,7 +72,15 @@ impl AnchorKinematics {
         let mut out = [model.world_from_base; ANCHORS];
         let mut acc = model.world_from_base;
         for (k, (fixed, q)) in self.fixed.iter().zip(&joints.arm_rad).enumerate() {
-            acc = acc * turn_after(0.0, 2, *q) * fixed;
+            // acc Rz(q): only the first two rotation columns mix.
+            let (s, c) = q.sin_cos();
+            let r = acc.rotation.matrix();
+            let (c0, c1) = (r.column(0), r.column(1));
+            let turned = Matrix3::from_columns(&[c0 * c + c1 * s, c1 * c - c0 * s, r.column(2).into_owned()]);
+            acc = IsometryMatrix3::from_parts(
+                Translation3::from(turned * fixed.translation.vector + acc.translation.vector),
+                Rotation3::from_matrix_unchecked(turned * fixed.rotation.matrix()),
+            );
             out[k + 1] = acc;
         }
         tool_anchors(model, joints, &mut out);
