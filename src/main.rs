@@ -1,6 +1,7 @@
 //! The `knotlab` command line.
 
 mod cli;
+mod rerun_log;
 
 use clap::Parser;
 

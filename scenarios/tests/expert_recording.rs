@@ -62,7 +62,7 @@ fn the_plan_is_reachable_for_every_variation() {
 #[test]
 fn a_recorded_run_is_a_valid_100_hz_demonstration_that_round_trips() {
     let options = RecordOptions { cycles_per_sample: 10, ..RecordOptions::default() };
-    let run = demonstrate(scene(), "scenarios/default.toml", 3, true, &options).expect("records");
+    let run = demonstrate(scene(), "scenarios/default.toml", 3, true, &options, None).expect("records");
     assert_eq!(run.fault, None, "the controller ran the skill to its end");
     let demo = &run.demonstration;
     demo.validate().expect("what the loader accepts");

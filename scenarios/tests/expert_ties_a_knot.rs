@@ -11,7 +11,7 @@ use knotlab_sim::scene::parse_scene;
 fn seed_1_ties_a_surgeons_double_throw_down_on_the_tissue() {
     let scene = parse_scene(include_str!("../default.toml"), "default.toml").expect("the shipped scene");
     let options = RecordOptions { cycles_per_sample: 10, ..RecordOptions::default() };
-    let run = demonstrate(scene, "scenarios/default.toml", 1, true, &options).expect("records");
+    let run = demonstrate(scene, "scenarios/default.toml", 1, true, &options, None).expect("records");
     let e = &run.evaluation;
     println!(
         "seed 1: {} (knot {:?}, height {:?} m, stitch distance {:?} m), {:.1} s simulated in {:.1} s",

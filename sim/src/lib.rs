@@ -29,6 +29,7 @@ pub mod needle;
 pub mod physics;
 pub mod scene;
 pub mod servo;
+pub mod shapes;
 pub mod snapshot;
 pub mod stitch;
 pub mod stress;

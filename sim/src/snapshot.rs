@@ -4,13 +4,10 @@
 //! jaws (left green, right blue, assist purple, endoscope grey), the flaps (pink) and the pad (beige), the stitch points (green).
 
 use nalgebra::{Point3, Vector3};
-use rapier3d::prelude::*;
 use tiny_skia::{Color, FillRule, LineCap, Paint, PathBuilder, Pixmap, Stroke, Transform};
 
-use crate::needle::Needle;
-use crate::thread::to_na;
-use crate::tissue::{FLAP_GROUP, Flap, PAD_GROUP};
-use crate::world::{ENVIRONMENT_GROUP, SimWorld};
+use crate::shapes::{Owner, SolidShape, scene_shapes};
+use crate::world::SimWorld;
 
 /// How the picture is framed.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -116,68 +113,52 @@ pub fn render_png(world: &SimWorld, view: &View) -> Result<Vec<u8>, SnapshotErro
     let mut pixmap = Pixmap::new(3 * view.pixels, view.pixels).ok_or(SnapshotError::Size(view.pixels))?;
     pixmap.fill(rgb(250, 250, 250));
     let mut canvas = Canvas { pixmap: &mut pixmap, view: *view };
-    let physics = &world.physics;
+    let scene = scene_shapes(world);
     // Each arm in its own shade: left green, right blue, assist purple, endoscope grey.
-    let arm_color = |body: Option<RigidBodyHandle>| -> Color {
-        let link = body.and_then(|b| world.link_bodies.iter().position(|l| *l == Some(b)));
-        let name = link.map_or("", |i| world.rig.tree.links[i].name.as_str());
-        if name.starts_with("left") {
-            rgb(90, 140, 100)
-        } else if name.starts_with("right") {
-            rgb(80, 110, 160)
-        } else if name.starts_with("assist") {
-            rgb(140, 100, 150)
-        } else {
-            rgb(110, 110, 120)
+    let color_of = |owner: &Owner| -> Color {
+        match owner {
+            Owner::Flap => rgb(220, 120, 150),
+            Owner::Pad => rgb(200, 180, 140),
+            Owner::Link(name) if name.starts_with("left") => rgb(90, 140, 100),
+            Owner::Link(name) if name.starts_with("right") => rgb(80, 110, 160),
+            Owner::Link(name) if name.starts_with("assist") => rgb(140, 100, 150),
+            Owner::Link(_) | Owner::Other => rgb(110, 110, 120),
         }
     };
     // Solids: pad and flaps outlined, robot links as capsules or boxes.
-    for (_, collider) in physics.colliders.iter() {
-        let groups = collider.collision_groups().memberships;
-        if groups.contains(ENVIRONMENT_GROUP) || groups.contains(crate::thread::THREAD_GROUP) {
-            continue;
-        }
-        let pose = collider.position();
-        let color = if groups.contains(FLAP_GROUP) {
-            rgb(220, 120, 150)
-        } else if groups.contains(PAD_GROUP) {
-            rgb(200, 180, 140)
-        } else {
-            arm_color(collider.parent())
-        };
-        let shape = collider.shape();
-        if let Some(cuboid) = shape.as_cuboid() {
-            let h = cuboid.half_extents;
-            let corners: [Vector3<f64>; 8] = std::array::from_fn(|k| {
-                let local = Vector::new(
-                    if k & 1 == 0 { -h.x } else { h.x },
-                    if k & 2 == 0 { -h.y } else { h.y },
-                    if k & 4 == 0 { -h.z } else { h.z },
-                );
-                to_na(pose.transform_point(local))
-            });
-            canvas.outline(&corners, color);
-        } else if let Some(capsule) = shape.as_capsule() {
-            let a = to_na(pose.transform_point(capsule.segment.a));
-            let b = to_na(pose.transform_point(capsule.segment.b));
-            canvas.polyline(&[a, b], 2.0 * capsule.radius, color);
-        } else if let Some(ball) = shape.as_ball() {
-            canvas.polyline(&[to_na(pose.translation)], 2.0 * ball.radius, color);
+    for solid in &scene.solids {
+        let color = color_of(&solid.owner);
+        match solid.shape {
+            SolidShape::Cuboid { half_extents_m: h } => {
+                let corners: [Vector3<f64>; 8] = std::array::from_fn(|k| {
+                    let local = Vector3::new(
+                        if k & 1 == 0 { -h.x } else { h.x },
+                        if k & 2 == 0 { -h.y } else { h.y },
+                        if k & 4 == 0 { -h.z } else { h.z },
+                    );
+                    solid.world_point(&local)
+                });
+                canvas.outline(&corners, color);
+            }
+            SolidShape::Capsule { a_m, b_m, radius_m } => {
+                canvas.polyline(&[solid.world_point(&a_m), solid.world_point(&b_m)], 2.0 * radius_m, color);
+            }
+            SolidShape::Ball { radius_m } => {
+                canvas.polyline(&[solid.world_point(&Vector3::zeros())], 2.0 * radius_m, color);
+            }
         }
     }
     // The thread, coloured from the needle end (blue) to the tail (orange).
-    let line = world.thread.centreline(physics);
-    let n = line.len().saturating_sub(1).max(1);
-    for (k, w) in line.windows(2).enumerate() {
+    let n = scene.thread_m.len().saturating_sub(1).max(1);
+    for (k, w) in scene.thread_m.windows(2).enumerate() {
         let f = k as f32 / n as f32;
         let color =
             Color::from_rgba(0.1 + 0.85 * f, 0.35 + 0.2 * f, 0.9 - 0.8 * f, 1.0).unwrap_or(Color::BLACK);
-        canvas.polyline(w, 2.0 * world.config.thread.radius_m, color);
+        canvas.polyline(w, 2.0 * scene.thread_radius_m, color);
     }
-    let needle: Vec<Vector3<f64>> = Needle::world_points_m(&world.needle, physics, &world.thread);
-    canvas.polyline(&needle, 2.0 * world.needle.wire_radius_m, rgb(200, 30, 30));
-    for flap in Flap::ALONG_THREAD {
-        canvas.polyline(&[world.tissue.hole_m(physics, flap)], 0.0012, rgb(20, 160, 60));
+    canvas.polyline(&scene.needle_m, 2.0 * scene.needle_radius_m, rgb(200, 30, 30));
+    for hole in &scene.holes_m {
+        canvas.polyline(&[*hole], 0.0012, rgb(20, 160, 60));
     }
     // Panel borders.
     for panel in 1..3 {

@@ -15,6 +15,7 @@ use knotlab_sim::scene::load_scene;
 
 use super::numbers::{Numbers, parse_list};
 use super::output::{Output, outln};
+use crate::rerun_log::{self, RerunArgs};
 
 #[derive(Debug, Args)]
 pub struct DemoArgs {
@@ -36,9 +37,14 @@ pub struct DemoArgs {
     /// Draw the scene into PNG files OUT/snapshot-T.png at these skill times, s (comma-separated).
     #[arg(long, value_parser = parse_list)]
     snapshots: Option<Numbers>,
+    /// Stop the skill at this skill time, s, and evaluate what is there (a short trial, to debug).
+    #[arg(long, value_name = "S")]
+    until: Option<f64>,
     /// Print JSON instead of text.
     #[arg(long)]
     json: bool,
+    #[command(flatten)]
+    rerun: RerunArgs,
 }
 
 fn parse_seeds(text: &str) -> Result<(u64, u64), String> {
@@ -108,17 +114,29 @@ pub fn run(args: DemoArgs, out: &mut Output) -> anyhow::Result<ExitCode> {
         (None, None) => (0, 1),
     };
     let several = args.seeds.is_some();
+    if several && args.rerun.wanted() {
+        anyhow::bail!("--rerun/--rerun-connect records one trial: give --seed N, not --seeds");
+    }
+    if let Some(t) = args.until
+        && !(t.is_finite() && t > 0.0)
+    {
+        anyhow::bail!("--until {t}: must be a positive number of seconds");
+    }
+    let recording = args.rerun.open("demo")?;
     let scene = load_scene(&args.scene)?;
     let scene_name = args.scene.display().to_string();
     let options = RecordOptions {
         snapshot_times_s: args.snapshots.clone().unwrap_or_default(),
         cycles_per_sample: 10,
         snapshot_half_width_m: 0.0,
+        stop_after_s: args.until,
     };
     let mut results = Vec::new();
     for seed in first..end {
         let dir = if several { args.out.join(format!("seed-{seed}")) } else { args.out.clone() };
-        let run = demonstrate(scene.clone(), &scene_name, seed, !args.no_variation, &options)?;
+        let run = rerun_log::record_trial(recording.as_ref(), |observer| {
+            demonstrate(scene.clone(), &scene_name, seed, !args.no_variation, &options, observer)
+        })?;
         write_demonstration(&dir, &run.demonstration)
             .with_context(|| format!("writing the demonstration to {}", dir.display()))?;
         for (t, png) in &run.snapshots {
@@ -141,6 +159,7 @@ pub fn run(args: DemoArgs, out: &mut Output) -> anyhow::Result<ExitCode> {
         }
         results.push(l);
     }
+    rerun_log::finish(recording)?;
     let successes = results.iter().filter(|r| r.success).count();
     let report = Report {
         scene: scene_name,

@@ -137,6 +137,8 @@ pub struct PrimitiveArgs {
     /// Print JSON instead of text.
     #[arg(long)]
     json: bool,
+    #[command(flatten)]
+    rerun: crate::rerun_log::RerunArgs,
 }
 
 /// A rigid motion from the command line.
@@ -444,6 +446,12 @@ fn primitive(args: &PrimitiveArgs, out: &mut Output) -> anyhow::Result<ExitCode>
     if let Some(file) = &args.grid {
         write_grid(file, &inst)?;
     }
+    let recording = args.rerun.open("fluid")?;
+    #[cfg(feature = "rerun")]
+    if let Some(rec) = &recording {
+        crate::rerun_log::log_instantiation(rec, &inst)?;
+    }
+    crate::rerun_log::finish(recording)?;
     let r = &inst.report;
     let first = inst.points[0].world_m;
     let last = inst.points[inst.points.len() - 1].world_m;

@@ -16,6 +16,7 @@ use knotlab_learner::primitive::{extract, write_knowledge_base};
 use knotlab_learner::segment::{Decomposition, FailureReason, Rejection, decompose};
 
 use super::output::{Output, outln};
+use crate::rerun_log::{self, RerunArgs};
 
 /// The exit code of a rejected demonstration (1 is a bad file, 2 a bad command line).
 const REJECTED: u8 = 3;
@@ -37,6 +38,8 @@ pub struct LearnArgs {
     /// Print JSON instead of text.
     #[arg(long)]
     json: bool,
+    #[command(flatten)]
+    rerun: RerunArgs,
 }
 
 #[derive(Serialize)]
@@ -116,7 +119,11 @@ fn learn(args: &LearnArgs) -> anyhow::Result<Report> {
     let pattern = load_pattern(&args.pattern)?;
     let features = detect(&demo, &pattern.detector).context("detecting features")?;
     let mut report = base_report(args, &demo, &pattern, &features);
-    match decompose(&pattern, &features) {
+    let recording = args.rerun.open("learn")?;
+    let decomposition = decompose(&pattern, &features);
+    log_to_rerun(recording.as_ref(), &demo, &features, decomposition.as_ref().ok())?;
+    rerun_log::finish(recording)?;
+    match decomposition {
         Ok(decomposition) => {
             let kb = extract(&demo, &pattern, &features, &decomposition)?;
             write_knowledge_base(&args.out, &kb)?;
@@ -130,6 +137,31 @@ fn learn(args: &LearnArgs) -> anyhow::Result<Report> {
         }
     }
     Ok(report)
+}
+
+/// The demonstration, its features and (if it was cut) its primitives, for the Rerun viewer.
+#[cfg(feature = "rerun")]
+fn log_to_rerun(
+    recording: Option<&rerun_log::Recording>,
+    demo: &Demonstration,
+    features: &FeatureSet,
+    decomposition: Option<&Decomposition>,
+) -> anyhow::Result<()> {
+    if let Some(rec) = recording {
+        rerun_log::log_demonstration(rec, demo)?;
+        rerun_log::log_decomposition(rec, demo, features, decomposition)?;
+    }
+    Ok(())
+}
+
+#[cfg(not(feature = "rerun"))]
+fn log_to_rerun(
+    _: Option<&rerun_log::Recording>,
+    _: &Demonstration,
+    _: &FeatureSet,
+    _: Option<&Decomposition>,
+) -> anyhow::Result<()> {
+    Ok(())
 }
 
 fn base_report(

@@ -15,6 +15,7 @@ use knotlab_learner::demonstration::{
 use knotlab_sim::backend::SimBackend;
 use knotlab_sim::evaluate::{KnotEvaluation, evaluate_knot};
 use knotlab_sim::knot::{FailureMode, Verdict};
+use knotlab_sim::shapes::{SceneShapes, scene_shapes};
 use knotlab_sim::snapshot::{View, render_png};
 use knotlab_sim::world::SimWorld;
 use nalgebra::UnitQuaternion;
@@ -39,6 +40,8 @@ pub struct RecordOptions {
     pub cycles_per_sample: u64,
     /// Half the width of each snapshot view, m (0: the default 8 cm).
     pub snapshot_half_width_m: f64,
+    /// Stop the skill at this skill time, s, and evaluate what is there (a short trial, to debug).
+    pub stop_after_s: Option<f64>,
 }
 
 fn view(world: &SimWorld, options: &RecordOptions) -> View {
@@ -65,6 +68,8 @@ pub struct DemoRun {
     pub snapshots: Vec<(f64, Vec<u8>)>,
     /// The scene's grasp events (grasped, released, slipped) in order, as text.
     pub events: Vec<String>,
+    /// The scene at the end, after the knot's holding test.
+    pub final_scene: SceneShapes,
 }
 
 fn grasp_state(world: &SimWorld, arm: ArmName) -> GraspState {
@@ -137,7 +142,9 @@ pub fn record_demonstration(
             }
         }
         drop(world);
-        if matches!(record.status, Status::Finished) {
+        if matches!(record.status, Status::Finished)
+            || options.stop_after_s.is_some_and(|t| record.skill_time_s >= t)
+        {
             break;
         }
     }
@@ -164,9 +171,10 @@ pub fn record_demonstration(
         }
     }
     let events = world.events.iter().map(|e| format!("{e:?}")).collect();
+    let final_scene = scene_shapes(&world);
     let demonstration = Demonstration { metadata, instruments: records };
     let wall_s = started.elapsed().as_secs_f64();
-    Ok(DemoRun { demonstration, evaluation, fault, simulated_s, wall_s, snapshots, events })
+    Ok(DemoRun { demonstration, evaluation, fault, simulated_s, wall_s, snapshots, events, final_scene })
 }
 
 /// The metadata of a scripted-expert recording.
@@ -206,12 +214,14 @@ pub enum ExpertError {
 
 /// The scripted expert performs the task once in `scene` (named `scene_name` in the metadata): with
 /// human-like variation drawn from `seed` (or none), the sensor noise seeded by `seed` too.
+/// `observer`, if any, sees every control cycle.
 pub fn demonstrate(
     scene: knotlab_sim::scene::SceneConfig,
     scene_name: &str,
     seed: u64,
     human: bool,
     options: &RecordOptions,
+    observer: Option<&mut CycleObserver<'_>>,
 ) -> Result<DemoRun, ExpertError> {
     let rig = Rig::shipped().map_err(|e| ExpertError::Rig(e.to_string()))?;
     let config = knotlab_hw::rig_config::parse_rig_config(SIM_RIG_TOML, "scenarios/rigs/sim.toml")
@@ -223,5 +233,5 @@ pub fn demonstrate(
     let skill = super::plan_instrument_tie(&world, &super::TieGeometry::default(), &variation);
     let rate_hz = 1.0 / (world.config.solver.dt_s * options.cycles_per_sample.max(1) as f64);
     let metadata = expert_metadata(&world, scene_name, Some(seed), rate_hz);
-    Ok(record_demonstration(world, &rig, &config, skill, metadata, options, None)?)
+    Ok(record_demonstration(world, &rig, &config, skill, metadata, options, observer)?)
 }
