@@ -10,6 +10,7 @@
 //! - [`synthetic`]: seeded synthetic demonstrations with known boundaries, for tests and benchmarks.
 //! - [`fluid`]: the 2D Navier-Stokes solver that regenerates 2D primitives.
 //! - [`obstacles`]: virtual obstacles, on the CPU and the GPU.
+//! - [`synthesis`]: skills made from what was learned, at a new stitch site, by one of several methods.
 
 pub mod demonstration;
 pub mod features;
@@ -18,4 +19,5 @@ pub mod obstacles;
 pub mod pattern;
 pub mod primitive;
 pub mod segment;
+pub mod synthesis;
 pub mod synthetic;

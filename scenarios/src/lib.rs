@@ -2,5 +2,7 @@
 //! the task patterns (the files live in `scenarios/`, the code here).
 //!
 //! - [`expert`]: the scripted surgeon who ties the knot in the simulator and leaves a demonstration.
+//! - [`trial`]: one trial end to end: a learned skill synthesized at a moved stitch, run, evaluated.
 
 pub mod expert;
+pub mod trial;

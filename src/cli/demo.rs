@@ -134,9 +134,11 @@ pub fn run(args: DemoArgs, out: &mut Output) -> anyhow::Result<ExitCode> {
     let mut results = Vec::new();
     for seed in first..end {
         let dir = if several { args.out.join(format!("seed-{seed}")) } else { args.out.clone() };
-        let run = rerun_log::record_trial(recording.as_ref(), |observer| {
-            demonstrate(scene.clone(), &scene_name, seed, !args.no_variation, &options, observer)
-        })?;
+        let run = rerun_log::record_trial(
+            recording.as_ref(),
+            |observer| demonstrate(scene.clone(), &scene_name, seed, !args.no_variation, &options, observer),
+            |run| run,
+        )?;
         write_demonstration(&dir, &run.demonstration)
             .with_context(|| format!("writing the demonstration to {}", dir.display()))?;
         for (t, png) in &run.snapshots {

@@ -9,6 +9,7 @@ mod numbers;
 mod obstacles;
 mod output;
 mod rig;
+mod run;
 mod sim;
 
 use std::process::ExitCode;
@@ -44,6 +45,8 @@ enum Command {
     Demo(demo::DemoArgs),
     /// Learn from one demonstration: cut it into motion primitives by a task pattern (exit 3: rejected).
     Learn(learn::LearnArgs),
+    /// One trial end to end: the learned skill at a (moved) stitch, by a method; the knot's verdict.
+    Run(run::RunArgs),
 }
 
 /// Runs a parsed command line.
@@ -58,5 +61,6 @@ pub fn run(cli: Cli) -> anyhow::Result<ExitCode> {
         Command::Obstacles(args) => obstacles::run(args, &mut out),
         Command::Learn(args) => learn::run(args, &mut out),
         Command::Demo(args) => demo::run(args, &mut out),
+        Command::Run(args) => run::run(args, &mut out),
     }
 }

@@ -39,16 +39,18 @@ pub enum Recording {}
 
 pub use args::finish;
 
+use knotlab_scenarios::expert::DemoRun;
 use knotlab_scenarios::expert::record::CycleObserver;
-use knotlab_scenarios::expert::{DemoRun, ExpertError};
 
 /// Performs a simulated trial (`perform` is handed the cycle observer to run it with) and, when
 /// `recording` is open, logs it there: every 10th control cycle (100 Hz), the robots' links every 40th,
 /// then the scene after the holding test, the tip paths and the verdict.
-pub fn record_trial(
+/// `run_of` finds the recorded run in what `perform` returns.
+pub fn record_trial<R, E: Into<anyhow::Error>>(
     recording: Option<&Recording>,
-    perform: impl FnOnce(Option<&mut CycleObserver<'_>>) -> Result<DemoRun, ExpertError>,
-) -> anyhow::Result<DemoRun> {
+    perform: impl FnOnce(Option<&mut CycleObserver<'_>>) -> Result<R, E>,
+    run_of: impl Fn(&R) -> &DemoRun,
+) -> anyhow::Result<R> {
     #[cfg(feature = "rerun")]
     if let Some(recording) = recording {
         let mut logger = TrialLogger::new(recording, 10, 40);
@@ -57,8 +59,10 @@ pub fn record_trial(
                                world: &knotlab_sim::world::SimWorld| {
                 logger.observe(record, world);
             };
-            perform(Some(&mut observe))?
+            perform(Some(&mut observe)).map_err(Into::into)?
         };
+        let result = run;
+        let run = run_of(&result);
         let paths: Vec<(String, Vec<nalgebra::Vector3<f64>>)> = run
             .demonstration
             .instruments
@@ -67,9 +71,9 @@ pub fn record_trial(
             .collect();
         let end_s = run.demonstration.duration_s();
         logger.end(end_s, &run.final_scene, &paths, &run.evaluation)?;
-        return Ok(run);
+        return Ok(result);
     }
     #[cfg(not(feature = "rerun"))]
-    let _ = recording;
-    Ok(perform(None)?)
+    let _ = (recording, run_of);
+    perform(None).map_err(Into::into)
 }

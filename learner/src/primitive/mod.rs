@@ -9,16 +9,19 @@
 //! - synchronized ([`SynchronizedPrimitive`]): the mapping from its reference 2D primitive's progress
 //!   to where this instrument is in the reference's plane.
 //!
-//! [`extract()`] builds a [`KnowledgeBase`]; [`knowledge`] writes and reads the JSON file.
+//! [`extract()`] builds a [`KnowledgeBase`]; [`knowledge`] writes and reads the JSON file; [`learn()`]
+//! does it all from a demonstration and a pattern.
 
 pub mod extract;
 pub mod knowledge;
+pub mod learn;
 
 pub use extract::{ExtractError, extract};
 pub use knowledge::{
     KB_FORMAT, KB_FORMAT_VERSION, KnowledgeError, load_knowledge_base, parse_knowledge_base,
     write_knowledge_base,
 };
+pub use learn::{LearnError, learn};
 
 use nalgebra::{Isometry3, Vector2, Vector3};
 use serde::{Deserialize, Serialize};

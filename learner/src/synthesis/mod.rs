@@ -1,0 +1,57 @@
+//! Skill synthesis: from what was learned to a Skill the controller runs at a new stitch site.
+//!
+//! - [`site`]: the new stitch frame and the rigid motion to it.
+//! - [`replay`]: the baseline that replays the demonstration, rigidly moved.
+//! - [`method`]: the methods by name (`fluid`, `dmp`, `replay`).
+//! - [`orientation`]: how keys orient the tip (the jaws' direction, not the roll).
+//! - [`approach`]: the way in from where the instruments are to the skill's first poses.
+
+pub mod approach;
+pub mod method;
+pub mod orientation;
+pub mod replay;
+pub mod site;
+
+pub use approach::{ApproachSettings, StartPose, prepend_approach};
+pub use method::Method;
+pub use replay::{ReplaySettings, replay};
+pub use site::relocation;
+
+use nalgebra::Vector3;
+use thiserror::Error;
+
+use knotlab_hw::rig::ArmName;
+
+/// The trocar points at the site, world frame, m.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Trocars(pub Vec<(ArmName, Vector3<f64>)>);
+
+impl Trocars {
+    /// The trocar of `arm`.
+    pub fn of(&self, arm: ArmName) -> Result<Vector3<f64>, SynthesisError> {
+        self.0
+            .iter()
+            .find(|(a, _)| *a == arm)
+            .map(|(_, p)| *p)
+            .ok_or_else(|| SynthesisError::Empty { what: format!("the trocar of the {arm} arm") })
+    }
+}
+
+/// Why a skill could not be synthesized.
+#[derive(Debug, Error, Clone, PartialEq)]
+pub enum SynthesisError {
+    /// Something needed is empty.
+    #[error("{what} is empty")]
+    Empty {
+        /// What.
+        what: String,
+    },
+    /// A setting or an input value is out of its range.
+    #[error("{field}: {reason}")]
+    Invalid {
+        /// The field.
+        field: String,
+        /// Why.
+        reason: String,
+    },
+}

@@ -1,0 +1,45 @@
+//! How a synthesized key orients the tip. Only the jaws' direction is commanded, never the roll about
+//! it: a recorded frame commanded whole makes the wrist chase its roll through the straight-wrist
+//! singularity (a tenth of a degree of tremor there asks for a half turn of the roll joint), and the arm
+//! lags centimetres behind. A nearly straight wrist is commanded straight.
+
+use nalgebra::Vector3;
+
+use knotlab_hw::skill::Orientation;
+
+/// A wrist bent less than this is commanded straight, rad.
+pub const STRAIGHT_WRIST_RAD: f64 = 0.05;
+
+/// The orientation of a key whose jaws point along `jaw_direction`, the tip at `tip_m` and the shaft
+/// through `trocar_m`.
+pub fn jaw_orientation(
+    jaw_direction: &Vector3<f64>,
+    tip_m: &Vector3<f64>,
+    trocar_m: &Vector3<f64>,
+) -> Orientation {
+    let shaft = tip_m - trocar_m;
+    match (jaw_direction.try_normalize(1e-12), shaft.try_normalize(1e-9)) {
+        (Some(jaw), Some(shaft)) if jaw.angle(&shaft) >= STRAIGHT_WRIST_RAD => {
+            Orientation::JawDirection { direction: jaw.into() }
+        }
+        _ => Orientation::AlongShaft,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_bent_wrist_keeps_its_direction_and_a_straight_one_follows_the_shaft() {
+        let trocar = Vector3::new(0.0, 0.0, 1.0);
+        let tip = Vector3::new(0.0, 0.0, 0.9);
+        let bent = Vector3::new(0.3, 0.0, -1.0);
+        assert_eq!(
+            jaw_orientation(&bent, &tip, &trocar),
+            Orientation::JawDirection { direction: bent.normalize().into() }
+        );
+        let nearly = Vector3::new(0.01, 0.0, -1.0);
+        assert_eq!(jaw_orientation(&nearly, &tip, &trocar), Orientation::AlongShaft);
+    }
+}

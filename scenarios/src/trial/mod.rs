@@ -1,0 +1,137 @@
+//! One trial end to end: the scene with its stitch moved, a skill synthesized there from what was
+//! learned (by the method asked for), run by the controller on the simulated rig through the device
+//! traits, and the knot it leaves evaluated.
+
+pub mod stitch;
+
+pub use stitch::StitchMove;
+
+use knotlab_hw::rig::{ArmName, Rig};
+use knotlab_hw::rig_config::parse_rig_config;
+use knotlab_hw::skill::Skill;
+use knotlab_learner::demonstration::Demonstration;
+use knotlab_learner::primitive::KnowledgeBase;
+use knotlab_learner::synthesis::{
+    ApproachSettings, Method, ReplaySettings, StartPose, SynthesisError, Trocars, prepend_approach,
+    relocation, replay,
+};
+use knotlab_sim::scene::SceneConfig;
+use knotlab_sim::world::{SimWorld, trocar_of};
+use nalgebra::{Isometry3, Translation3, UnitQuaternion};
+
+use crate::expert::record::{
+    CycleObserver, DemoRun, ExpertError, RecordOptions, SIM_RIG_TOML, expert_metadata, record_demonstration,
+};
+
+/// What was learned from the demonstration: the knowledge base, and the demonstration itself (the
+/// replay baseline plays it back).
+#[derive(Clone, Debug)]
+pub struct Learned {
+    /// The primitives.
+    pub knowledge: KnowledgeBase,
+    /// The demonstration they came from.
+    pub demonstration: Demonstration,
+}
+
+/// One trial's set-up.
+#[derive(Clone, Debug)]
+pub struct TrialSetup {
+    /// The scene (before the stitch is moved).
+    pub scene: SceneConfig,
+    /// Its name (the file), for the record.
+    pub scene_name: String,
+    /// Seeds the sensor noise.
+    pub seed: u64,
+    /// Where the stitch goes, relative to the scene's.
+    pub stitch: StitchMove,
+    /// How the skill is carried there.
+    pub method: Method,
+}
+
+/// Why a trial could not run (a knot not tied is a verdict, not an error).
+#[derive(Debug, thiserror::Error)]
+pub enum TrialError {
+    /// The expert's machinery (the scene, the rig, the recording).
+    #[error(transparent)]
+    Expert(#[from] ExpertError),
+    /// The skill could not be synthesized.
+    #[error("synthesis ({method}): {source}")]
+    Synthesis {
+        /// The method.
+        method: Method,
+        /// Why.
+        source: SynthesisError,
+    },
+}
+
+/// A trial that ran.
+pub struct TrialRun {
+    /// What the devices read, the verdict, timings (the recording's own type).
+    pub run: DemoRun,
+    /// The skill that ran.
+    pub skill: Skill,
+    /// How long the instruments took to reach the skill's start, s (included in the skill).
+    pub approach_s: f64,
+}
+
+fn isometry(world_from_tip: &nalgebra::IsometryMatrix3<f64>) -> Isometry3<f64> {
+    Isometry3::from_parts(
+        Translation3::from(world_from_tip.translation.vector),
+        UnitQuaternion::from_rotation_matrix(&world_from_tip.rotation),
+    )
+}
+
+/// Synthesizes the skill for `world` (whose tissue frame is the new stitch frame) by `method`.
+pub fn synthesize_for(
+    world: &SimWorld,
+    learned: &Learned,
+    method: Method,
+) -> Result<(Skill, f64), SynthesisError> {
+    let new_world_from_stitch = world.tissue.world_from_tissue;
+    let demo_world_from_stitch = learned.demonstration.metadata.stitch.world_from_stitch();
+    let moved = relocation(&demo_world_from_stitch, &new_world_from_stitch);
+    let trocars = Trocars(
+        [ArmName::Left, ArmName::Right, ArmName::Assist]
+            .into_iter()
+            .map(|a| (a, trocar_of(&world.config, a)))
+            .collect(),
+    );
+    let mut skill = match method {
+        Method::Replay => replay(&learned.demonstration, &moved, &trocars, &ReplaySettings::default())?,
+        Method::Fluid | Method::Dmp => {
+            return Err(SynthesisError::Empty { what: format!("method {method} (not built yet)") });
+        }
+    };
+    let starts: Vec<StartPose> = [ArmName::Left, ArmName::Right, ArmName::Assist]
+        .into_iter()
+        .map(|arm| StartPose { arm, world_from_tip: isometry(&world.world_from_tip(arm)) })
+        .collect();
+    let approach_s = prepend_approach(&mut skill, &starts, &ApproachSettings::default());
+    Ok((skill, approach_s))
+}
+
+/// Runs one trial; `observer`, if any, sees every control cycle.
+pub fn run_trial(
+    learned: &Learned,
+    setup: &TrialSetup,
+    options: &RecordOptions,
+    observer: Option<&mut CycleObserver<'_>>,
+) -> Result<TrialRun, TrialError> {
+    let rig = Rig::shipped().map_err(|e| ExpertError::Rig(e.to_string()))?;
+    let config = parse_rig_config(SIM_RIG_TOML, "scenarios/rigs/sim.toml")
+        .map_err(|e| ExpertError::Rig(e.to_string()))?;
+    let mut scene = setup.scene.clone();
+    setup.stitch.apply(&mut scene);
+    let mut world = SimWorld::new(scene, rig.clone())
+        .map_err(|source| ExpertError::World { scene: setup.scene_name.clone(), source })?;
+    world.reseed(setup.seed);
+    let (skill, approach_s) = synthesize_for(&world, learned, setup.method)
+        .map_err(|source| TrialError::Synthesis { method: setup.method, source })?;
+    let rate_hz = 1.0 / (world.config.solver.dt_s * options.cycles_per_sample.max(1) as f64);
+    let mut metadata = expert_metadata(&world, &setup.scene_name, Some(setup.seed), rate_hz);
+    metadata.source = format!("knotlab run ({})", setup.method);
+    metadata.description = format!("{} at a moved stitch", learned.knowledge.task);
+    let run = record_demonstration(world, &rig, &config, skill.clone(), metadata, options, observer)
+        .map_err(ExpertError::from)?;
+    Ok(TrialRun { run, skill, approach_s })
+}

@@ -1,0 +1,167 @@
+//! `knotlab run`: one trial end to end. The skill learned from the demonstration is synthesized at the
+//! (moved) stitch by the chosen method, run by the controller on the simulated rig, and the knot it
+//! leaves is evaluated; the verdict and its failure mode are printed.
+
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use anyhow::Context;
+use clap::Args;
+use nalgebra::Vector3;
+use serde::Serialize;
+
+use knotlab_learner::demonstration::{load_demonstration, write_demonstration};
+use knotlab_learner::pattern::load_pattern;
+use knotlab_learner::primitive::{learn, load_knowledge_base};
+use knotlab_learner::synthesis::Method;
+use knotlab_scenarios::expert::RecordOptions;
+use knotlab_scenarios::trial::{Learned, StitchMove, TrialSetup, run_trial};
+use knotlab_sim::knot::Verdict;
+use knotlab_sim::scene::load_scene;
+
+use super::numbers::parse_vector3;
+use super::output::{Output, outln};
+use crate::rerun_log::{self, RerunArgs};
+
+#[derive(Debug, Args)]
+pub struct RunArgs {
+    /// The knowledge base (`knotlab learn --out FILE`); without it the demonstration is learned from
+    /// here and now with `--pattern`.
+    #[arg(long)]
+    skill: Option<PathBuf>,
+    /// The demonstration (learned from without `--skill`; played back by `--method replay`).
+    #[arg(long, default_value = "scenarios/demos/instrument-tie")]
+    demo: PathBuf,
+    /// The task pattern (used without `--skill`).
+    #[arg(long, default_value = "scenarios/patterns/knot_tying.toml")]
+    pattern: PathBuf,
+    /// The scene file.
+    #[arg(long, default_value = "scenarios/default.toml")]
+    scene: PathBuf,
+    /// Seeds the trial's random draws (sensor noise).
+    #[arg(long, default_value_t = 0)]
+    seed: u64,
+    /// How the skill is carried to the stitch: fluid, dmp or replay.
+    #[arg(long, default_value = "fluid")]
+    method: Method,
+    /// Moves the stitch (the tissue) by this much, world frame, m: `dx,dy,dz`.
+    #[arg(long, value_parser = parse_vector3, allow_hyphen_values = true)]
+    stitch_offset: Option<Vector3<f64>>,
+    /// Turns the stitch (the tissue) about its normal by this much, degrees.
+    #[arg(long, allow_hyphen_values = true, default_value_t = 0.0)]
+    stitch_rotate: f64,
+    /// Also write what the devices read during the trial as a demonstration directory here.
+    #[arg(long)]
+    out: Option<PathBuf>,
+    /// Print JSON instead of text.
+    #[arg(long)]
+    json: bool,
+    #[command(flatten)]
+    rerun: RerunArgs,
+}
+
+#[derive(Serialize)]
+struct Report {
+    success: bool,
+    verdict: &'static str,
+    failure_mode: Option<&'static str>,
+    knot: Option<&'static str>,
+    knot_after_release: Option<&'static str>,
+    wound_gap_m: f64,
+    wound_gap_after_release_m: Option<f64>,
+    knot_height_m: Option<f64>,
+    knot_stitch_distance_m: Option<f64>,
+    method: &'static str,
+    seed: u64,
+    scene: String,
+    stitch_offset_m: [f64; 3],
+    stitch_rotate_deg: f64,
+    approach_s: f64,
+    skill_duration_s: f64,
+    fault: Option<String>,
+    sim_seconds: f64,
+    wall_seconds: f64,
+    events: Vec<String>,
+}
+
+pub fn run(args: RunArgs, out: &mut Output) -> anyhow::Result<ExitCode> {
+    if !args.stitch_rotate.is_finite() {
+        anyhow::bail!("--stitch-rotate {}: not a number of degrees", args.stitch_rotate);
+    }
+    let demonstration = load_demonstration(&args.demo)?;
+    let knowledge = match &args.skill {
+        Some(path) => load_knowledge_base(path)?,
+        None => {
+            let pattern = load_pattern(&args.pattern)?;
+            learn(&demonstration, &pattern).with_context(|| {
+                format!("learning from {} with {}", args.demo.display(), args.pattern.display())
+            })?
+        }
+    };
+    let learned = Learned { knowledge, demonstration };
+    let scene_name = args.scene.display().to_string();
+    let setup = TrialSetup {
+        scene: load_scene(&args.scene)?,
+        scene_name: scene_name.clone(),
+        seed: args.seed,
+        stitch: StitchMove {
+            offset_m: args.stitch_offset.unwrap_or_else(Vector3::zeros),
+            rotate_rad: args.stitch_rotate.to_radians(),
+        },
+        method: args.method,
+    };
+    let options = RecordOptions { cycles_per_sample: 10, ..RecordOptions::default() };
+    let recording = args.rerun.open("run")?;
+    let trial = rerun_log::record_trial(
+        recording.as_ref(),
+        |observer| run_trial(&learned, &setup, &options, observer),
+        |trial| &trial.run,
+    )?;
+    rerun_log::finish(recording)?;
+    if let Some(dir) = &args.out {
+        write_demonstration(dir, &trial.run.demonstration)
+            .with_context(|| format!("writing the trial's recording to {}", dir.display()))?;
+    }
+    let e = &trial.run.evaluation;
+    let report = Report {
+        success: e.verdict == Verdict::Success,
+        verdict: e.verdict.label(),
+        failure_mode: match e.verdict {
+            Verdict::Success => None,
+            Verdict::Failure(mode) => Some(mode.name()),
+        },
+        knot: e.knot_before.map(|k| k.name()),
+        knot_after_release: e.knot_after.map(|k| k.name()),
+        wound_gap_m: e.gap_after_m.unwrap_or(e.gap_before_m),
+        wound_gap_after_release_m: e.gap_after_m,
+        knot_height_m: e.height_m,
+        knot_stitch_distance_m: e.stitch_distance_m,
+        method: args.method.as_str(),
+        seed: args.seed,
+        scene: scene_name,
+        stitch_offset_m: setup.stitch.offset_m.into(),
+        stitch_rotate_deg: args.stitch_rotate,
+        approach_s: trial.approach_s,
+        skill_duration_s: trial.skill.duration_s(),
+        fault: trial.run.fault.clone(),
+        sim_seconds: trial.run.simulated_s,
+        wall_seconds: trial.run.wall_s,
+        events: trial.run.events.clone(),
+    };
+    if args.json {
+        outln!(out, "{}", serde_json::to_string_pretty(&report)?);
+    } else {
+        outln!(
+            out,
+            "{} ({}): knot {}, wound gap {:.2} mm{}; {:.1} s simulated in {:.1} s",
+            report.verdict,
+            report.method,
+            report.knot.unwrap_or("-"),
+            report.wound_gap_m * 1e3,
+            report.fault.as_deref().map(|f| format!(", fault: {f}")).unwrap_or_default(),
+            report.sim_seconds,
+            report.wall_seconds
+        );
+    }
+    Ok(ExitCode::SUCCESS)
+}
