@@ -50,6 +50,9 @@ pub struct RunArgs {
     /// Turns the stitch (the tissue) about its normal by this much, degrees.
     #[arg(long, allow_hyphen_values = true, default_value_t = 0.0)]
     stitch_rotate: f64,
+    /// Stop the skill at this skill time, s, and evaluate what is there (a short trial, to debug).
+    #[arg(long, value_name = "S")]
+    until: Option<f64>,
     /// Also write what the devices read during the trial as a demonstration directory here.
     #[arg(long)]
     out: Option<PathBuf>,
@@ -110,7 +113,12 @@ pub fn run(args: RunArgs, out: &mut Output) -> anyhow::Result<ExitCode> {
         },
         method: args.method,
     };
-    let options = RecordOptions { cycles_per_sample: 10, ..RecordOptions::default() };
+    if let Some(t) = args.until
+        && !(t.is_finite() && t > 0.0)
+    {
+        anyhow::bail!("--until {t}: must be a positive number of seconds");
+    }
+    let options = RecordOptions { cycles_per_sample: 10, stop_after_s: args.until, ..RecordOptions::default() };
     let recording = args.rerun.open("run")?;
     let trial = rerun_log::record_trial(
         recording.as_ref(),

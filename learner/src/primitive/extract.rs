@@ -5,6 +5,7 @@
 use nalgebra::{Isometry3, Matrix3, SymmetricEigen, UnitQuaternion, Vector3};
 use thiserror::Error;
 
+use super::timing::{dependencies, jaw_points, path_keys};
 use super::{
     DemonstrationInfo, ForcePrimitive, InstrumentPrimitives, JawAction, JawActionKind, KB_FORMAT,
     KB_FORMAT_VERSION, KnowledgeBase, LinearPrimitive, Plane, Pose, Primitive, ProfilePoint, SyncSample,
@@ -371,7 +372,12 @@ pub fn extract(
         let name = decomposition.segments[k].instrument.as_str().to_owned();
         match instruments.iter_mut().find(|i| i.instrument == name) {
             Some(i) => i.primitives.push(primitive),
-            None => instruments.push(InstrumentPrimitives { instrument: name, primitives: vec![primitive] }),
+            None => {
+                let record = demo.instrument(decomposition.segments[k].instrument);
+                let jaw = record.map(jaw_points).unwrap_or_default();
+                let path = record.map(|r| path_keys(r, &stitch_from_world)).unwrap_or_default();
+                instruments.push(InstrumentPrimitives { instrument: name, primitives: vec![primitive], jaw, path });
+            }
         }
     }
     let m = &demo.metadata;
@@ -392,5 +398,6 @@ pub fn extract(
             quaternion_xyzw: m.stitch.quaternion_xyzw,
         },
         instruments,
+        dependencies: dependencies(pattern, decomposition),
     })
 }

@@ -10,8 +10,12 @@ use super::KnowledgeBase;
 /// The value of a knowledge base's `format` field.
 pub const KB_FORMAT: &str = "knotlab-knowledge-base";
 
-/// The knowledge base format version this knotlab writes and reads.
-pub const KB_FORMAT_VERSION: u32 = 1;
+/// The knowledge base format version this knotlab writes. Version 2 added the instruments' `jaw` and
+/// the `dependencies`.
+pub const KB_FORMAT_VERSION: u32 = 2;
+
+/// The versions this knotlab reads (a version 1 file has no jaw points and no dependencies).
+pub const KB_READABLE_VERSIONS: [u32; 2] = [1, 2];
 
 /// Why a knowledge base could not be written or read.
 #[derive(Debug, Error)]
@@ -77,12 +81,12 @@ pub fn parse_knowledge_base(text: &str, file: &str) -> Result<KnowledgeBase, Kno
         }
     }
     match value.get("format_version").and_then(serde_json::Value::as_u64) {
-        Some(v) if v == u64::from(KB_FORMAT_VERSION) => {}
+        Some(v) if KB_READABLE_VERSIONS.iter().any(|r| u64::from(*r) == v) => {}
         other => {
             return Err(invalid(
                 0,
                 "format_version",
-                format!("{other:?} is not supported (this knotlab reads version {KB_FORMAT_VERSION})"),
+                format!("{other:?} is not supported (this knotlab reads versions {KB_READABLE_VERSIONS:?})"),
             ));
         }
     }

@@ -15,6 +15,7 @@
 pub mod extract;
 pub mod knowledge;
 pub mod learn;
+pub mod timing;
 
 pub use extract::{ExtractError, extract};
 pub use knowledge::{
@@ -292,6 +293,52 @@ pub struct InstrumentPrimitives {
     pub instrument: String,
     /// The primitives.
     pub primitives: Vec<Primitive>,
+    /// The jaw over the whole demonstration, reduced to where it starts and stops moving (the
+    /// demonstration's clock): what the jaws do between primitives (a grasp in a pause) is here.
+    /// (Format version 2; empty in version 1.)
+    #[serde(default)]
+    pub jaw: Vec<JawPoint>,
+    /// The tip over the whole demonstration, stitch frame, every [`timing::PATH_PERIOD_S`]: what the
+    /// instrument does between primitives (moves the pattern does not cut out) is played from here.
+    /// (Format version 2; empty in version 1.)
+    #[serde(default)]
+    pub path: Vec<PathKey>,
+}
+
+/// A point of an instrument's demonstrated path.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PathKey {
+    /// The demonstration's time, s.
+    pub time_s: f64,
+    /// The tip, stitch frame, m.
+    pub position_m: [f64; 3],
+    /// Where the jaws point, stitch frame (unit).
+    pub jaw_direction: [f64; 3],
+}
+
+/// A point of an instrument's jaw over time.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct JawPoint {
+    /// The demonstration's time, s.
+    pub time_s: f64,
+    /// The jaw angle, rad.
+    pub jaw_rad: f64,
+}
+
+/// A primitive that waits for another instrument's primitive (a cross-instrument `after` of the
+/// pattern), and how long after it the demonstration started it.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Dependency {
+    /// The primitive that waits.
+    pub primitive: String,
+    /// The primitive it waits for.
+    pub after: String,
+    /// From the end of `after` to the start of `primitive` in the demonstration, s (may be negative
+    /// where the pattern allows slack).
+    pub pause_s: f64,
 }
 
 /// Where the knowledge came from.
@@ -328,6 +375,9 @@ pub struct KnowledgeBase {
     pub world_from_stitch: Pose,
     /// Per instrument, its primitives.
     pub instruments: Vec<InstrumentPrimitives>,
+    /// Which primitive waits for which. (Format version 2; empty in version 1.)
+    #[serde(default)]
+    pub dependencies: Vec<Dependency>,
 }
 
 impl KnowledgeBase {

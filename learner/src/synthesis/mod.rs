@@ -1,21 +1,31 @@
 //! Skill synthesis: from what was learned to a Skill the controller runs at a new stitch site.
 //!
 //! - [`site`]: the new stitch frame and the rigid motion to it.
+//! - [`skill`]: the skill from the primitives by the rules of each type (methods fluid and DMP).
+//! - [`schedule`]: its clock: pauses and waits between primitives as demonstrated.
+//! - [`track`]: building one instrument's keys.
+//! - [`dmp`]: dynamic movement primitives.
 //! - [`replay`]: the baseline that replays the demonstration, rigidly moved.
 //! - [`method`]: the methods by name (`fluid`, `dmp`, `replay`).
 //! - [`orientation`]: how keys orient the tip (the jaws' direction, not the roll).
 //! - [`approach`]: the way in from where the instruments are to the skill's first poses.
 
 pub mod approach;
+pub mod dmp;
 pub mod method;
 pub mod orientation;
 pub mod replay;
+pub mod schedule;
 pub mod site;
+pub mod skill;
+pub mod track;
 
 pub use approach::{ApproachSettings, StartPose, prepend_approach};
 pub use method::Method;
 pub use replay::{ReplaySettings, replay};
+pub use schedule::{Schedule, Slot};
 pub use site::relocation;
+pub use skill::{ObstacleSource, PrimitiveSettings, Site, Synthesis, synthesize};
 
 use nalgebra::Vector3;
 use thiserror::Error;

@@ -2,6 +2,7 @@
 //! learned (by the method asked for), run by the controller on the simulated rig through the device
 //! traits, and the knot it leaves evaluated.
 
+pub mod obstacles;
 pub mod stitch;
 
 pub use stitch::StitchMove;
@@ -10,14 +11,18 @@ use knotlab_hw::rig::{ArmName, Rig};
 use knotlab_hw::rig_config::parse_rig_config;
 use knotlab_hw::skill::Skill;
 use knotlab_learner::demonstration::Demonstration;
-use knotlab_learner::primitive::KnowledgeBase;
+use knotlab_learner::fluid::{GridRegion, PlaneFrame};
+use knotlab_learner::primitive::{KnowledgeBase, Primitive};
+use knotlab_learner::synthesis::site::pose_isometry;
 use knotlab_learner::synthesis::{
-    ApproachSettings, Method, ReplaySettings, StartPose, SynthesisError, Trocars, prepend_approach,
-    relocation, replay,
+    ApproachSettings, Method, PrimitiveSettings, ReplaySettings, Site, StartPose, SynthesisError, Trocars,
+    prepend_approach, relocation, replay, synthesize,
 };
 use knotlab_sim::scene::SceneConfig;
 use knotlab_sim::world::{SimWorld, trocar_of};
-use nalgebra::{Isometry3, Translation3, UnitQuaternion};
+use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};
+
+use self::obstacles::{ObstacleLog, collision_world, virtual_obstacles};
 
 use crate::expert::record::{
     CycleObserver, DemoRun, ExpertError, RecordOptions, SIM_RIG_TOML, expert_metadata, record_demonstration,
@@ -72,6 +77,8 @@ pub struct TrialRun {
     pub skill: Skill,
     /// How long the instruments took to reach the skill's start, s (included in the skill).
     pub approach_s: f64,
+    /// The virtual obstacles of its 2D primitives.
+    pub obstacles: ObstacleLog,
 }
 
 fn isometry(world_from_tip: &nalgebra::IsometryMatrix3<f64>) -> Isometry3<f64> {
@@ -81,12 +88,23 @@ fn isometry(world_from_tip: &nalgebra::IsometryMatrix3<f64>) -> Isometry3<f64> {
     )
 }
 
+/// A skill made for a trial.
+#[derive(Clone, Debug)]
+pub struct Synthesized {
+    /// The skill.
+    pub skill: Skill,
+    /// How long the way in from where the instruments were lasts, s.
+    pub approach_s: f64,
+    /// The virtual obstacles the fluid flowed around.
+    pub obstacles: ObstacleLog,
+}
+
 /// Synthesizes the skill for `world` (whose tissue frame is the new stitch frame) by `method`.
 pub fn synthesize_for(
     world: &SimWorld,
     learned: &Learned,
     method: Method,
-) -> Result<(Skill, f64), SynthesisError> {
+) -> Result<Synthesized, SynthesisError> {
     let new_world_from_stitch = world.tissue.world_from_tissue;
     let demo_world_from_stitch = learned.demonstration.metadata.stitch.world_from_stitch();
     let moved = relocation(&demo_world_from_stitch, &new_world_from_stitch);
@@ -96,18 +114,31 @@ pub fn synthesize_for(
             .map(|a| (a, trocar_of(&world.config, a)))
             .collect(),
     );
-    let mut skill = match method {
-        Method::Replay => replay(&learned.demonstration, &moved, &trocars, &ReplaySettings::default())?,
-        Method::Fluid | Method::Dmp => {
-            return Err(SynthesisError::Empty { what: format!("method {method} (not built yet)") });
-        }
-    };
     let starts: Vec<StartPose> = [ArmName::Left, ArmName::Right, ArmName::Assist]
         .into_iter()
         .map(|arm| StartPose { arm, world_from_tip: isometry(&world.world_from_tip(arm)) })
         .collect();
+    let mut log = ObstacleLog::default();
+    let mut skill = match method {
+        Method::Replay => replay(&learned.demonstration, &moved, &trocars, &ReplaySettings::default())?,
+        Method::Fluid | Method::Dmp => {
+            let collision = collision_world(world)?;
+            let mut source = |name: &str, arm: ArmName, plane: &PlaneFrame, region: &GridRegion| {
+                let kb_pose = match learned.knowledge.primitive(name) {
+                    Some(Primitive::TwoD(p)) => p.start_pose,
+                    _ => return Ok(knotlab_learner::fluid::ObstacleMask::free(region.n)),
+                };
+                let direction = (new_world_from_stitch * pose_isometry(&kb_pose)).rotation * Vector3::z();
+                let mask = virtual_obstacles(&collision, arm, plane, region, direction)?;
+                log.grids.push((name.to_owned(), mask.count_blocked(), region.n * region.n));
+                Ok(mask)
+            };
+            let site = Site { new_world_from_stitch, trocars: &trocars, starts: &starts };
+            synthesize(&learned.knowledge, method, &site, &PrimitiveSettings::default(), &mut source)?.skill
+        }
+    };
     let approach_s = prepend_approach(&mut skill, &starts, &ApproachSettings::default());
-    Ok((skill, approach_s))
+    Ok(Synthesized { skill, approach_s, obstacles: log })
 }
 
 /// Runs one trial; `observer`, if any, sees every control cycle.
@@ -125,7 +156,7 @@ pub fn run_trial(
     let mut world = SimWorld::new(scene, rig.clone())
         .map_err(|source| ExpertError::World { scene: setup.scene_name.clone(), source })?;
     world.reseed(setup.seed);
-    let (skill, approach_s) = synthesize_for(&world, learned, setup.method)
+    let Synthesized { skill, approach_s, obstacles } = synthesize_for(&world, learned, setup.method)
         .map_err(|source| TrialError::Synthesis { method: setup.method, source })?;
     let rate_hz = 1.0 / (world.config.solver.dt_s * options.cycles_per_sample.max(1) as f64);
     let mut metadata = expert_metadata(&world, &setup.scene_name, Some(setup.seed), rate_hz);
@@ -133,5 +164,5 @@ pub fn run_trial(
     metadata.description = format!("{} at a moved stitch", learned.knowledge.task);
     let run = record_demonstration(world, &rig, &config, skill.clone(), metadata, options, observer)
         .map_err(ExpertError::from)?;
-    Ok(TrialRun { run, skill, approach_s })
+    Ok(TrialRun { run, skill, approach_s, obstacles })
 }

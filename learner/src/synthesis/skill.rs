@@ -1,0 +1,541 @@
+//! A skill from the knowledge base's primitives at a new stitch (the fluid and DMP methods), by the
+//! rules of each primitive type:
+//! - linear: from where the instrument is to the moved end, straight, with the demonstrated speed
+//!   profile (stretched to the new length, the demonstrated duration kept);
+//! - force-controlled: the demonstrated movement, moved, then on along its line (start to where it
+//!   came to rest) until the line is elongated by [`PrimitiveSettings::force_elongation`], then back to
+//!   the line's end; the jaw opens once the recorded maximum force is reached (a force event);
+//! - 2D: regenerated through the fluid around obstacles ([`Method::Fluid`]) or by a DMP from where the
+//!   instrument is ([`Method::Dmp`]);
+//! - synchronized: the stored offsets from the reference applied to every point of the reference's new
+//!   path, at the same progress along it.
+//!
+//! Between primitives the instrument does what it did in the demonstration (the knowledge base's path
+//! of each instrument, moved to the new stitch), on the [`Schedule`]'s clock; a primitive that starts
+//! elsewhere is reached by a straight minimum-jerk move (at [`PrimitiveSettings::gap_speed_mps`]). The
+//! jaws move as the demonstration's did.
+
+use nalgebra::{Isometry3, Vector2, Vector3};
+
+use knotlab_hw::rig::ArmName;
+use knotlab_hw::skill::{ForceAction, ForceEvent, JawKey, Skill};
+
+use super::dmp::Dmp;
+use super::schedule::Schedule;
+use super::site::pose_isometry;
+use super::track::TrackKeys;
+use super::{Method, StartPose, SynthesisError, Trocars};
+use crate::fluid::{
+    ArcPath, GridRegion, InstantiateSettings, Instantiation, ObstacleMask, PlaneFrame, instantiate,
+};
+use crate::primitive::{
+    ForcePrimitive, KnowledgeBase, LinearPrimitive, PathKey, Pose, Primitive, ProfilePoint, SynchronizedPrimitive,
+    TwoDPrimitive,
+};
+
+/// How primitives are instantiated.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PrimitiveSettings {
+    /// A force-controlled primitive's line is elongated by this factor (the paper: 1.25).
+    pub force_elongation: f64,
+    /// Its return from the elongated end to the line's end takes at least this long, s.
+    pub force_return_s: f64,
+    /// Moves between primitives go at this mean speed, m/s.
+    pub gap_speed_mps: f64,
+    /// The fluid's grid: cells per side.
+    pub fluid_cells: usize,
+    /// Free margin of the fluid's grid around the demonstrated path, m.
+    pub fluid_margin_m: f64,
+    /// The fluid solver's settings.
+    pub fluid: InstantiateSettings,
+    /// Basis functions per DMP.
+    pub dmp_basis: usize,
+    /// Pose keys of generated paths every this many seconds.
+    pub key_period_s: f64,
+}
+
+impl Default for PrimitiveSettings {
+    /// Elongation 1.25 and a return of at least 0.5 s, gaps at 1 cm/s, a 50 x 50 fluid grid with 1 cm
+    /// margin, 100 DMP basis functions, keys every 50 ms.
+    fn default() -> Self {
+        Self {
+            force_elongation: 1.25,
+            force_return_s: 0.5,
+            gap_speed_mps: 0.01,
+            fluid_cells: 50,
+            fluid_margin_m: 0.01,
+            fluid: InstantiateSettings::default(),
+            dmp_basis: 100,
+            key_period_s: 0.05,
+        }
+    }
+}
+
+/// The site a skill is made for.
+#[derive(Clone, Debug)]
+pub struct Site<'a> {
+    /// The new stitch frame.
+    pub new_world_from_stitch: Isometry3<f64>,
+    /// The trocars.
+    pub trocars: &'a Trocars,
+    /// Where the instruments are.
+    pub starts: &'a [StartPose],
+}
+
+/// Real and virtual obstacles in a 2D primitive's plane: given the primitive, its instrument, the
+/// moved plane and the grid region, the blocked cells.
+pub type ObstacleSource<'a> =
+    dyn FnMut(&str, ArmName, &PlaneFrame, &GridRegion) -> Result<ObstacleMask, SynthesisError> + 'a;
+
+/// A synthesized skill with what it was made of.
+#[derive(Clone, Debug)]
+pub struct Synthesis {
+    /// The skill.
+    pub skill: Skill,
+    /// Its clock.
+    pub schedule: Schedule,
+    /// The fluid's regenerations of the 2D primitives (method fluid), by primitive name.
+    pub fluid: Vec<(String, Instantiation)>,
+}
+
+fn invalid(field: impl Into<String>, reason: impl Into<String>) -> SynthesisError {
+    SynthesisError::Invalid { field: field.into(), reason: reason.into() }
+}
+
+/// Where a knowledge-base pose lands in the world, and where its jaws point.
+fn placed(world_from_stitch: &Isometry3<f64>, pose: &Pose) -> (Vector3<f64>, Vector3<f64>) {
+    let world_from_tip = world_from_stitch * pose_isometry(pose);
+    (world_from_tip.translation.vector, world_from_tip.rotation * Vector3::z())
+}
+
+/// Fractions of time at the profile's points, from 0 to 1, moving at its speeds (floored at 5 % of the
+/// largest, where the hand was at rest).
+fn profile_times(profile: &[ProfilePoint]) -> Vec<f64> {
+    let v_max = profile.iter().map(|p| p.speed_mps).fold(0.0, f64::max);
+    let floor = (0.05 * v_max).max(1e-6);
+    let mut t = vec![0.0];
+    for w in profile.windows(2) {
+        let ds = (w[1].s_m - w[0].s_m).max(0.0);
+        let v = 0.5 * (w[0].speed_mps.max(floor) + w[1].speed_mps.max(floor));
+        t.push(t[t.len() - 1] + ds / v);
+    }
+    let total = t[t.len() - 1];
+    if total > 0.0 {
+        t.iter().map(|x| x / total).collect()
+    } else {
+        (0..profile.len()).map(|k| k as f64 / (profile.len() - 1).max(1) as f64).collect()
+    }
+}
+
+/// Keys along the straight line `from -> to` from `t0` over `duration_s`, progressing by the profile.
+fn line(
+    track: &mut TrackKeys,
+    profile: &[ProfilePoint],
+    t0: f64,
+    duration_s: f64,
+    to: Vector3<f64>,
+    to_dir: Vector3<f64>,
+) {
+    let (from, from_dir) = (track.position_m, track.jaw_direction);
+    let total_s = profile.last().map_or(0.0, |p| p.s_m);
+    if profile.len() < 2 || total_s <= 0.0 {
+        track.move_to(t0 + duration_s, to, to_dir, 20);
+        return;
+    }
+    for (p, tau) in profile.iter().zip(profile_times(profile)) {
+        let u = (p.s_m / total_s).clamp(0.0, 1.0);
+        track.key(t0 + tau * duration_s, from.lerp(&to, u), from_dir.lerp(&to_dir, u));
+    }
+}
+
+fn gap_move(track: &mut TrackKeys, until_s: f64, to: Vector3<f64>, to_dir: Vector3<f64>, speed_mps: f64) {
+    let distance = (to - track.position_m).norm();
+    let available = until_s - track.time_s;
+    if available <= 0.0 {
+        track.key(track.time_s, to, to_dir);
+        return;
+    }
+    let wanted = (distance / speed_mps).max(0.3);
+    track.move_to(track.time_s + wanted.min(available), to, to_dir, 10);
+    track.hold_until(until_s);
+}
+
+fn duration_of(p: &Primitive, settings: &PrimitiveSettings) -> f64 {
+    let (a, b) = p.span_s();
+    match p {
+        Primitive::Force(_) => settings.force_elongation * (b - a) + return_s(b - a, settings),
+        _ => b - a,
+    }
+}
+
+fn return_s(demo_duration_s: f64, settings: &PrimitiveSettings) -> f64 {
+    (0.1 * demo_duration_s).max(settings.force_return_s)
+}
+
+fn linear_keys(
+    track: &mut TrackKeys,
+    p: &LinearPrimitive,
+    slot: (f64, f64),
+    world_from_stitch: &Isometry3<f64>,
+) {
+    let (to, to_dir) = placed(world_from_stitch, &p.end_pose);
+    track.hold_until(slot.0);
+    line(track, &p.speed_profile, slot.0, slot.1 - slot.0, to, to_dir);
+}
+
+/// Keys from the demonstrated path between the demonstration's times `from_s` and `to_s` (open
+/// interval), placed at `map(t)` on the new clock and moved to the new stitch.
+fn transfer(
+    track: &mut TrackKeys,
+    path: &[PathKey],
+    (from_s, to_s): (f64, f64),
+    map: impl Fn(f64) -> f64,
+    world_from_stitch: &Isometry3<f64>,
+) {
+    for key in path.iter().filter(|k| k.time_s > from_s && k.time_s < to_s) {
+        let t = map(key.time_s);
+        if t <= track.time_s {
+            continue;
+        }
+        let p = world_from_stitch.transform_point(&Vector3::from(key.position_m).into()).coords;
+        let d = world_from_stitch.rotation * Vector3::from(key.jaw_direction);
+        track.key(t, p, d);
+    }
+}
+
+fn force_keys(
+    track: &mut TrackKeys,
+    p: &ForcePrimitive,
+    path: &[PathKey],
+    slot: (f64, f64),
+    world_from_stitch: &Isometry3<f64>,
+    settings: &PrimitiveSettings,
+) {
+    let (start, start_dir) = placed(world_from_stitch, &p.start_pose);
+    let (end, end_dir) = placed(world_from_stitch, &p.end_pose);
+    let line_end = world_from_stitch.transform_point(&Vector3::from(p.line_end_m).into()).coords;
+    gap_move(track, slot.0, start, start_dir, settings.gap_speed_mps);
+    let d = p.end_s - p.start_s;
+    // The demonstrated movement up to the jaws' opening, moved; the line from its start to where it came
+    // to rest gives the direction it goes on in.
+    let shift = slot.0 - p.start_s;
+    transfer(track, path, (p.start_s, p.end_s), |t| t + shift, world_from_stitch);
+    track.key(slot.0 + d, end, end_dir);
+    let far = start + (line_end - start) * settings.force_elongation;
+    track.move_to(slot.0 + settings.force_elongation * d, far, end_dir, 20);
+    track.move_to(slot.1, line_end, end_dir, 20);
+    let (from_rad, to_rad) = (p.jaw.from_rad, p.jaw.to_rad);
+    track.jaw.push(JawKey { time_s: slot.0, jaw_rad: from_rad });
+    track.jaw.push(JawKey { time_s: slot.1 - 0.01, jaw_rad: from_rad });
+    track.jaw.push(JawKey { time_s: slot.1, jaw_rad: to_rad });
+    track.events.push(ForceEvent {
+        name: p.name.clone(),
+        from_s: slot.0,
+        until_s: slot.1,
+        threshold_n: p.max_force_n,
+        action: ForceAction::OpenJaw { jaw_rad: to_rad },
+    });
+}
+
+/// The reference path of a synchronized primitive: times and world points of a 2D primitive's new path.
+#[derive(Clone, Debug)]
+struct NewPath {
+    name: String,
+    plane: PlaneFrame,
+    times_s: Vec<f64>,
+    points_m: Vec<Vector3<f64>>,
+}
+
+impl NewPath {
+    /// The time at which the path has covered `phase` of its length.
+    fn time_at_phase(&self, phase: f64) -> (f64, Vector3<f64>) {
+        let mut s = vec![0.0];
+        for w in self.points_m.windows(2) {
+            s.push(s[s.len() - 1] + (w[1] - w[0]).norm());
+        }
+        let total = s[s.len() - 1];
+        if total <= 0.0 {
+            return (self.times_s[0], self.points_m[0]);
+        }
+        let target = phase.clamp(0.0, 1.0) * total;
+        let k = s.partition_point(|x| *x <= target).saturating_sub(1).min(s.len() - 2);
+        let f = if s[k + 1] > s[k] { (target - s[k]) / (s[k + 1] - s[k]) } else { 0.0 };
+        (
+            self.times_s[k] + f * (self.times_s[k + 1] - self.times_s[k]),
+            self.points_m[k].lerp(&self.points_m[k + 1], f),
+        )
+    }
+}
+
+#[allow(clippy::too_many_arguments)]
+fn two_d_path(
+    arm: ArmName,
+    track: &TrackKeys,
+    p: &TwoDPrimitive,
+    slot: (f64, f64),
+    method: Method,
+    demo_world_from_stitch: &Isometry3<f64>,
+    new_world_from_stitch: &Isometry3<f64>,
+    settings: &PrimitiveSettings,
+    demo_path: &[PathKey],
+    obstacles: &mut ObstacleSource<'_>,
+) -> Result<(NewPath, Option<Instantiation>), SynthesisError> {
+    let demo = p
+        .planar_demonstration(demo_world_from_stitch)
+        .map_err(|e| invalid(format!("{}.path", p.name), e.to_string()))?;
+    let moved = new_world_from_stitch * demo_world_from_stitch.inverse();
+    let plane = demo.plane.moved(&moved);
+    let duration = slot.1 - slot.0;
+    let (native, points_m, inst): (Vec<f64>, Vec<Vector3<f64>>, Option<Instantiation>) = match method {
+        Method::Fluid => {
+            let region =
+                GridRegion::around(&demo.path.points_m, settings.fluid_cells, settings.fluid_margin_m)
+                    .map_err(|e| invalid(format!("{}.fluid", p.name), e.to_string()))?;
+            let mask = obstacles(&p.name, arm, &plane, &region)?;
+            let inst = instantiate(&demo, &moved, &region, &mask, &settings.fluid)
+                .map_err(|e| invalid(format!("{}.fluid", p.name), e.to_string()))?;
+            let times = inst.points.iter().map(|q| q.t_s).collect();
+            let points = inst.points.iter().map(|q| q.world_m).collect();
+            (times, points, Some(inst))
+        }
+        Method::Dmp | Method::Replay => {
+            let arc = ArcPath::new(&demo.path);
+            let n = 400;
+            let dt = arc.duration_s() / n as f64;
+            let samples: Vec<Vector2<f64>> = (0..=n).map(|k| arc.at_time(k as f64 * dt).point_m).collect();
+            let start = plane.to_plane(&track.position_m);
+            let goal = samples[n];
+            let mut coords = Vec::new();
+            for axis in 0..2 {
+                let y: Vec<f64> = samples.iter().map(|q| q[axis]).collect();
+                let dmp = Dmp::fit(&y, dt, settings.dmp_basis)
+                    .ok_or_else(|| invalid(format!("{}.path", p.name), "too short for a DMP"))?;
+                coords.push(dmp.rollout(start[axis], goal[axis], arc.duration_s(), dt));
+            }
+            let times = (0..coords[0].len()).map(|k| k as f64 * dt).collect();
+            let points = (0..coords[0].len())
+                .map(|k| plane.to_world(&Vector2::new(coords[0][k], coords[1][k])))
+                .collect();
+            (times, points, None)
+        }
+    };
+    let native_end = native.last().copied().unwrap_or(0.0).max(1e-9);
+    let times_s: Vec<f64> = native.iter().map(|t| slot.0 + t / native_end * duration).collect();
+    let regenerated = NewPath { name: p.name.clone(), plane, times_s, points_m };
+    // The demonstration's own pace along the path: how far along it the hand was at each moment (the
+    // speeds the solver stirs with are floored where the hand was at rest, which shifts the timing).
+    let progress = demonstrated_progress(demo_path, p);
+    if progress.len() < 2 {
+        return Ok((regenerated, inst));
+    }
+    let scale = duration / (p.end_s - p.start_s).max(1e-9);
+    let (times_s, points_m) = progress
+        .iter()
+        .map(|(t, phase)| (slot.0 + (t - p.start_s) * scale, regenerated.time_at_phase(*phase).1))
+        .unzip();
+    Ok((NewPath { name: p.name.clone(), plane, times_s, points_m }, inst))
+}
+
+/// `(time, fraction of the path's length covered)` over the primitive's span: each demonstrated path key
+/// projected onto the primitive's tremor-free path (searching forward from the previous one, so loops
+/// that pass near themselves are told apart).
+fn demonstrated_progress(path: &[PathKey], p: &TwoDPrimitive) -> Vec<(f64, f64)> {
+    let n = p.path_m.len();
+    if n < 2 {
+        return Vec::new();
+    }
+    let mut s = vec![0.0];
+    for w in p.path_m.windows(2) {
+        s.push(s[s.len() - 1] + (Vector2::from(w[1]) - Vector2::from(w[0])).norm());
+    }
+    let total = s[n - 1];
+    if total <= 0.0 {
+        return Vec::new();
+    }
+    let origin = Vector3::from(p.plane.origin_m);
+    let (ax, ay) = (Vector3::from(p.plane.axis_x), Vector3::from(p.plane.axis_y));
+    // Look ahead at most 2 cm of path from the last match.
+    let window = ((0.02 / p.step_m.max(1e-6)).ceil() as usize).max(2);
+    let mut at = 0usize;
+    let mut out = Vec::new();
+    for key in path.iter().filter(|k| k.time_s >= p.start_s && k.time_s <= p.end_s) {
+        let d = Vector3::from(key.position_m) - origin;
+        let q = Vector2::new(d.dot(&ax), d.dot(&ay));
+        let best = (at..(at + window).min(n))
+            .min_by(|&i, &j| {
+                (Vector2::from(p.path_m[i]) - q).norm().total_cmp(&(Vector2::from(p.path_m[j]) - q).norm())
+            })
+            .unwrap_or(at);
+        at = best;
+        out.push((key.time_s, s[best] / total));
+    }
+    if let Some(last) = out.last_mut() {
+        last.1 = 1.0;
+    }
+    if let Some(first) = out.first_mut() {
+        first.1 = 0.0;
+    }
+    out
+}
+
+fn path_keys(
+    track: &mut TrackKeys,
+    path: &NewPath,
+    from_dir: Vector3<f64>,
+    to_dir: Vector3<f64>,
+    period_s: f64,
+    gap_speed_mps: f64,
+) {
+    let (t0, t1) = (path.times_s[0], path.times_s[path.times_s.len() - 1]);
+    gap_move(track, t0, path.points_m[0], from_dir, gap_speed_mps);
+    let mut next = t0;
+    for (k, (t, q)) in path.times_s.iter().zip(&path.points_m).enumerate() {
+        if *t + 1e-9 < next && k + 1 != path.times_s.len() {
+            continue;
+        }
+        next = t + period_s;
+        let f = if t1 > t0 { (t - t0) / (t1 - t0) } else { 1.0 };
+        track.key(*t, *q, from_dir.lerp(&to_dir, f));
+    }
+}
+
+fn sync_keys(
+    track: &mut TrackKeys,
+    p: &SynchronizedPrimitive,
+    reference: &NewPath,
+    world_from_stitch: &Isometry3<f64>,
+    gap_speed_mps: f64,
+) -> Result<(), SynthesisError> {
+    let axes = [reference.plane.axis_x, reference.plane.axis_y, reference.plane.normal()];
+    let mut points = Vec::with_capacity(p.mapping.len());
+    for sample in &p.mapping {
+        let (t, r) = reference.time_at_phase(sample.phase);
+        let offset =
+            axes[0] * sample.offset_m[0] + axes[1] * sample.offset_m[1] + axes[2] * sample.offset_m[2];
+        let dir = world_from_stitch.rotation
+            * pose_isometry(&Pose { position_m: [0.0; 3], quaternion_xyzw: sample.quaternion_xyzw }).rotation
+            * Vector3::z();
+        points.push((t, r + offset, dir));
+    }
+    let Some(&(t0, first, first_dir)) = points.first() else {
+        return Err(invalid(format!("{}.mapping", p.name), "empty"));
+    };
+    gap_move(track, t0, first, first_dir, gap_speed_mps);
+    for (t, q, dir) in points {
+        track.key(t, q, dir);
+    }
+    Ok(())
+}
+
+/// Synthesizes the skill of `kb` at `site` by `method` (fluid or DMP; the replay baseline is
+/// [`super::replay()`]).
+pub fn synthesize(
+    kb: &KnowledgeBase,
+    method: Method,
+    site: &Site<'_>,
+    settings: &PrimitiveSettings,
+    obstacles: &mut ObstacleSource<'_>,
+) -> Result<Synthesis, SynthesisError> {
+    let schedule = Schedule::plan(kb, |p| duration_of(p, settings))?;
+    let demo_world_from_stitch = pose_isometry(&kb.world_from_stitch);
+    let world_from_stitch = site.new_world_from_stitch;
+    let mut tracks: Vec<TrackKeys> = Vec::new();
+    for (i, ip) in kb.instruments.iter().enumerate() {
+        let arm: ArmName = ip
+            .instrument
+            .parse()
+            .map_err(|e| invalid(format!("instruments[{i}].instrument"), format!("{e}")))?;
+        let start = site
+            .starts
+            .iter()
+            .find(|s| s.arm == arm)
+            .ok_or_else(|| invalid("starts", format!("no start pose of the {arm} instrument")))?;
+        let mut track = TrackKeys::new(
+            arm,
+            site.trocars.of(arm)?,
+            start.world_from_tip.translation.vector,
+            start.world_from_tip.rotation * Vector3::z(),
+        );
+        // The jaws as the demonstration moved them, outside force-controlled primitives (which open
+        // them by their event).
+        let force_spans: Vec<(f64, f64)> = ip
+            .primitives
+            .iter()
+            .filter(|p| matches!(p, Primitive::Force(_)))
+            .map(Primitive::span_s)
+            .collect();
+        for point in &ip.jaw {
+            if force_spans.iter().any(|(a, b)| point.time_s > *a && point.time_s < *b) {
+                continue;
+            }
+            track.jaw.push(JawKey {
+                time_s: schedule.map_time(arm, point.time_s).max(0.0),
+                jaw_rad: point.jaw_rad,
+            });
+        }
+        tracks.push(track);
+    }
+    let mut order: Vec<&Primitive> = kb.instruments.iter().flat_map(|ip| &ip.primitives).collect();
+    order.sort_by(|a, b| {
+        let sa = schedule.slot(a.name()).map_or(0.0, |s| s.new_s.0);
+        let sb = schedule.slot(b.name()).map_or(0.0, |s| s.new_s.0);
+        let sync = |p: &Primitive| matches!(p, Primitive::Synchronized(_));
+        sa.total_cmp(&sb).then(sync(a).cmp(&sync(b)))
+    });
+    let mut paths: Vec<NewPath> = Vec::new();
+    let mut fluid = Vec::new();
+    // Per track, the demonstration's time up to which it has been built.
+    let mut cursor: Vec<f64> = vec![f64::NEG_INFINITY; tracks.len()];
+    for p in order {
+        let slot = schedule.slot(p.name()).ok_or_else(|| invalid(p.name(), "not scheduled"))?;
+        let t = tracks
+            .iter()
+            .position(|t| t.arm == slot.instrument)
+            .ok_or_else(|| invalid(p.name(), "no track for its instrument"))?;
+        let track = &mut tracks[t];
+        let path = &kb.instruments[t].path;
+        transfer(track, path, (cursor[t], slot.demo_s.0), |x| schedule.map_time(slot.instrument, x), &world_from_stitch);
+        cursor[t] = cursor[t].max(slot.demo_s.1);
+        match p {
+            Primitive::Linear(l) => linear_keys(track, l, slot.new_s, &world_from_stitch),
+            Primitive::Force(f) => force_keys(track, f, path, slot.new_s, &world_from_stitch, settings),
+            Primitive::TwoD(t) => {
+                let (path, inst) = two_d_path(
+                    slot.instrument,
+                    track,
+                    t,
+                    slot.new_s,
+                    method,
+                    &demo_world_from_stitch,
+                    &world_from_stitch,
+                    settings,
+                    path,
+                    obstacles,
+                )?;
+                let (_, from_dir) = placed(&world_from_stitch, &t.start_pose);
+                let (_, to_dir) = placed(&world_from_stitch, &t.end_pose);
+                path_keys(track, &path, from_dir, to_dir, settings.key_period_s, settings.gap_speed_mps);
+                if let Some(inst) = inst {
+                    fluid.push((t.name.clone(), inst));
+                }
+                paths.push(path);
+            }
+            Primitive::Synchronized(s) => {
+                let reference = paths.iter().find(|q| q.name == s.reference).ok_or_else(|| {
+                    invalid(format!("{}.reference", s.name), format!("'{}' was not made", s.reference))
+                })?;
+                sync_keys(track, s, reference, &world_from_stitch, settings.gap_speed_mps)?;
+            }
+        }
+    }
+    for (t, track) in tracks.iter_mut().enumerate() {
+        let arm = track.arm;
+        transfer(track, &kb.instruments[t].path, (cursor[t], f64::INFINITY), |x| schedule.map_time(arm, x), &world_from_stitch);
+    }
+    let skill = Skill {
+        name: format!("{} ({}, from {})", kb.task, method, kb.demonstration.description),
+        tracks: tracks.into_iter().map(TrackKeys::build).collect(),
+    };
+    skill.check().map_err(|e| invalid("skill", e.to_string()))?;
+    Ok(Synthesis { skill, schedule, fluid })
+}

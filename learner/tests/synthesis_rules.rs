@@ -1,0 +1,222 @@
+//! The rules of skill synthesis (issue 10), on a synthetic demonstration learned with the shipped
+//! pattern: the force-controlled primitive goes on to 125 % of its line and comes back, with the jaw
+//! opening at the recorded force; no primitive starts before the primitives it waits for are done, and
+//! a longer one delays those that wait; a skill made at a moved stitch is the nominal one moved; the
+//! fluid method regenerates the 2D primitive; the replay baseline plays the demonstration back.
+
+use std::path::Path;
+
+use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};
+
+use knotlab_hw::rig::ArmName;
+use knotlab_hw::skill::{ForceAction, Skill, Track};
+use knotlab_learner::demonstration::Demonstration;
+use knotlab_learner::fluid::ObstacleMask;
+use knotlab_learner::pattern::load_pattern;
+use knotlab_learner::primitive::{KnowledgeBase, Primitive, learn};
+use knotlab_learner::synthesis::site::pose_isometry;
+use knotlab_learner::synthesis::{
+    Method, PrimitiveSettings, ReplaySettings, Schedule, Site, StartPose, Synthesis, Trocars, relocation,
+    replay, synthesize,
+};
+use knotlab_learner::synthetic::{SyntheticSettings, canonical_demonstration};
+
+fn learned(seed: u64) -> (KnowledgeBase, Demonstration) {
+    let pattern = load_pattern(&Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenarios/patterns/knot_tying.toml"))
+        .expect("the shipped pattern loads");
+    let (demo, _) = canonical_demonstration(&SyntheticSettings::canonical(seed, 100.0));
+    (learn(&demo, &pattern).expect("the synthetic demonstration is learned"), demo)
+}
+
+fn trocars(world_from_stitch: &Isometry3<f64>) -> Trocars {
+    // Trocars 8 cm above the stitch, spread as the scene's are.
+    let at = |x: f64, y: f64| world_from_stitch.transform_point(&nalgebra::Point3::new(x, y, 0.08)).coords;
+    Trocars(vec![(ArmName::Left, at(-0.08, 0.12)), (ArmName::Right, at(-0.08, -0.12)), (ArmName::Assist, at(0.12, 0.1))])
+}
+
+/// Every instrument starts where the demonstration's did, relative to `world_from_stitch`.
+fn starts(kb: &KnowledgeBase, demo: &Demonstration, world_from_stitch: &Isometry3<f64>) -> Vec<StartPose> {
+    let moved = relocation(&pose_isometry(&kb.world_from_stitch), world_from_stitch);
+    demo.instruments
+        .iter()
+        .map(|r| {
+            let s = &r.samples[0];
+            let world_from_tip = Isometry3::from_parts(Translation3::from(s.position_m), s.world_from_tip());
+            StartPose { arm: r.instrument, world_from_tip: moved * world_from_tip }
+        })
+        .collect()
+}
+
+fn make(kb: &KnowledgeBase, demo: &Demonstration, method: Method, world_from_stitch: Isometry3<f64>) -> Synthesis {
+    let trocars = trocars(&world_from_stitch);
+    let starts = starts(kb, demo, &world_from_stitch);
+    let site = Site { new_world_from_stitch: world_from_stitch, trocars: &trocars, starts: &starts };
+    let mut free = |_: &str, _: ArmName, _: &_, region: &knotlab_learner::fluid::GridRegion| {
+        Ok(ObstacleMask::free(region.n))
+    };
+    synthesize(kb, method, &site, &PrimitiveSettings::default(), &mut free).expect("synthesis")
+}
+
+fn track(skill: &Skill, arm: ArmName) -> &Track {
+    skill.track(arm).unwrap_or_else(|| panic!("a track for {arm}"))
+}
+
+fn position(track: &Track, t: f64) -> Vector3<f64> {
+    track.target_at(t).expect("keys").world_position_m
+}
+
+fn nominal(kb: &KnowledgeBase) -> Isometry3<f64> {
+    pose_isometry(&kb.world_from_stitch)
+}
+
+#[test]
+fn a_force_controlled_primitive_goes_on_to_125_percent_and_comes_back_opening_at_the_recorded_force() {
+    let (kb, demo) = learned(31);
+    let made = make(&kb, &demo, Method::Dmp, nominal(&kb));
+    let settings = PrimitiveSettings::default();
+    for (name, arm) in [("L4", ArmName::Left), ("R3", ArmName::Right)] {
+        let Some(Primitive::Force(p)) = kb.primitive(name) else { panic!("{name} is force-controlled") };
+        let slot = made.schedule.slot(name).expect("scheduled");
+        let t = track(&made.skill, arm);
+        // The jaw opens when the recorded maximum force is reached, inside the primitive's window.
+        let event = t.events.iter().find(|e| e.name == name).expect("a force event");
+        assert_eq!(event.threshold_n, p.max_force_n);
+        assert_eq!((event.from_s, event.until_s), slot.new_s);
+        let ForceAction::OpenJaw { jaw_rad } = event.action else { panic!("the event opens the jaw") };
+        assert_eq!(jaw_rad, p.jaw.to_rad);
+        // Along the line from the start to where the demonstration came to rest: on to 125 %, back to 100 %.
+        let world = nominal(&kb);
+        let start = world * nalgebra::Point3::from(Vector3::from(p.start_pose.position_m));
+        let end = world * nalgebra::Point3::from(Vector3::from(p.line_end_m));
+        let line = end - start;
+        let progress = |x: Vector3<f64>| (x - start.coords).dot(&line) / line.norm_squared();
+        let samples: Vec<f64> =
+            (0..=1000).map(|k| slot.new_s.0 + (slot.new_s.1 - slot.new_s.0) * k as f64 / 1000.0).collect();
+        let furthest = samples.iter().map(|&s| progress(position(t, s))).fold(f64::MIN, f64::max);
+        assert!(
+            (furthest - settings.force_elongation).abs() < 0.03,
+            "{name}: reaches {furthest:.3} of its line (the rule: {})",
+            settings.force_elongation
+        );
+        let back = position(t, slot.new_s.1);
+        assert!((back - end.coords).norm() < 1e-9, "{name}: comes back to the line's end");
+        // Closed until the window ends, open after it.
+        assert_eq!(t.jaw_at(slot.new_s.0 + 0.5), Some(p.jaw.from_rad), "{name}: holds while pulling");
+        assert!((t.jaw_at(slot.new_s.1).unwrap() - p.jaw.to_rad).abs() < 1e-12, "{name}: open at the end");
+    }
+}
+
+#[test]
+fn no_primitive_starts_before_those_it_waits_for_and_a_longer_one_delays_them() {
+    let (kb, demo) = learned(32);
+    assert!(!kb.dependencies.is_empty(), "the pattern's `after`s become dependencies");
+    let made = make(&kb, &demo, Method::Dmp, nominal(&kb));
+    for d in &kb.dependencies {
+        let (p, q) = (made.schedule.slot(&d.primitive).unwrap(), made.schedule.slot(&d.after).unwrap());
+        assert!(p.new_s.0 >= q.new_s.1 + d.pause_s - 1e-9, "{} starts before {} allows", d.primitive, d.after);
+    }
+    // R2 waits for L1: L1 taking 3 s longer delays R2 (and everything after it) by 3 s.
+    let slower = Schedule::plan(&kb, |p: &Primitive| {
+        let (a, b) = p.span_s();
+        if p.name() == "L1" { b - a + 3.0 } else { b - a }
+    })
+    .unwrap();
+    let plain = Schedule::plan(&kb, |p: &Primitive| p.span_s().1 - p.span_s().0).unwrap();
+    for name in ["R2", "L2", "L3", "A1", "R3", "L4"] {
+        let delay = slower.slot(name).unwrap().new_s.0 - plain.slot(name).unwrap().new_s.0;
+        assert!((delay - 3.0).abs() < 1e-9, "{name} delayed by {delay} s");
+    }
+    // At the demonstration's own pace the plan is the demonstration's timing.
+    for slot in &plain.slots {
+        assert!((slot.new_s.0 - slot.demo_s.0).abs() < 1e-9, "{}: {:?} vs {:?}", slot.name, slot.new_s, slot.demo_s);
+    }
+    // The skill's right instrument holds still until R2 is due (it has no primitive before).
+    let right = track(&made.skill, ArmName::Right);
+    let r2 = made.schedule.slot("R2").unwrap().new_s.0;
+    let first = position(right, 0.0);
+    let before = position(right, r2 - 1.0);
+    let moved_before: f64 = demo
+        .instrument(ArmName::Right)
+        .unwrap()
+        .samples
+        .iter()
+        .take_while(|s| s.time_s < r2 - 1.0)
+        .map(|s| (s.position_m - demo.instrument(ArmName::Right).unwrap().samples[0].position_m).norm())
+        .fold(0.0, f64::max);
+    assert!((before - first).norm() <= moved_before + 1e-3, "the right moved before R2 more than demonstrated");
+}
+
+#[test]
+fn a_skill_made_at_a_moved_stitch_is_the_nominal_skill_moved() {
+    let (kb, demo) = learned(33);
+    let here = nominal(&kb);
+    let motion = Isometry3::from_parts(
+        Translation3::new(0.02, -0.015, 0.01),
+        UnitQuaternion::from_axis_angle(&Vector3::z_axis(), 25f64.to_radians()),
+    );
+    // The motion turns about the stitch.
+    let there = Isometry3::from_parts(Translation3::from(here.translation.vector + motion.translation.vector), motion.rotation * here.rotation);
+    let moved = relocation(&here, &there);
+    for method in [Method::Fluid, Method::Dmp] {
+        let a = make(&kb, &demo, method, here);
+        let b = make(&kb, &demo, method, there);
+        for (ta, tb) in a.skill.tracks.iter().zip(&b.skill.tracks) {
+            assert_eq!(ta.poses.len(), tb.poses.len(), "{method}: {} keys", ta.arm);
+            for (ka, kb_) in ta.poses.iter().zip(&tb.poses) {
+                let pa = moved.transform_point(&Vector3::from(ka.world_position_m).into()).coords;
+                let err = (pa - Vector3::from(kb_.world_position_m)).norm();
+                assert!(err < 2e-4, "{method} {} at {:.2} s: {err:.2e} m from the nominal key moved", ta.arm, ka.time_s);
+                assert!((ka.time_s - kb_.time_s).abs() < 1e-9);
+            }
+            assert_eq!(ta.jaw, tb.jaw);
+        }
+    }
+}
+
+#[test]
+fn the_fluid_regenerates_the_winding_and_dmp_reproduces_it() {
+    let (kb, demo) = learned(34);
+    let Some(Primitive::TwoD(r2)) = kb.primitive("R2") else { panic!("R2 is 2D") };
+    let world = nominal(&kb);
+    let demonstrated: Vec<(f64, Vector3<f64>)> = demo
+        .instrument(ArmName::Right)
+        .unwrap()
+        .samples
+        .iter()
+        .filter(|s| s.time_s >= r2.start_s && s.time_s <= r2.end_s)
+        .map(|s| (s.time_s, s.position_m))
+        .collect();
+    for method in [Method::Fluid, Method::Dmp] {
+        let made = make(&kb, &demo, method, world);
+        assert_eq!(made.fluid.len(), usize::from(method == Method::Fluid), "{method}: fluid runs");
+        let slot = made.schedule.slot("R2").unwrap();
+        let right = track(&made.skill, ArmName::Right);
+        // At the demonstration's own site the new path is where the hand was, when it was there:
+        // shape and pace are kept, within about a fluid cell (0.8 mm here) or the DMP's fit.
+        let errors: Vec<f64> = demonstrated
+            .iter()
+            .map(|(t, d)| (position(right, slot.new_s.0 + (t - r2.start_s)) - d).norm())
+            .collect();
+        let worst = errors.iter().copied().fold(0.0, f64::max);
+        let mean = errors.iter().sum::<f64>() / errors.len() as f64;
+        eprintln!("{method}: {:.2} mm at worst, {:.2} mm on average", worst * 1e3, mean * 1e3);
+        assert!(worst < 3e-3 && mean < 1.5e-3, "{method}: {:.2} mm at worst, {:.2} mm on average", worst * 1e3, mean * 1e3);
+    }
+}
+
+#[test]
+fn replay_plays_the_demonstration_back_moved() {
+    let (kb, demo) = learned(35);
+    let here = nominal(&kb);
+    let motion = Isometry3::new(Vector3::new(0.01, 0.02, 0.0), Vector3::new(0.0, 0.0, 0.3));
+    let skill = replay(&demo, &motion, &trocars(&(motion * here)), &ReplaySettings { key_period_s: 0.0 }).unwrap();
+    for record in &demo.instruments {
+        let t = track(&skill, record.instrument);
+        for s in record.samples.iter().step_by(37) {
+            let expected = motion.transform_point(&s.position_m.into()).coords;
+            assert!((position(t, s.time_s) - expected).norm() < 1e-12);
+            assert!((t.jaw_at(s.time_s).unwrap() - s.jaw_rad).abs() < 1e-12);
+        }
+    }
+    assert!(replay(&demo, &motion, &trocars(&here), &ReplaySettings { key_period_s: f64::NAN }).is_err());
+}
