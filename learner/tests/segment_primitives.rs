@@ -11,8 +11,8 @@ use knotlab_learner::features::detect;
 use knotlab_learner::fluid::{GridRegion, InstantiateSettings, ObstacleMask, instantiate};
 use knotlab_learner::pattern::{TaskPattern, load_pattern};
 use knotlab_learner::primitive::{
-    JawActionKind, KnowledgeBase, Primitive, extract, load_knowledge_base, parse_knowledge_base,
-    write_knowledge_base,
+    JawActionKind, KB_FORMAT_VERSION, KnowledgeBase, Primitive, extract, load_knowledge_base,
+    parse_knowledge_base, write_knowledge_base,
 };
 use knotlab_learner::segment::decompose;
 use knotlab_learner::synthetic::{GroundTruth, SyntheticSettings, canonical_demonstration};
@@ -194,10 +194,26 @@ fn the_knowledge_base_file_round_trips_and_refuses_bad_files() {
     assert!(back == kb, "the knowledge base reads back identical");
 
     let text = serde_json::to_string_pretty(&kb).unwrap();
+    let version = format!("\"format_version\": {KB_FORMAT_VERSION}");
     let e =
-        parse_knowledge_base(&text.replacen("\"format_version\": 1", "\"format_version\": 9", 1), "kb.json")
-            .unwrap_err();
+        parse_knowledge_base(&text.replacen(&version, "\"format_version\": 9", 1), "kb.json").unwrap_err();
     assert!(e.to_string().starts_with("kb.json:0: format_version:"), "{e}");
+    // A version 1 file (no jaw points, paths or dependencies) still reads.
+    let mut old = kb.clone();
+    old.format_version = 1;
+    old.dependencies.clear();
+    for i in &mut old.instruments {
+        i.jaw.clear();
+        i.path.clear();
+    }
+    let mut value = serde_json::to_value(&old).unwrap();
+    value.as_object_mut().unwrap().remove("dependencies");
+    for i in value["instruments"].as_array_mut().unwrap() {
+        i.as_object_mut().unwrap().remove("jaw");
+        i.as_object_mut().unwrap().remove("path");
+    }
+    let v1 = parse_knowledge_base(&serde_json::to_string_pretty(&value).unwrap(), "v1.json").unwrap();
+    assert!(v1 == old, "a version 1 file reads as it was written");
     let bad = text.replacen("\"max_force_n\": ", "\"max_force_n\": \"a lot\", \"x\": ", 1);
     let e = parse_knowledge_base(&bad, "kb.json").unwrap_err();
     let line = bad.lines().position(|l| l.contains("a lot")).unwrap() + 1;

@@ -22,8 +22,9 @@ use knotlab_learner::synthesis::{
 use knotlab_learner::synthetic::{SyntheticSettings, canonical_demonstration};
 
 fn learned(seed: u64) -> (KnowledgeBase, Demonstration) {
-    let pattern = load_pattern(&Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenarios/patterns/knot_tying.toml"))
-        .expect("the shipped pattern loads");
+    let pattern =
+        load_pattern(&Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenarios/patterns/knot_tying.toml"))
+            .expect("the shipped pattern loads");
     let (demo, _) = canonical_demonstration(&SyntheticSettings::canonical(seed, 100.0));
     (learn(&demo, &pattern).expect("the synthetic demonstration is learned"), demo)
 }
@@ -31,7 +32,11 @@ fn learned(seed: u64) -> (KnowledgeBase, Demonstration) {
 fn trocars(world_from_stitch: &Isometry3<f64>) -> Trocars {
     // Trocars 8 cm above the stitch, spread as the scene's are.
     let at = |x: f64, y: f64| world_from_stitch.transform_point(&nalgebra::Point3::new(x, y, 0.08)).coords;
-    Trocars(vec![(ArmName::Left, at(-0.08, 0.12)), (ArmName::Right, at(-0.08, -0.12)), (ArmName::Assist, at(0.12, 0.1))])
+    Trocars(vec![
+        (ArmName::Left, at(-0.08, 0.12)),
+        (ArmName::Right, at(-0.08, -0.12)),
+        (ArmName::Assist, at(0.12, 0.1)),
+    ])
 }
 
 /// Every instrument starts where the demonstration's did, relative to `world_from_stitch`.
@@ -47,7 +52,12 @@ fn starts(kb: &KnowledgeBase, demo: &Demonstration, world_from_stitch: &Isometry
         .collect()
 }
 
-fn make(kb: &KnowledgeBase, demo: &Demonstration, method: Method, world_from_stitch: Isometry3<f64>) -> Synthesis {
+fn make(
+    kb: &KnowledgeBase,
+    demo: &Demonstration,
+    method: Method,
+    world_from_stitch: Isometry3<f64>,
+) -> Synthesis {
     let trocars = trocars(&world_from_stitch);
     let starts = starts(kb, demo, &world_from_stitch);
     let site = Site { new_world_from_stitch: world_from_stitch, trocars: &trocars, starts: &starts };
@@ -113,7 +123,12 @@ fn no_primitive_starts_before_those_it_waits_for_and_a_longer_one_delays_them() 
     let made = make(&kb, &demo, Method::Dmp, nominal(&kb));
     for d in &kb.dependencies {
         let (p, q) = (made.schedule.slot(&d.primitive).unwrap(), made.schedule.slot(&d.after).unwrap());
-        assert!(p.new_s.0 >= q.new_s.1 + d.pause_s - 1e-9, "{} starts before {} allows", d.primitive, d.after);
+        assert!(
+            p.new_s.0 >= q.new_s.1 + d.pause_s - 1e-9,
+            "{} starts before {} allows",
+            d.primitive,
+            d.after
+        );
     }
     // R2 waits for L1: L1 taking 3 s longer delays R2 (and everything after it) by 3 s.
     let slower = Schedule::plan(&kb, |p: &Primitive| {
@@ -128,7 +143,13 @@ fn no_primitive_starts_before_those_it_waits_for_and_a_longer_one_delays_them() 
     }
     // At the demonstration's own pace the plan is the demonstration's timing.
     for slot in &plain.slots {
-        assert!((slot.new_s.0 - slot.demo_s.0).abs() < 1e-9, "{}: {:?} vs {:?}", slot.name, slot.new_s, slot.demo_s);
+        assert!(
+            (slot.new_s.0 - slot.demo_s.0).abs() < 1e-9,
+            "{}: {:?} vs {:?}",
+            slot.name,
+            slot.new_s,
+            slot.demo_s
+        );
     }
     // The skill's right instrument holds still until R2 is due (it has no primitive before).
     let right = track(&made.skill, ArmName::Right);
@@ -143,7 +164,10 @@ fn no_primitive_starts_before_those_it_waits_for_and_a_longer_one_delays_them() 
         .take_while(|s| s.time_s < r2 - 1.0)
         .map(|s| (s.position_m - demo.instrument(ArmName::Right).unwrap().samples[0].position_m).norm())
         .fold(0.0, f64::max);
-    assert!((before - first).norm() <= moved_before + 1e-3, "the right moved before R2 more than demonstrated");
+    assert!(
+        (before - first).norm() <= moved_before + 1e-3,
+        "the right moved before R2 more than demonstrated"
+    );
 }
 
 #[test]
@@ -155,7 +179,10 @@ fn a_skill_made_at_a_moved_stitch_is_the_nominal_skill_moved() {
         UnitQuaternion::from_axis_angle(&Vector3::z_axis(), 25f64.to_radians()),
     );
     // The motion turns about the stitch.
-    let there = Isometry3::from_parts(Translation3::from(here.translation.vector + motion.translation.vector), motion.rotation * here.rotation);
+    let there = Isometry3::from_parts(
+        Translation3::from(here.translation.vector + motion.translation.vector),
+        motion.rotation * here.rotation,
+    );
     let moved = relocation(&here, &there);
     for method in [Method::Fluid, Method::Dmp] {
         let a = make(&kb, &demo, method, here);
@@ -165,7 +192,12 @@ fn a_skill_made_at_a_moved_stitch_is_the_nominal_skill_moved() {
             for (ka, kb_) in ta.poses.iter().zip(&tb.poses) {
                 let pa = moved.transform_point(&Vector3::from(ka.world_position_m).into()).coords;
                 let err = (pa - Vector3::from(kb_.world_position_m)).norm();
-                assert!(err < 2e-4, "{method} {} at {:.2} s: {err:.2e} m from the nominal key moved", ta.arm, ka.time_s);
+                assert!(
+                    err < 2e-4,
+                    "{method} {} at {:.2} s: {err:.2e} m from the nominal key moved",
+                    ta.arm,
+                    ka.time_s
+                );
                 assert!((ka.time_s - kb_.time_s).abs() < 1e-9);
             }
             assert_eq!(ta.jaw, tb.jaw);
@@ -200,7 +232,12 @@ fn the_fluid_regenerates_the_winding_and_dmp_reproduces_it() {
         let worst = errors.iter().copied().fold(0.0, f64::max);
         let mean = errors.iter().sum::<f64>() / errors.len() as f64;
         eprintln!("{method}: {:.2} mm at worst, {:.2} mm on average", worst * 1e3, mean * 1e3);
-        assert!(worst < 3e-3 && mean < 1.5e-3, "{method}: {:.2} mm at worst, {:.2} mm on average", worst * 1e3, mean * 1e3);
+        assert!(
+            worst < 3e-3 && mean < 1.5e-3,
+            "{method}: {:.2} mm at worst, {:.2} mm on average",
+            worst * 1e3,
+            mean * 1e3
+        );
     }
 }
 
@@ -209,7 +246,8 @@ fn replay_plays_the_demonstration_back_moved() {
     let (kb, demo) = learned(35);
     let here = nominal(&kb);
     let motion = Isometry3::new(Vector3::new(0.01, 0.02, 0.0), Vector3::new(0.0, 0.0, 0.3));
-    let skill = replay(&demo, &motion, &trocars(&(motion * here)), &ReplaySettings { key_period_s: 0.0 }).unwrap();
+    let skill =
+        replay(&demo, &motion, &trocars(&(motion * here)), &ReplaySettings { key_period_s: 0.0 }).unwrap();
     for record in &demo.instruments {
         let t = track(&skill, record.instrument);
         for s in record.samples.iter().step_by(37) {

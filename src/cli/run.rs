@@ -1,6 +1,8 @@
 //! `knotlab run`: one trial end to end. The skill learned from the demonstration is synthesized at the
 //! (moved) stitch by the chosen method, run by the controller on the simulated rig, and the knot it
-//! leaves is evaluated; the verdict and its failure mode are printed.
+//! leaves is evaluated; the verdict and its failure mode are printed. That simulated trial is the
+//! skill's preview: with `--rig FILE` naming real devices, the skill is then executed there only if the
+//! preview passed (or `--execute-despite-failed-preview` is given); a refusal exits with code 4.
 
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -10,6 +12,11 @@ use clap::Args;
 use nalgebra::Vector3;
 use serde::Serialize;
 
+use knotlab_hw::controller::gate::real_devices;
+use knotlab_hw::controller::{PreviewOutcome, RunOutcome, may_execute};
+use knotlab_hw::rig::Rig;
+use knotlab_hw::rig_config::{RigConfig, build_rig, load_rig_config};
+use knotlab_hw::skill::Skill;
 use knotlab_learner::demonstration::{load_demonstration, write_demonstration};
 use knotlab_learner::pattern::load_pattern;
 use knotlab_learner::primitive::{learn, load_knowledge_base};
@@ -22,6 +29,9 @@ use knotlab_sim::scene::load_scene;
 use super::numbers::parse_vector3;
 use super::output::{Output, outln};
 use crate::rerun_log::{self, RerunArgs};
+
+/// The exit code of a skill refused by a failed preview (1 is an error, 2 a bad command line).
+const REFUSED: u8 = 4;
 
 #[derive(Debug, Args)]
 pub struct RunArgs {
@@ -53,6 +63,13 @@ pub struct RunArgs {
     /// Stop the skill at this skill time, s, and evaluate what is there (a short trial, to debug).
     #[arg(long, value_name = "S")]
     until: Option<f64>,
+    /// The rig to execute on after the preview (a rig config, e.g. scenarios/rigs/melfa.toml). Without
+    /// it, or for a rig of simulated and dummy devices, the simulated trial is all there is.
+    #[arg(long)]
+    rig: Option<PathBuf>,
+    /// Execute on a rig's real devices even though the preview in the simulator failed.
+    #[arg(long)]
+    execute_despite_failed_preview: bool,
     /// Also write what the devices read during the trial as a demonstration directory here.
     #[arg(long)]
     out: Option<PathBuf>,
@@ -85,6 +102,38 @@ struct Report {
     sim_seconds: f64,
     wall_seconds: f64,
     events: Vec<String>,
+    preview: Preview,
+    execution: Execution,
+}
+
+#[derive(Serialize)]
+struct Preview {
+    passed: bool,
+    reason: String,
+}
+
+#[derive(Serialize)]
+struct Execution {
+    /// `simulated` (the trial was the run), `refused` (a failed preview on real devices), `completed`
+    /// or `emergency_stopped` (on the rig's devices).
+    status: &'static str,
+    rig: Option<String>,
+    message: String,
+}
+
+/// Runs `skill` on the devices of the rig config `path` (the shipped robot model).
+fn execute_on_rig(config: &RigConfig, skill: Skill) -> anyhow::Result<&'static str> {
+    let rig = Rig::shipped().context("the shipped rig")?;
+    let (mut controller, _handles) = build_rig(config, &rig, None)?.into_controller()?;
+    controller.load_skill(skill)?;
+    let summary = controller.run_to_end(|_| {});
+    let shutdown = controller.shutdown();
+    let summary = summary?;
+    shutdown?;
+    Ok(match summary.outcome {
+        RunOutcome::Completed => "completed",
+        RunOutcome::EmergencyStopped => "emergency_stopped",
+    })
 }
 
 pub fn run(args: RunArgs, out: &mut Output) -> anyhow::Result<ExitCode> {
@@ -118,7 +167,8 @@ pub fn run(args: RunArgs, out: &mut Output) -> anyhow::Result<ExitCode> {
     {
         anyhow::bail!("--until {t}: must be a positive number of seconds");
     }
-    let options = RecordOptions { cycles_per_sample: 10, stop_after_s: args.until, ..RecordOptions::default() };
+    let options =
+        RecordOptions { cycles_per_sample: 10, stop_after_s: args.until, ..RecordOptions::default() };
     let recording = args.rerun.open("run")?;
     let trial = rerun_log::record_trial(
         recording.as_ref(),
@@ -131,6 +181,39 @@ pub fn run(args: RunArgs, out: &mut Output) -> anyhow::Result<ExitCode> {
             .with_context(|| format!("writing the trial's recording to {}", dir.display()))?;
     }
     let e = &trial.run.evaluation;
+    let preview = match (&trial.run.fault, e.verdict) {
+        (Some(fault), _) => Preview { passed: false, reason: format!("fault: {fault}") },
+        (None, Verdict::Success) => Preview { passed: true, reason: String::new() },
+        (None, verdict) => Preview { passed: false, reason: format!("knot: {}", verdict.label()) },
+    };
+    let mut code = ExitCode::SUCCESS;
+    let execution = match &args.rig {
+        None => Execution { status: "simulated", rig: None, message: String::new() },
+        Some(path) => {
+            let config = load_rig_config(path)?;
+            let rig_name = Some(path.display().to_string());
+            if real_devices(&config).is_empty() {
+                Execution { status: "simulated", rig: rig_name, message: "no real devices".into() }
+            } else {
+                let outcome = PreviewOutcome { passed: preview.passed, reason: preview.reason.clone() };
+                match may_execute(&config, &outcome, args.execute_despite_failed_preview) {
+                    Err(refused) => {
+                        out.error(format!(
+                            "{}: {refused} (--execute-despite-failed-preview)",
+                            path.display()
+                        ));
+                        code = ExitCode::from(REFUSED);
+                        Execution { status: "refused", rig: rig_name, message: refused.to_string() }
+                    }
+                    Ok(()) => {
+                        let status = execute_on_rig(&config, trial.skill.clone())
+                            .with_context(|| format!("executing on {}", path.display()))?;
+                        Execution { status, rig: rig_name, message: String::new() }
+                    }
+                }
+            }
+        }
+    };
     let report = Report {
         success: e.verdict == Verdict::Success,
         verdict: e.verdict.label(),
@@ -155,6 +238,8 @@ pub fn run(args: RunArgs, out: &mut Output) -> anyhow::Result<ExitCode> {
         sim_seconds: trial.run.simulated_s,
         wall_seconds: trial.run.wall_s,
         events: trial.run.events.clone(),
+        preview,
+        execution,
     };
     if args.json {
         outln!(out, "{}", serde_json::to_string_pretty(&report)?);
@@ -171,5 +256,5 @@ pub fn run(args: RunArgs, out: &mut Output) -> anyhow::Result<ExitCode> {
             report.wall_seconds
         );
     }
-    Ok(ExitCode::SUCCESS)
+    Ok(code)
 }

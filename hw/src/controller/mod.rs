@@ -21,10 +21,12 @@
 
 mod arm;
 pub mod error;
+pub mod gate;
 pub mod params;
 pub mod record;
 
 pub use error::ControllerError;
+pub use gate::{ExecutionRefused, PreviewOutcome, may_execute};
 pub use params::{ArmSetup, ControllerParams};
 pub use record::{ArmRecord, CycleRecord, FiredEvent, RunOutcome, RunSummary, Status};
 

@@ -376,7 +376,12 @@ pub fn extract(
                 let record = demo.instrument(decomposition.segments[k].instrument);
                 let jaw = record.map(jaw_points).unwrap_or_default();
                 let path = record.map(|r| path_keys(r, &stitch_from_world)).unwrap_or_default();
-                instruments.push(InstrumentPrimitives { instrument: name, primitives: vec![primitive], jaw, path });
+                instruments.push(InstrumentPrimitives {
+                    instrument: name,
+                    primitives: vec![primitive],
+                    jaw,
+                    path,
+                });
             }
         }
     }

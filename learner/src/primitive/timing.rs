@@ -50,7 +50,7 @@ pub fn jaw_points(record: &InstrumentRecord) -> Vec<JawPoint> {
 }
 
 /// The primitives of `instrument` with both ends on features, with the index of each end.
-fn spans<'a>(pattern: &'a TaskPattern, instrument: ArmName) -> Vec<(&'a PrimitiveSpec, usize, usize)> {
+fn spans(pattern: &TaskPattern, instrument: ArmName) -> Vec<(&PrimitiveSpec, usize, usize)> {
     let Some(ip) = pattern.instrument(instrument) else { return Vec::new() };
     ip.primitives
         .iter()

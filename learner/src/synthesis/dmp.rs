@@ -30,7 +30,7 @@ impl Dmp {
     /// Fits a DMP with `basis` functions to `y` sampled every `dt_s` (at least 3 samples).
     pub fn fit(y: &[f64], dt_s: f64, basis: usize) -> Option<Self> {
         let n = y.len();
-        if n < 3 || !(dt_s > 0.0) || basis == 0 {
+        if n < 3 || !(dt_s.is_finite() && dt_s > 0.0) || basis == 0 {
             return None;
         }
         let tau = dt_s * (n - 1) as f64;
@@ -121,7 +121,10 @@ mod tests {
         let demo: Vec<f64> = (0..=200)
             .map(|k| {
                 let s = k as f64 / 200.0;
-                0.02 * (2.0 * std::f64::consts::TAU * s).sin() * (1.0 - s) + 0.05 * s
+                // From rest to rest, as a demonstrated primitive is: two wiggles on a minimum-jerk reach.
+                let envelope = 16.0 * s * s * (1.0 - s) * (1.0 - s);
+                0.02 * (2.0 * std::f64::consts::TAU * s).sin() * envelope
+                    + 0.05 * knotlab_hw::skill::profile::min_jerk(s)
             })
             .collect();
         let dmp = Dmp::fit(&demo, dt, 40).unwrap();

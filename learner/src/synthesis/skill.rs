@@ -29,8 +29,8 @@ use crate::fluid::{
     ArcPath, GridRegion, InstantiateSettings, Instantiation, ObstacleMask, PlaneFrame, instantiate,
 };
 use crate::primitive::{
-    ForcePrimitive, KnowledgeBase, LinearPrimitive, PathKey, Pose, Primitive, ProfilePoint, SynchronizedPrimitive,
-    TwoDPrimitive,
+    ForcePrimitive, KnowledgeBase, LinearPrimitive, PathKey, Pose, Primitive, ProfilePoint,
+    SynchronizedPrimitive, TwoDPrimitive,
 };
 
 /// How primitives are instantiated.
@@ -494,7 +494,13 @@ pub fn synthesize(
             .ok_or_else(|| invalid(p.name(), "no track for its instrument"))?;
         let track = &mut tracks[t];
         let path = &kb.instruments[t].path;
-        transfer(track, path, (cursor[t], slot.demo_s.0), |x| schedule.map_time(slot.instrument, x), &world_from_stitch);
+        transfer(
+            track,
+            path,
+            (cursor[t], slot.demo_s.0),
+            |x| schedule.map_time(slot.instrument, x),
+            &world_from_stitch,
+        );
         cursor[t] = cursor[t].max(slot.demo_s.1);
         match p {
             Primitive::Linear(l) => linear_keys(track, l, slot.new_s, &world_from_stitch),
@@ -530,7 +536,13 @@ pub fn synthesize(
     }
     for (t, track) in tracks.iter_mut().enumerate() {
         let arm = track.arm;
-        transfer(track, &kb.instruments[t].path, (cursor[t], f64::INFINITY), |x| schedule.map_time(arm, x), &world_from_stitch);
+        transfer(
+            track,
+            &kb.instruments[t].path,
+            (cursor[t], f64::INFINITY),
+            |x| schedule.map_time(arm, x),
+            &world_from_stitch,
+        );
     }
     let skill = Skill {
         name: format!("{} ({}, from {})", kb.task, method, kb.demonstration.description),

@@ -1,0 +1,66 @@
+//! `knotlab run` end to end on short trials (`--until`): the verdict's JSON fields, every method, a
+//! moved stitch, the preview gate in front of a real rig (refused, exit code 4, nothing sent), and bad
+//! arguments.
+
+mod common;
+
+use common::{json, knotlab};
+
+fn short(method: &str, extra: &[&str]) -> (i32, serde_json::Value) {
+    let mut args = vec!["run", "--method", method, "--seed", "3", "--until", "1.5", "--json"];
+    args.extend_from_slice(extra);
+    json(&args)
+}
+
+#[test]
+fn a_short_trial_reports_its_verdict_for_every_method() {
+    for method in ["replay", "dmp", "fluid"] {
+        let (code, r) = short(method, &[]);
+        assert_eq!(code, 0, "{method}: {r}");
+        assert_eq!(r["method"], method);
+        for field in ["success", "failure_mode", "knot", "wound_gap_m", "sim_seconds", "wall_seconds"] {
+            assert!(r.get(field).is_some(), "{method}: no {field} in {r}");
+        }
+        // Stopped at 1.5 s of skill: no knot yet, the wound still open.
+        assert_eq!(r["success"], false);
+        assert_eq!(r["failure_mode"], "no_knot");
+        assert!((r["sim_seconds"].as_f64().unwrap() - 1.5).abs() < 0.01, "{r}");
+        assert!(r["wound_gap_m"].as_f64().unwrap() > 0.002, "{r}");
+        assert_eq!(r["execution"]["status"], "simulated");
+        assert_eq!(r["preview"]["passed"], false);
+    }
+}
+
+#[test]
+fn a_moved_stitch_moves_the_skill_and_its_way_in() {
+    let (code, r) = short("dmp", &["--stitch-offset", "0.02,-0.01,0", "--stitch-rotate", "-20"]);
+    assert_eq!(code, 0, "{r}");
+    assert_eq!(r["stitch_offset_m"], serde_json::json!([0.02, -0.01, 0.0]));
+    assert_eq!(r["stitch_rotate_deg"], -20.0);
+    assert!(r["fault"].is_null(), "{r}");
+    assert!(r["skill_duration_s"].as_f64().unwrap() > 10.0, "{r}");
+}
+
+#[test]
+fn a_failed_preview_refuses_the_real_rig() {
+    // No MELFA controller listens: had the gate let the skill through, connecting would fail with
+    // exit code 1 instead.
+    let (code, r) = short("replay", &["--rig", "scenarios/rigs/melfa.toml"]);
+    assert_eq!(code, 4, "{r}");
+    assert_eq!(r["execution"]["status"], "refused");
+    assert!(r["execution"]["message"].as_str().unwrap().contains("left.servo"), "{r}");
+    // A simulated rig is not gated.
+    let (code, r) = short("replay", &["--rig", "scenarios/rigs/sim.toml"]);
+    assert_eq!(code, 0, "{r}");
+    assert_eq!(r["execution"]["status"], "simulated");
+}
+
+#[test]
+fn bad_arguments_are_named() {
+    let (code, _, stderr) = knotlab(&["run", "--method", "spline", "--until", "1"]);
+    assert_eq!(code, 2);
+    assert!(stderr.contains("'spline' is not a method"), "{stderr}");
+    let (code, _, stderr) = knotlab(&["run", "--skill", "/nonexistent/kb.json", "--until", "1"]);
+    assert_eq!(code, 1);
+    assert!(stderr.contains("/nonexistent/kb.json"), "{stderr}");
+}
