@@ -10,7 +10,7 @@ use knotlab_hw::rig_config::parse_rig_config;
 
 fn rig(file: &str) -> knotlab_hw::rig_config::RigConfig {
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenarios/rigs").join(file);
-    let text = std::fs::read_to_string(&path).unwrap();
+    let text = std::fs::read_to_string(&path).expect("the shipped rig config reads");
     parse_rig_config(&text, &path.display().to_string()).expect("the shipped rig config parses")
 }
 

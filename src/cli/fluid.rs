@@ -449,7 +449,7 @@ fn primitive(args: &PrimitiveArgs, out: &mut Output) -> anyhow::Result<ExitCode>
     let recording = args.rerun.open("fluid")?;
     #[cfg(feature = "rerun")]
     if let Some(rec) = &recording {
-        crate::rerun_log::log_instantiation(rec, &inst)?;
+        crate::rerun_log::log_instantiation(rec, &inst, "fluid", 0.0)?;
     }
     crate::rerun_log::finish(recording)?;
     let r = &inst.report;

@@ -22,7 +22,7 @@ use knotlab_learner::pattern::load_pattern;
 use knotlab_learner::primitive::{learn, load_knowledge_base};
 use knotlab_learner::synthesis::Method;
 use knotlab_scenarios::expert::RecordOptions;
-use knotlab_scenarios::trial::{Learned, StitchMove, TrialSetup, run_trial};
+use knotlab_scenarios::trial::{Learned, StitchMove, TrialRun, TrialSetup, run_trial};
 use knotlab_sim::knot::Verdict;
 use knotlab_sim::scene::load_scene;
 
@@ -121,6 +121,28 @@ struct Execution {
     message: String,
 }
 
+/// The synthesized skill for the Rerun viewer: each instrument's planned tip path
+/// (`instruments/<arm>/planned`) and the fluid's regenerations of the 2D primitives
+/// (`fluid/<primitive>/...`, the particle on the trial's clock).
+#[cfg(feature = "rerun")]
+fn log_synthesis(recording: Option<&rerun_log::Recording>, trial: &TrialRun) -> anyhow::Result<()> {
+    let Some(rec) = recording else { return Ok(()) };
+    for track in &trial.skill.tracks {
+        let points: Vec<[f32; 3]> =
+            track.poses.iter().map(|k| k.world_position_m.map(|x| x as f32)).collect();
+        rec.log_static(format!("instruments/{}/planned", track.arm), &rerun::LineStrips3D::new([points]))?;
+    }
+    for (name, inst, start_s) in &trial.fluid {
+        rerun_log::log_instantiation(rec, inst, &format!("fluid/{name}"), *start_s)?;
+    }
+    Ok(())
+}
+
+#[cfg(not(feature = "rerun"))]
+fn log_synthesis(_: Option<&rerun_log::Recording>, _: &TrialRun) -> anyhow::Result<()> {
+    Ok(())
+}
+
 /// Runs `skill` on the devices of the rig config `path` (the shipped robot model).
 fn execute_on_rig(config: &RigConfig, skill: Skill) -> anyhow::Result<&'static str> {
     let rig = Rig::shipped().context("the shipped rig")?;
@@ -175,6 +197,7 @@ pub fn run(args: RunArgs, out: &mut Output) -> anyhow::Result<ExitCode> {
         |observer| run_trial(&learned, &setup, &options, observer),
         |trial| &trial.run,
     )?;
+    log_synthesis(recording.as_ref(), &trial)?;
     rerun_log::finish(recording)?;
     if let Some(dir) = &args.out {
         write_demonstration(dir, &trial.run.demonstration)

@@ -11,7 +11,7 @@ use knotlab_hw::rig::{ArmName, Rig};
 use knotlab_hw::rig_config::parse_rig_config;
 use knotlab_hw::skill::Skill;
 use knotlab_learner::demonstration::Demonstration;
-use knotlab_learner::fluid::{GridRegion, PlaneFrame};
+use knotlab_learner::fluid::{GridRegion, Instantiation, PlaneFrame};
 use knotlab_learner::primitive::{KnowledgeBase, Primitive};
 use knotlab_learner::synthesis::site::pose_isometry;
 use knotlab_learner::synthesis::{
@@ -79,6 +79,8 @@ pub struct TrialRun {
     pub approach_s: f64,
     /// The virtual obstacles of its 2D primitives.
     pub obstacles: ObstacleLog,
+    /// The fluid's regenerations of its 2D primitives, each with when it starts in the skill, s.
+    pub fluid: Vec<(String, Instantiation, f64)>,
 }
 
 fn isometry(world_from_tip: &nalgebra::IsometryMatrix3<f64>) -> Isometry3<f64> {
@@ -97,6 +99,8 @@ pub struct Synthesized {
     pub approach_s: f64,
     /// The virtual obstacles the fluid flowed around.
     pub obstacles: ObstacleLog,
+    /// The fluid's regenerations of the 2D primitives, each with when it starts in the skill, s.
+    pub fluid: Vec<(String, Instantiation, f64)>,
 }
 
 /// Synthesizes the skill for `world` (whose tissue frame is the new stitch frame) by `method`.
@@ -119,6 +123,7 @@ pub fn synthesize_for(
         .map(|arm| StartPose { arm, world_from_tip: isometry(&world.world_from_tip(arm)) })
         .collect();
     let mut log = ObstacleLog::default();
+    let mut fluid = Vec::new();
     let mut skill = match method {
         Method::Replay => replay(&learned.demonstration, &moved, &trocars, &ReplaySettings::default())?,
         Method::Fluid | Method::Dmp => {
@@ -134,11 +139,20 @@ pub fn synthesize_for(
                 Ok(mask)
             };
             let site = Site { new_world_from_stitch, trocars: &trocars, starts: &starts };
-            synthesize(&learned.knowledge, method, &site, &PrimitiveSettings::default(), &mut source)?.skill
+            let made =
+                synthesize(&learned.knowledge, method, &site, &PrimitiveSettings::default(), &mut source)?;
+            for (name, inst) in made.fluid {
+                let start_s = made.schedule.slot(&name).map_or(0.0, |s| s.new_s.0);
+                fluid.push((name, inst, start_s));
+            }
+            made.skill
         }
     };
     let approach_s = prepend_approach(&mut skill, &starts, &ApproachSettings::default());
-    Ok(Synthesized { skill, approach_s, obstacles: log })
+    for entry in &mut fluid {
+        entry.2 += approach_s;
+    }
+    Ok(Synthesized { skill, approach_s, obstacles: log, fluid })
 }
 
 /// Runs one trial; `observer`, if any, sees every control cycle.
@@ -156,13 +170,14 @@ pub fn run_trial(
     let mut world = SimWorld::new(scene, rig.clone())
         .map_err(|source| ExpertError::World { scene: setup.scene_name.clone(), source })?;
     world.reseed(setup.seed);
-    let Synthesized { skill, approach_s, obstacles } = synthesize_for(&world, learned, setup.method)
-        .map_err(|source| TrialError::Synthesis { method: setup.method, source })?;
+    let Synthesized { skill, approach_s, obstacles, fluid } =
+        synthesize_for(&world, learned, setup.method)
+            .map_err(|source| TrialError::Synthesis { method: setup.method, source })?;
     let rate_hz = 1.0 / (world.config.solver.dt_s * options.cycles_per_sample.max(1) as f64);
     let mut metadata = expert_metadata(&world, &setup.scene_name, Some(setup.seed), rate_hz);
     metadata.source = format!("knotlab run ({})", setup.method);
     metadata.description = format!("{} at a moved stitch", learned.knowledge.task);
     let run = record_demonstration(world, &rig, &config, skill.clone(), metadata, options, observer)
         .map_err(ExpertError::from)?;
-    Ok(TrialRun { run, skill, approach_s, obstacles })
+    Ok(TrialRun { run, skill, approach_s, obstacles, fluid })
 }
