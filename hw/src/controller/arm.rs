@@ -199,6 +199,18 @@ impl ArmRuntime {
             }
         }
         let Some(target) = target else { return Ok(()) };
+        self.command_target(target, jaw, time_s)
+    }
+
+    /// Solves the IK for `target` (the jaw at `jaw`, or as it is) and takes one speed-limited step
+    /// towards it as the new set-point (written by [`ArmRuntime::write`]).
+    pub(super) fn command_target(
+        &mut self,
+        target: TipTarget,
+        jaw: Option<f64>,
+        time_s: f64,
+    ) -> Result<(), ControllerError> {
+        let arm = self.name();
         let mut solved = self
             .setup
             .model

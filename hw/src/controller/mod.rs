@@ -24,11 +24,13 @@ pub mod error;
 pub mod gate;
 pub mod params;
 pub mod record;
+pub mod teleop;
 
 pub use error::ControllerError;
 pub use gate::{ExecutionRefused, PreviewOutcome, may_execute};
 pub use params::{ArmSetup, ControllerParams};
 pub use record::{ArmRecord, CycleRecord, FiredEvent, RunOutcome, RunSummary, Status};
+pub use teleop::TeleopSettings;
 
 use crate::device::{
     CycleClock, DeviceError, DeviceId, DeviceKind, DeviceSet, ForceFeedback, MasterDevice, MasterState,
@@ -45,6 +47,8 @@ struct Master {
     device: Box<dyn MasterDevice>,
     state: MasterState,
     stale: u32,
+    /// Where the handle and the tip were when teleoperation last engaged (none: disengaged).
+    engaged: Option<teleop::Engagement>,
 }
 
 /// Runs skills on a set of devices.
@@ -65,6 +69,8 @@ pub struct Controller {
     status: Status,
     fired: Vec<FiredEvent>,
     record: CycleRecord,
+    /// Teleoperation while no skill runs, if on.
+    teleop: Option<TeleopSettings>,
 }
 
 impl Controller {
@@ -99,7 +105,13 @@ impl Controller {
         let masters = devices
             .masters
             .into_iter()
-            .map(|(arm, device)| Master { arm, device, state: MasterState::default(), stale: 0 })
+            .map(|(arm, device)| Master {
+                arm,
+                device,
+                state: MasterState::default(),
+                stale: 0,
+                engaged: None,
+            })
             .collect();
         let record = CycleRecord {
             cycle: 0,
@@ -125,6 +137,7 @@ impl Controller {
             status: Status::Idle,
             fired: Vec::new(),
             record,
+            teleop: None,
         };
         controller.read_all()?;
         for arm in &mut controller.arms {
@@ -157,6 +170,19 @@ impl Controller {
     /// The arms the controller drives, in order.
     pub fn arms(&self) -> impl Iterator<Item = ArmName> + '_ {
         self.arms.iter().map(ArmRuntime::name)
+    }
+
+    /// Turns teleoperation on (or off with `None`): while no skill runs and no emergency stop holds,
+    /// each master steers its arm's instrument ([`teleop`]). Refuses bad settings.
+    pub fn set_teleoperation(&mut self, settings: Option<TeleopSettings>) -> Result<(), ControllerError> {
+        if let Some((field, reason)) = settings.as_ref().and_then(TeleopSettings::problem) {
+            return Err(ControllerError::Setup(format!("teleoperation.{field}: {reason}")));
+        }
+        self.teleop = settings;
+        for master in &mut self.masters {
+            master.engaged = None;
+        }
+        Ok(())
     }
 
     /// Checks `skill` against the rig and makes it the one to run from skill time 0. Arms without a
@@ -324,6 +350,7 @@ impl Controller {
         if self.record.pedals.emergency_stop {
             self.status = Status::EmergencyStopped;
         }
+        let skill_cycle = self.status == Status::Running;
         if self.status == Status::Running
             && let Some(skill) = &self.skill
         {
@@ -343,6 +370,14 @@ impl Controller {
                 self.skill_cycle += 1;
             }
         }
+        // The cycle that ends a skill is still the skill's: manual control takes over from the next.
+        if skill_cycle {
+            for master in &mut self.masters {
+                master.engaged = None;
+            }
+        } else {
+            self.teleoperate()?;
+        }
         for master in &mut self.masters {
             let force = self
                 .arms
@@ -356,6 +391,31 @@ impl Controller {
         self.clock.tick()?;
         self.cycle += 1;
         self.publish();
+        Ok(())
+    }
+
+    /// One cycle of teleoperation: nothing while a skill runs or the emergency stop holds (the masters
+    /// disengage, to engage afresh afterwards); otherwise each master steers its arm, held still while
+    /// the clutch is pressed.
+    fn teleoperate(&mut self) -> Result<(), ControllerError> {
+        let Some(settings) = self.teleop else { return Ok(()) };
+        let manual = matches!(self.status, Status::Idle | Status::Finished);
+        let clutch = self.record.pedals.assignable[settings.clutch_pedal];
+        let time_s = self.cycle as f64 * self.period_s;
+        for master in &mut self.masters {
+            let Some(arm) = self.arms.iter_mut().find(|a| a.name() == master.arm) else { continue };
+            if !manual || clutch {
+                master.engaged = None;
+                continue;
+            }
+            let engaged = *master.engaged.get_or_insert(teleop::Engagement {
+                console_from_handle: master.state.console_from_handle,
+                world_from_tip: arm.record.world_from_tip,
+            });
+            let target = engaged.target(&settings, &master.state.console_from_handle);
+            arm.command_target(target, Some(master.state.gripper_rad * settings.jaw_per_gripper), time_s)?;
+            arm.write()?;
+        }
         Ok(())
     }
 
