@@ -2,7 +2,9 @@
 //! the task patterns (the files live in `scenarios/`, the code here).
 //!
 //! - [`expert`]: the scripted surgeon who ties the knot in the simulator and leaves a demonstration.
+//! - [`session`]: the lab's workflow: teleoperation, the skill pedal, preview, execution, manual again.
 //! - [`trial`]: one trial end to end: a learned skill synthesized at a moved stitch, run, evaluated.
 
 pub mod expert;
+pub mod session;
 pub mod trial;

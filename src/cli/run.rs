@@ -205,6 +205,10 @@ pub fn run(args: RunArgs, out: &mut Output) -> anyhow::Result<ExitCode> {
     }
     let e = &trial.run.evaluation;
     let preview = match (&trial.run.fault, e.verdict) {
+        _ if trial.kinematics.is_err() => Preview {
+            passed: false,
+            reason: trial.kinematics.as_ref().err().map(ToString::to_string).unwrap_or_default(),
+        },
         (Some(fault), _) => Preview { passed: false, reason: format!("fault: {fault}") },
         (None, Verdict::Success) => Preview { passed: true, reason: String::new() },
         (None, verdict) => Preview { passed: false, reason: format!("knot: {}", verdict.label()) },

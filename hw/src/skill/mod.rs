@@ -6,6 +6,7 @@
 //! - [`event`]: force-triggered events ("open the jaw when the force exceeds F").
 //! - [`profile`]: motion profiles for skill generators (minimum jerk).
 //! - [`check`]: the checks a skill must pass before it runs, naming each bad field.
+//! - [`preview`]: the kinematic preview: every target reachable, within the joints' limits.
 //!
 //! Room to grow: events carry names, and what triggers an event is its own type, so a later trigger
 //! ("after the other instrument's event N", a wait) can be added without changing the tracks. A skill
@@ -14,6 +15,7 @@
 pub mod check;
 pub mod event;
 pub mod keys;
+pub mod preview;
 pub mod profile;
 mod serde_arm;
 

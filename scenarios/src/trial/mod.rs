@@ -7,9 +7,12 @@ pub mod stitch;
 
 pub use stitch::StitchMove;
 
+use knotlab_hw::controller::ArmSetup;
+use knotlab_hw::kinematics::ArmJoints;
 use knotlab_hw::rig::{ArmName, Rig};
 use knotlab_hw::rig_config::parse_rig_config;
 use knotlab_hw::skill::Skill;
+use knotlab_hw::skill::preview::{KinematicProblem, kinematic_preview};
 use knotlab_learner::demonstration::Demonstration;
 use knotlab_learner::fluid::{GridRegion, Instantiation, PlaneFrame};
 use knotlab_learner::primitive::{KnowledgeBase, Primitive};
@@ -81,6 +84,23 @@ pub struct TrialRun {
     pub obstacles: ObstacleLog,
     /// The fluid's regenerations of its 2D primitives, each with when it starts in the skill, s.
     pub fluid: Vec<(String, Instantiation, f64)>,
+    /// The kinematic preview: every target reachable within the joints' limits, or the first that is not.
+    pub kinematics: Result<(), KinematicProblem>,
+}
+
+/// The kinematic preview of `skill` on `world`'s instruments as they stand.
+pub fn kinematic_check(world: &SimWorld, skill: &Skill) -> Result<(), KinematicProblem> {
+    let arms = [ArmName::Left, ArmName::Right, ArmName::Assist];
+    let current: Vec<(ArmName, ArmJoints)> = arms.iter().map(|&a| (a, world.arm(a).command)).collect();
+    let setups: Vec<ArmSetup> = arms
+        .iter()
+        .map(|&a| ArmSetup {
+            arm: a,
+            model: world.rig.arm(a).model,
+            world_trocar_m: trocar_of(&world.config, a),
+        })
+        .collect();
+    kinematic_preview(skill, &setups, &current, 0.01)
 }
 
 fn isometry(world_from_tip: &nalgebra::IsometryMatrix3<f64>) -> Isometry3<f64> {
@@ -173,11 +193,12 @@ pub fn run_trial(
     let Synthesized { skill, approach_s, obstacles, fluid } =
         synthesize_for(&world, learned, setup.method)
             .map_err(|source| TrialError::Synthesis { method: setup.method, source })?;
+    let kinematics = kinematic_check(&world, &skill);
     let rate_hz = 1.0 / (world.config.solver.dt_s * options.cycles_per_sample.max(1) as f64);
     let mut metadata = expert_metadata(&world, &setup.scene_name, Some(setup.seed), rate_hz);
     metadata.source = format!("knotlab run ({})", setup.method);
     metadata.description = format!("{} at a moved stitch", learned.knowledge.task);
     let run = record_demonstration(world, &rig, &config, skill.clone(), metadata, options, observer)
         .map_err(ExpertError::from)?;
-    Ok(TrialRun { run, skill, approach_s, obstacles, fluid })
+    Ok(TrialRun { run, skill, approach_s, obstacles, fluid, kinematics })
 }
