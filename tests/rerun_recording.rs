@@ -101,7 +101,14 @@ fn a_short_trial_and_its_learning_read_back() {
     let (paths, timelines) = contents(&fluid);
     assert_has(
         &paths,
-        &["/fluid/grid/speed", "/fluid/grid/obstacles", "/fluid/velocity", "/fluid/path", "/fluid/particle"],
+        &[
+            "/fluid/grid/speed",
+            "/fluid/grid/pressure",
+            "/fluid/grid/obstacles",
+            "/fluid/velocity",
+            "/fluid/path",
+            "/fluid/particle",
+        ],
     );
     assert!(timelines.contains("sim_time"), "timelines {timelines:?}");
 
@@ -119,6 +126,7 @@ fn a_short_trial_and_its_learning_read_back() {
             "/instruments/right/planned",
             "/instruments/left/planned",
             "/fluid/R2/grid/obstacles",
+            "/fluid/R2/grid/pressure",
             "/fluid/R2/path",
             "/fluid/R2/particle",
             "/verdict",

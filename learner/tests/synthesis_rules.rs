@@ -221,6 +221,14 @@ fn the_fluid_regenerates_the_winding_and_dmp_reproduces_it() {
     for method in [Method::Fluid, Method::Dmp] {
         let made = make(&kb, &demo, method, world);
         assert_eq!(made.fluid.len(), usize::from(method == Method::Fluid), "{method}: fluid runs");
+        if let Some((_, inst)) = made.fluid.first() {
+            // The stirred fluid has a pressure field (finite, not flat) beside its velocity.
+            let p = &inst.cell_pressure_m2ps2;
+            assert_eq!(p.len(), inst.region.n * inst.region.n);
+            assert!(p.iter().all(|x| x.is_finite()));
+            let (lo, hi) = p.iter().fold((f64::MAX, f64::MIN), |(a, b), x| (a.min(*x), b.max(*x)));
+            assert!(hi - lo > 0.0, "a flat pressure field");
+        }
         let slot = made.schedule.slot("R2").unwrap();
         let right = track(&made.skill, ArmName::Right);
         // At the demonstration's own site the new path is where the hand was, when it was there:

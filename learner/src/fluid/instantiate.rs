@@ -139,6 +139,10 @@ pub struct Instantiation {
     pub stirring_path_m: Vec<Vector2<f64>>,
     /// The final velocity at every cell centre, `j * n + i`, plane axes, m/s (zero in obstacles).
     pub cell_velocity_mps: Vec<Vector2<f64>>,
+    /// The final pressure over density at every cell centre, `j * n + i`, m^2/s^2 (zero in obstacles).
+    pub cell_pressure_m2ps2: Vec<f64>,
+    /// The cells the caller gave as obstacles (before the repair), `j * n + i`.
+    pub given_obstacles: Vec<bool>,
     /// How it went.
     pub report: InstantiationReport,
 }
@@ -243,6 +247,8 @@ pub fn instantiate(
         trace,
         stirring_path_m: stirrer.samples().iter().map(to_plane).collect(),
         cell_velocity_mps: cell_velocities(&sim),
+        cell_pressure_m2ps2: cell_pressures(&sim),
+        given_obstacles: obstacles.blocked.clone(),
         report,
     })
 }
@@ -282,6 +288,19 @@ fn min_clearance(flags: &Flags, trace: &[(f64, Vector2<f64>)]) -> f64 {
         .iter()
         .flat_map(|(_, p)| edge.iter().map(move |&(i, j)| distance_to_cell(*p, i, j, grid.h_m)))
         .fold(f64::INFINITY, f64::min)
+}
+
+/// The pressure at every cell centre, mask order (zero in obstacles).
+fn cell_pressures(sim: &FluidSim) -> Vec<f64> {
+    let grid = sim.grid();
+    let mut out = Vec::with_capacity(grid.n * grid.n);
+    for j in 0..grid.n {
+        for i in 0..grid.n {
+            let k = grid.idx(i + 1, j + 1);
+            out.push(if sim.flags().fluid[k] { sim.p()[k] } else { 0.0 });
+        }
+    }
+    out
 }
 
 /// The velocity at every cell centre, mask order.
