@@ -63,4 +63,10 @@ fn bad_arguments_are_named() {
     let (code, _, stderr) = knotlab(&["run", "--skill", "/nonexistent/kb.json", "--until", "1"]);
     assert_eq!(code, 1);
     assert!(stderr.contains("/nonexistent/kb.json"), "{stderr}");
+    // A stitch moved out of the arms' reach: the scene with the move is named, and the arm and why.
+    let (code, _, stderr) = knotlab(&["run", "--stitch-offset", "0.5,0,0", "--until", "1"]);
+    assert_eq!(code, 1);
+    assert!(stderr.contains("with the stitch moved by [0.5, 0.0, 0.0] m"), "{stderr}");
+    assert!(stderr.contains("the left arm cannot put its tool through this trocar"), "{stderr}");
+    assert_eq!(stderr.matches("trocars.left").count(), 1, "said once: {stderr}");
 }

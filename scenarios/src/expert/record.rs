@@ -197,12 +197,12 @@ pub const SIM_RIG_TOML: &str = include_str!("../../rigs/sim.toml");
 #[derive(Debug, thiserror::Error)]
 pub enum ExpertError {
     /// The scene cannot be built.
-    #[error("{scene}: {source}")]
+    #[error("{scene}: {reason}")]
     World {
         /// The scene file.
         scene: String,
         /// Why.
-        source: knotlab_sim::world::WorldError,
+        reason: knotlab_sim::world::WorldError,
     },
     /// The shipped rig or its config is broken.
     #[error("the shipped rig: {0}")]
@@ -227,7 +227,7 @@ pub fn demonstrate(
     let config = knotlab_hw::rig_config::parse_rig_config(SIM_RIG_TOML, "scenarios/rigs/sim.toml")
         .map_err(|e| ExpertError::Rig(e.to_string()))?;
     let mut world = SimWorld::new(scene, rig.clone())
-        .map_err(|source| ExpertError::World { scene: scene_name.to_owned(), source })?;
+        .map_err(|reason| ExpertError::World { scene: scene_name.to_owned(), reason })?;
     world.reseed(seed);
     let variation = if human { super::Variation::human(seed) } else { super::Variation::none() };
     let skill = super::plan_instrument_tie(&world, &super::TieGeometry::default(), &variation);

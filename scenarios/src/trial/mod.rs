@@ -63,12 +63,24 @@ pub enum TrialError {
     #[error(transparent)]
     Expert(#[from] ExpertError),
     /// The skill could not be synthesized.
-    #[error("synthesis ({method}): {source}")]
+    #[error("synthesis ({method}): {reason}")]
     Synthesis {
         /// The method.
         method: Method,
         /// Why.
-        source: SynthesisError,
+        reason: SynthesisError,
+    },
+    /// The scene cannot be built with its stitch moved there.
+    #[error("{scene} with the stitch moved by {offset_m:?} m and turned {rotate_deg} deg: {reason}")]
+    Site {
+        /// The scene file.
+        scene: String,
+        /// The offset, m.
+        offset_m: [f64; 3],
+        /// The turn, degrees.
+        rotate_deg: f64,
+        /// Why.
+        reason: knotlab_sim::world::WorldError,
     },
 }
 
@@ -187,12 +199,16 @@ pub fn run_trial(
         .map_err(|e| ExpertError::Rig(e.to_string()))?;
     let mut scene = setup.scene.clone();
     setup.stitch.apply(&mut scene);
-    let mut world = SimWorld::new(scene, rig.clone())
-        .map_err(|source| ExpertError::World { scene: setup.scene_name.clone(), source })?;
+    let mut world = SimWorld::new(scene, rig.clone()).map_err(|reason| TrialError::Site {
+        scene: setup.scene_name.clone(),
+        offset_m: setup.stitch.offset_m.into(),
+        rotate_deg: setup.stitch.rotate_rad.to_degrees(),
+        reason,
+    })?;
     world.reseed(setup.seed);
     let Synthesized { skill, approach_s, obstacles, fluid } =
         synthesize_for(&world, learned, setup.method)
-            .map_err(|source| TrialError::Synthesis { method: setup.method, source })?;
+            .map_err(|reason| TrialError::Synthesis { method: setup.method, reason })?;
     let kinematics = kinematic_check(&world, &skill);
     let rate_hz = 1.0 / (world.config.solver.dt_s * options.cycles_per_sample.max(1) as f64);
     let mut metadata = expert_metadata(&world, &setup.scene_name, Some(setup.seed), rate_hz);
