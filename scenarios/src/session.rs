@@ -15,7 +15,9 @@ use knotlab_sim::backend::SimBackend;
 use knotlab_sim::world::SimWorld;
 use nalgebra::{IsometryMatrix3, Translation3, Vector3};
 
-use crate::expert::record::RecordError;
+use knotlab_learner::demonstration::Demonstration;
+
+use crate::expert::record::{RecordError, empty_records, expert_metadata, sample_instruments};
 use crate::trial::{Learned, kinematic_check, synthesize_for};
 
 /// The assignable pedal that instantiates and executes the skill (0 is the clutch).
@@ -59,6 +61,9 @@ pub struct SessionReport {
     pub status: Status,
     /// Every instrument's tip every 10 ms: `(time_s, arm, position)`.
     pub tips: Vec<(f64, ArmName, Vector3<f64>)>,
+    /// What the devices read at 100 Hz, teleoperation and skill alike: a demonstration in the format
+    /// the scripted expert's are written in (a teleoperated recording).
+    pub demonstration: Demonstration,
 }
 
 /// Why a session could not run.
@@ -89,6 +94,10 @@ pub fn run_session(
     script: &Script,
     duration_s: f64,
 ) -> Result<SessionReport, SessionError> {
+    let rate_hz = 1.0 / (world.config.solver.dt_s * 10.0);
+    let mut metadata = expert_metadata(&world, "", None, rate_hz);
+    metadata.source = "teleoperation (scripted master)".into();
+    metadata.description = "a teleoperated session: manual control, the skill pedal, the skill".into();
     let mut backend = SimBackend::new(world);
     let built = build_rig(config, rig, Some(&mut backend)).map_err(RecordError::from)?;
     let (mut controller, handles) = built.into_controller().map_err(RecordError::from)?;
@@ -101,6 +110,7 @@ pub fn run_session(
         refused: None,
         status: Status::Idle,
         tips: Vec::new(),
+        demonstration: Demonstration { metadata, instruments: empty_records() },
     };
     let mut next = 0;
     let mut skill_pedal_was_down = false;
@@ -139,6 +149,7 @@ pub fn run_session(
                     report.tips.push((record.time_s, arm, a.world_from_tip.translation.vector));
                 }
             }
+            sample_instruments(&record, &backend.world(), &mut report.demonstration.instruments);
         }
         if record.status == Status::Finished
             && report.skill_started_s.is_some()

@@ -7,7 +7,7 @@ use std::path::Path;
 use knotlab_hw::controller::{Status, TeleopSettings};
 use knotlab_hw::rig::{ArmName, Rig};
 use knotlab_hw::rig_config::parse_rig_config;
-use knotlab_learner::demonstration::load_demonstration;
+use knotlab_learner::demonstration::{load_demonstration, write_demonstration};
 use knotlab_learner::pattern::load_pattern;
 use knotlab_learner::primitive::learn;
 use knotlab_learner::synthesis::Method;
@@ -89,4 +89,19 @@ fn teleoperate_then_the_skill_pedal_then_the_emergency_stop() {
         let drift = (tip(&report, arm, 3.0) - tip(&report, arm, 2.6)).norm();
         assert!(drift < 1e-4, "{arm} moved {drift} m after the emergency stop");
     }
+    // The session is a teleoperated recording in the demonstration format: written, read back whole.
+    let dir = std::env::temp_dir().join(format!("knotlab-lab-session-{}", std::process::id()));
+    write_demonstration(&dir, &report.demonstration).expect("written");
+    let back = load_demonstration(&dir).expect("read back");
+    std::fs::remove_dir_all(&dir).ok();
+    assert_eq!(back.metadata.source, "teleoperation (scripted master)");
+    let left = back.instrument(ArmName::Left).expect("the left's record");
+    assert!(
+        (left.samples.len() as i64 - 301).abs() <= 1,
+        "{} samples at 100 Hz over 3 s",
+        left.samples.len()
+    );
+    let recorded =
+        left.samples.iter().find(|s| s.time_s >= 0.98).unwrap().position_m - left.samples[5].position_m;
+    assert!((recorded - nudged).norm() < 1e-4, "the recording holds the nudge: {recorded:?}");
 }

@@ -83,6 +83,30 @@ fn grasp_state(world: &SimWorld, arm: ArmName) -> GraspState {
     }
 }
 
+/// The instruments a demonstration records, each with no samples yet.
+pub fn empty_records() -> Vec<InstrumentRecord> {
+    [ArmName::Left, ArmName::Right, ArmName::Assist]
+        .iter()
+        .map(|&instrument| InstrumentRecord { instrument, samples: Vec::new() })
+        .collect()
+}
+
+/// Appends what the devices read this cycle (tip pose, jaw, grasp, force) to each instrument's record.
+pub fn sample_instruments(record: &CycleRecord, world: &SimWorld, records: &mut [InstrumentRecord]) {
+    for r in records {
+        let Some(a) = record.arm(r.instrument) else { continue };
+        let q = UnitQuaternion::from_rotation_matrix(&a.world_from_tip.rotation);
+        r.samples.push(Sample {
+            time_s: record.time_s,
+            position_m: a.world_from_tip.translation.vector,
+            quaternion_xyzw: [q.i, q.j, q.k, q.w],
+            jaw_rad: a.measured.tool.jaw_rad,
+            grasp: grasp_state(world, r.instrument),
+            force_n: a.world_force_n,
+        });
+    }
+}
+
 /// Sees every control cycle's record and the scene after it (for debugging, logging, diagnostics).
 pub type CycleObserver<'a> = dyn FnMut(&CycleRecord, &SimWorld) + 'a;
 
@@ -101,9 +125,7 @@ pub fn record_demonstration(
     let mut backend = SimBackend::new(world);
     let (mut controller, _handles) = build_rig(config, rig, Some(&mut backend))?.into_controller()?;
     controller.load_skill(skill)?;
-    let instruments = [ArmName::Left, ArmName::Right, ArmName::Assist];
-    let mut records: Vec<InstrumentRecord> =
-        instruments.iter().map(|&instrument| InstrumentRecord { instrument, samples: Vec::new() }).collect();
+    let mut records = empty_records();
     let every = options.cycles_per_sample.max(1);
     let mut snapshot_times = options.snapshot_times_s.clone();
     snapshot_times.sort_by(f64::total_cmp);
@@ -122,18 +144,7 @@ pub fn record_demonstration(
             observe(&record, &world);
         }
         if record.cycle % every == 0 {
-            for (r, &arm) in records.iter_mut().zip(&instruments) {
-                let Some(a) = record.arm(arm) else { continue };
-                let q = UnitQuaternion::from_rotation_matrix(&a.world_from_tip.rotation);
-                r.samples.push(Sample {
-                    time_s: record.time_s,
-                    position_m: a.world_from_tip.translation.vector,
-                    quaternion_xyzw: [q.i, q.j, q.k, q.w],
-                    jaw_rad: a.measured.tool.jaw_rad,
-                    grasp: grasp_state(&world, arm),
-                    force_n: a.world_force_n,
-                });
-            }
+            sample_instruments(&record, &world, &mut records);
         }
         while snapshot_times.first().is_some_and(|t| *t <= record.skill_time_s) {
             let t = snapshot_times.remove(0);
