@@ -4,8 +4,8 @@
 //! manual input, previews the skill (every target reachable within the joints' limits) and executes it;
 //! afterwards manual control resumes. The emergency pedal stops everything at any time.
 //!
-//! The surgeon here is a script of handle poses and pedal presses on the simulated rig's dummy masters
-//! and pedals (a gamepad driver would move the same handles).
+//! The surgeon is a script of handle poses and pedal presses on the simulated rig's dummy masters and
+//! pedals, or a person with a gamepad (`scenarios/rigs/sim-gamepad.toml`, the `gamepad` feature).
 
 use knotlab_hw::controller::{ControllerError, Status, TeleopSettings};
 use knotlab_hw::rig::{ArmName, Rig};
@@ -73,16 +73,16 @@ pub enum SessionError {
     #[error(transparent)]
     Record(#[from] RecordError),
     /// The controller faulted.
-    #[error("the controller: {0}")]
+    #[error("the controller")]
     Controller(#[from] ControllerError),
     /// The rig has no dummy masters or pedals to script.
     #[error("the rig config has no dummy {0} to script")]
     NotScriptable(&'static str),
 }
 
-/// Runs a session of `duration_s` on `world` with the rig `config` (which must have dummy pedals and
-/// masters), teleoperation as `teleop`, the skill from `learned` by `method` when the skill pedal goes
-/// down.
+/// Runs a session of `duration_s` on `world` with the rig `config` (a script needs dummy pedals and
+/// masters; a gamepad rig takes its input from the gamepad), teleoperation as `teleop`, the skill from `learned` by `method` when the skill pedal goes
+/// down; with `real_time` the simulation is paced to the wall clock (for a person at a gamepad).
 #[allow(clippy::too_many_arguments)]
 pub fn run_session(
     world: SimWorld,
@@ -93,16 +93,22 @@ pub fn run_session(
     teleop: TeleopSettings,
     script: &Script,
     duration_s: f64,
+    real_time: bool,
 ) -> Result<SessionReport, SessionError> {
+    let started = std::time::Instant::now();
     let rate_hz = 1.0 / (world.config.solver.dt_s * 10.0);
     let mut metadata = expert_metadata(&world, "", None, rate_hz);
-    metadata.source = "teleoperation (scripted master)".into();
+    metadata.source = "teleoperation".into();
     metadata.description = "a teleoperated session: manual control, the skill pedal, the skill".into();
     let mut backend = SimBackend::new(world);
     let built = build_rig(config, rig, Some(&mut backend)).map_err(RecordError::from)?;
     let (mut controller, handles) = built.into_controller().map_err(RecordError::from)?;
     controller.set_teleoperation(Some(teleop))?;
-    let pedals = handles.pedals.clone().ok_or(SessionError::NotScriptable("pedals"))?;
+    let pedals = handles.pedals.clone();
+    let press = |set: &dyn Fn(&knotlab_hw::device::dummy::PedalHandle)| -> Result<(), SessionError> {
+        set(pedals.as_ref().ok_or(SessionError::NotScriptable("pedals"))?);
+        Ok(())
+    };
     let mut report = SessionReport {
         log: Vec::new(),
         skill_started_s: None,
@@ -129,9 +135,9 @@ pub fn run_session(
                     );
                     h.set(pose, gripper_rad, 0);
                 }
-                Action::Clutch(down) => pedals.set_assignable(teleop.clutch_pedal, down),
-                Action::SkillPedal(down) => pedals.set_assignable(SKILL_PEDAL, down),
-                Action::EmergencyStop(down) => pedals.set_emergency_stop(down),
+                Action::Clutch(down) => press(&|p| p.set_assignable(teleop.clutch_pedal, down))?,
+                Action::SkillPedal(down) => press(&|p| p.set_assignable(SKILL_PEDAL, down))?,
+                Action::EmergencyStop(down) => press(&|p| p.set_emergency_stop(down))?,
             }
             next += 1;
         }
@@ -192,6 +198,13 @@ pub fn run_session(
                         ));
                     }
                 },
+            }
+        }
+        if real_time {
+            // A person at the console: simulated time does not run ahead of the clock on the wall.
+            let ahead = record.time_s - started.elapsed().as_secs_f64();
+            if ahead > 0.002 {
+                std::thread::sleep(std::time::Duration::from_secs_f64(ahead));
             }
         }
         if record.time_s >= duration_s {

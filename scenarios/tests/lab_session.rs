@@ -57,9 +57,18 @@ fn teleoperate_then_the_skill_pedal_then_the_emergency_stop() {
     script
         .push((1.5, Action::Handle { arm: ArmName::Left, position_m: [0.05, 0.05, 0.0], gripper_rad: 0.0 }));
     script.push((2.5, Action::EmergencyStop(true)));
-    let report =
-        run_session(world, &rig, &config, &learned, Method::Dmp, TeleopSettings::default(), &script, 3.0)
-            .expect("the session runs");
+    let report = run_session(
+        world,
+        &rig,
+        &config,
+        &learned,
+        Method::Dmp,
+        TeleopSettings::default(),
+        &script,
+        3.0,
+        false,
+    )
+    .expect("the session runs");
     for (t, what) in &report.log {
         println!("{t:.3} s: {what}");
     }
@@ -94,7 +103,7 @@ fn teleoperate_then_the_skill_pedal_then_the_emergency_stop() {
     write_demonstration(&dir, &report.demonstration).expect("written");
     let back = load_demonstration(&dir).expect("read back");
     std::fs::remove_dir_all(&dir).ok();
-    assert_eq!(back.metadata.source, "teleoperation (scripted master)");
+    assert_eq!(back.metadata.source, "teleoperation");
     let left = back.instrument(ArmName::Left).expect("the left's record");
     assert!(
         (left.samples.len() as i64 - 301).abs() <= 1,

@@ -10,6 +10,7 @@ mod obstacles;
 mod output;
 mod rig;
 mod run;
+mod session;
 mod sim;
 
 use std::process::ExitCode;
@@ -47,6 +48,8 @@ enum Command {
     Learn(learn::LearnArgs),
     /// One trial end to end: the learned skill at a (moved) stitch, by a method; the knot's verdict.
     Run(run::RunArgs),
+    /// The lab's workflow at a desk: teleoperate (a gamepad), the skill pedal, preview, execute; recorded.
+    Session(session::SessionArgs),
 }
 
 /// Runs a parsed command line.
@@ -62,5 +65,6 @@ pub fn run(cli: Cli) -> anyhow::Result<ExitCode> {
         Command::Learn(args) => learn::run(args, &mut out),
         Command::Demo(args) => demo::run(args, &mut out),
         Command::Run(args) => run::run(args, &mut out),
+        Command::Session(args) => session::run(args, &mut out),
     }
 }

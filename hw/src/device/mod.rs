@@ -24,6 +24,7 @@ pub mod clock;
 pub mod dummy;
 pub mod error;
 pub mod force_sensor;
+pub mod gamepad;
 pub mod id;
 pub mod instrument_drive;
 pub mod limits;

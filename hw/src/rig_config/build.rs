@@ -12,7 +12,7 @@ use crate::device::dummy::{
 };
 use crate::device::{
     ArmDevices, ArmServo, CycleClock, DeviceError, DeviceId, DeviceKind, DeviceSet, ForceSensor,
-    InstrumentDrive, MasterDevice, PositionLimit, StepLimit, VelocityLimit,
+    InstrumentDrive, MasterDevice, Pedals, PositionLimit, StepLimit, VelocityLimit,
 };
 use crate::kinematics::{ArmJoints, Tool};
 use crate::melfa::{CR750_CYCLE_S, Layout, MelfaArm, MelfaConfig};
@@ -62,6 +62,58 @@ pub enum RigBuildError {
         /// Why.
         source: DeviceError,
     },
+}
+
+/// Opens the gamepad once for every device on it.
+#[derive(Default)]
+struct GamepadOpener {
+    #[cfg(feature = "gamepad")]
+    shared: Option<crate::device::gamepad::driver::SharedGamepad>,
+}
+
+impl GamepadOpener {
+    #[cfg(feature = "gamepad")]
+    fn shared(&mut self, key: &str) -> Result<crate::device::gamepad::driver::SharedGamepad, RigBuildError> {
+        if let Some(s) = &self.shared {
+            return Ok(s.clone());
+        }
+        let s = crate::device::gamepad::driver::SharedGamepad::open()
+            .map_err(|source| RigBuildError::Device { key: key.to_owned(), source })?;
+        self.shared = Some(s.clone());
+        Ok(s)
+    }
+
+    #[cfg(feature = "gamepad")]
+    fn pedals(&mut self, key: &str) -> Result<Box<dyn Pedals>, RigBuildError> {
+        use crate::device::gamepad::{GamepadMapping, driver::GamepadPedals};
+        Ok(Box::new(GamepadPedals::new(self.shared(key)?, GamepadMapping::default())))
+    }
+
+    #[cfg(feature = "gamepad")]
+    fn master(&mut self, key: &str) -> Result<Box<dyn MasterDevice>, RigBuildError> {
+        use crate::device::gamepad::{GamepadMapping, driver::GamepadMaster};
+        Ok(Box::new(GamepadMaster::new(self.shared(key)?, GamepadMapping::default())))
+    }
+
+    #[cfg(not(feature = "gamepad"))]
+    fn pedals(&mut self, key: &str) -> Result<Box<dyn Pedals>, RigBuildError> {
+        Err(Self::not_built(key))
+    }
+
+    #[cfg(not(feature = "gamepad"))]
+    fn master(&mut self, key: &str) -> Result<Box<dyn MasterDevice>, RigBuildError> {
+        Err(Self::not_built(key))
+    }
+
+    #[cfg(not(feature = "gamepad"))]
+    fn not_built(key: &str) -> RigBuildError {
+        RigBuildError::Invalid {
+            problems: vec![(
+                key.to_owned(),
+                "backend \"gamepad\" needs knotlab built with the `gamepad` feature (cargo build --features gamepad; Linux needs libudev-dev)".to_owned(),
+            )],
+        }
+    }
 }
 
 /// The handles of the dummy input devices, to press pedals and set forces from a test or a user
@@ -157,6 +209,14 @@ pub fn build_rig(
         let mut servo: Box<dyn ArmServo> = match arm.servo.backend {
             Backend::Sim => need_sim(&mut sim, format!("{at}.servo"))?.arm_servo(name),
             Backend::Dummy => Box::new(DummyArmServo::new(start.arm_rad)),
+            Backend::Gamepad => {
+                return Err(RigBuildError::Invalid {
+                    problems: vec![(
+                        format!("{at}.servo.backend"),
+                        "an arm servo cannot use backend \"gamepad\"".into(),
+                    )],
+                });
+            }
             Backend::Melfa => {
                 let s = &arm.servo;
                 let controller = s.controller.ok_or_else(|| RigBuildError::Invalid {
@@ -216,18 +276,31 @@ pub fn build_rig(
         setups.push(ArmSetup { arm: name, model, world_trocar_m });
         arms.push((name, ArmDevices { servo, instrument, force }));
     }
-    let pedals = DummyPedals::new();
-    handles.pedals = Some(pedals.handle());
+    let mut gamepad = GamepadOpener::default();
+    let pedals: Box<dyn Pedals> = match config.pedals.backend {
+        Backend::Gamepad => gamepad.pedals("pedals.backend")?,
+        _ => {
+            let pedals = DummyPedals::new();
+            handles.pedals = Some(pedals.handle());
+            Box::new(pedals)
+        }
+    };
     let mut masters: Vec<(ArmName, Box<dyn MasterDevice>)> = Vec::new();
     for (name, master) in [(ArmName::Left, &config.masters.left), (ArmName::Right, &config.masters.right)] {
-        if master.is_some() {
-            let device = DummyMaster::new();
-            handles.masters.push((name, device.handle()));
-            masters.push((name, Box::new(device)));
+        match master.map(|m| m.backend) {
+            Some(Backend::Gamepad) => {
+                masters.push((name, gamepad.master(&format!("masters.{name}.backend"))?))
+            }
+            Some(_) => {
+                let device = DummyMaster::new();
+                handles.masters.push((name, device.handle()));
+                masters.push((name, Box::new(device)));
+            }
+            None => {}
         }
     }
     Ok(BuiltRig {
-        devices: DeviceSet { arms, pedals: Box::new(pedals), masters, clock },
+        devices: DeviceSet { arms, pedals, masters, clock },
         setups,
         params: config.controller.params(),
         handles,

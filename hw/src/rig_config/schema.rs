@@ -112,6 +112,8 @@ pub enum Backend {
     Melfa,
     /// A dummy driver (perfect joints; inputs set through handles).
     Dummy,
+    /// A gamepad (masters and pedals only; the `gamepad` feature).
+    Gamepad,
 }
 
 impl Backend {
@@ -121,6 +123,7 @@ impl Backend {
             Backend::Sim => "sim",
             Backend::Melfa => "melfa",
             Backend::Dummy => "dummy",
+            Backend::Gamepad => "gamepad",
         }
     }
 }
@@ -295,10 +298,20 @@ impl RigConfig {
                 );
             }
         }
-        p.backend("pedals.backend".into(), self.pedals.backend, &[Backend::Dummy], "the pedals");
+        p.backend(
+            "pedals.backend".into(),
+            self.pedals.backend,
+            &[Backend::Dummy, Backend::Gamepad],
+            "the pedals",
+        );
         for (name, master) in [("left", &self.masters.left), ("right", &self.masters.right)] {
             if let Some(m) = master {
-                p.backend(format!("masters.{name}.backend"), m.backend, &[Backend::Dummy], "a master device");
+                p.backend(
+                    format!("masters.{name}.backend"),
+                    m.backend,
+                    &[Backend::Dummy, Backend::Gamepad],
+                    "a master device",
+                );
             }
         }
         let uses = |b: Backend| {

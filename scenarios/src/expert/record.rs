@@ -24,10 +24,10 @@ use nalgebra::UnitQuaternion;
 #[derive(Debug, thiserror::Error)]
 pub enum RecordError {
     /// The rig config does not build on the scene.
-    #[error("the rig does not build on the scene: {0}")]
+    #[error("the rig does not build on the scene")]
     Rig(#[from] RigBuildError),
     /// The controller refused the skill or could not start.
-    #[error("the controller: {0}")]
+    #[error("the controller")]
     Controller(#[from] ControllerError),
 }
 

@@ -1,0 +1,120 @@
+//! `knotlab session`: the lab's workflow at a desk, in the simulator. A gamepad (or any master and
+//! pedals the rig config names) steers the instruments; the skill pedal instantiates the learned skill
+//! at the stitch as it stands, previews and executes it; the session is recorded as a demonstration.
+
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use anyhow::Context;
+use clap::Args;
+use serde::Serialize;
+
+use knotlab_hw::controller::TeleopSettings;
+use knotlab_hw::rig::Rig;
+use knotlab_hw::rig_config::load_rig_config;
+use knotlab_learner::demonstration::{load_demonstration, write_demonstration};
+use knotlab_learner::pattern::load_pattern;
+use knotlab_learner::primitive::learn;
+use knotlab_learner::synthesis::Method;
+use knotlab_scenarios::session::run_session;
+use knotlab_scenarios::trial::Learned;
+use knotlab_sim::scene::load_scene;
+use knotlab_sim::world::SimWorld;
+
+use super::output::{Output, outln};
+
+#[derive(Debug, Args)]
+pub struct SessionArgs {
+    /// The rig: which masters and pedals steer (scenarios/rigs/sim-gamepad.toml needs the `gamepad`
+    /// feature; scenarios/rigs/sim.toml has dummy ones that stay still).
+    #[arg(long, default_value = "scenarios/rigs/sim-gamepad.toml")]
+    rig: PathBuf,
+    /// The scene file.
+    #[arg(long, default_value = "scenarios/default.toml")]
+    scene: PathBuf,
+    /// The demonstration the skill is learned from.
+    #[arg(long, default_value = "scenarios/demos/instrument-tie")]
+    demo: PathBuf,
+    /// The task pattern.
+    #[arg(long, default_value = "scenarios/patterns/knot_tying.toml")]
+    pattern: PathBuf,
+    /// How the skill is carried to the stitch: fluid, dmp or replay.
+    #[arg(long, default_value = "fluid")]
+    method: Method,
+    /// How long the session lasts, simulated s.
+    #[arg(long, default_value_t = 60.0)]
+    seconds: f64,
+    /// Tip motion per handle motion.
+    #[arg(long, default_value_t = 1.0 / 3.0)]
+    scale: f64,
+    /// Run as fast as the simulation goes instead of at the wall clock's pace.
+    #[arg(long)]
+    unpaced: bool,
+    /// Where to write the session's recording (a demonstration directory).
+    #[arg(long)]
+    out: PathBuf,
+    /// Print JSON instead of text.
+    #[arg(long)]
+    json: bool,
+}
+
+#[derive(Serialize)]
+struct Report {
+    log: Vec<(f64, String)>,
+    skill_started_s: Option<f64>,
+    skill_finished_s: Option<f64>,
+    refused: Option<String>,
+    status: String,
+    samples: usize,
+    out: String,
+}
+
+pub fn run(args: SessionArgs, out: &mut Output) -> anyhow::Result<ExitCode> {
+    if !(args.seconds.is_finite() && args.seconds > 0.0) {
+        anyhow::bail!("--seconds {}: must be a positive number of seconds", args.seconds);
+    }
+    let config = load_rig_config(&args.rig)?;
+    let demonstration = load_demonstration(&args.demo)?;
+    let pattern = load_pattern(&args.pattern)?;
+    let knowledge = learn(&demonstration, &pattern)
+        .with_context(|| format!("learning from {} with {}", args.demo.display(), args.pattern.display()))?;
+    let learned = Learned { knowledge, demonstration };
+    let rig = Rig::shipped().context("the shipped rig")?;
+    let world = SimWorld::new(load_scene(&args.scene)?, rig.clone())
+        .with_context(|| args.scene.display().to_string())?;
+    let teleop = TeleopSettings { scale: args.scale, ..TeleopSettings::default() };
+    let mut report = run_session(
+        world,
+        &rig,
+        &config,
+        &learned,
+        args.method,
+        teleop,
+        &Vec::new(),
+        args.seconds,
+        !args.unpaced,
+    )
+    .with_context(|| format!("the session on {}", args.rig.display()))?;
+    report.demonstration.metadata.scene = args.scene.display().to_string();
+    report.demonstration.metadata.source = format!("teleoperation ({})", args.rig.display());
+    write_demonstration(&args.out, &report.demonstration)
+        .with_context(|| format!("writing the session's recording to {}", args.out.display()))?;
+    let r = Report {
+        log: report.log.clone(),
+        skill_started_s: report.skill_started_s,
+        skill_finished_s: report.skill_finished_s,
+        refused: report.refused.clone(),
+        status: format!("{:?}", report.status),
+        samples: report.demonstration.instruments.iter().map(|i| i.samples.len()).sum(),
+        out: args.out.display().to_string(),
+    };
+    if args.json {
+        outln!(out, "{}", serde_json::to_string_pretty(&r)?);
+    } else {
+        for (t, what) in &r.log {
+            outln!(out, "{t:8.3} s  {what}");
+        }
+        outln!(out, "recorded {} samples -> {}", r.samples, r.out);
+    }
+    Ok(ExitCode::SUCCESS)
+}
