@@ -1,2 +1,4 @@
-//! knotlab's evaluation: Monte Carlo knot-tying runs (to come) and the performance benchmarks in
+//! knotlab's evaluation: Monte Carlo knot-tying runs ([`mc`]) and the performance benchmarks in
 //! `benches/` (`cargo bench -p knotlab-bench`).
+
+pub mod mc;

@@ -4,6 +4,7 @@ mod demo;
 mod fluid;
 mod knot;
 mod learn;
+mod mc;
 mod melfa;
 mod numbers;
 mod obstacles;
@@ -48,6 +49,8 @@ enum Command {
     Learn(learn::LearnArgs),
     /// One trial end to end: the learned skill at a (moved) stitch, by a method; the knot's verdict.
     Run(run::RunArgs),
+    /// Monte Carlo: learn once, then N randomized trials per method; success rates with Wilson intervals.
+    Mc(mc::McArgs),
     /// The lab's workflow at a desk: teleoperate (a gamepad), the skill pedal, preview, execute; recorded.
     Session(session::SessionArgs),
 }
@@ -66,5 +69,6 @@ pub fn run(cli: Cli) -> anyhow::Result<ExitCode> {
         Command::Demo(args) => demo::run(args, &mut out),
         Command::Run(args) => run::run(args, &mut out),
         Command::Session(args) => session::run(args, &mut out),
+        Command::Mc(args) => mc::run(args, &mut out),
     }
 }

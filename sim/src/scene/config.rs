@@ -35,6 +35,33 @@ pub struct SceneConfig {
     /// Extra boxes in the workspace.
     #[serde(default)]
     pub obstacles: Vec<Obstacle>,
+    /// What a Monte Carlo run draws per trial (uniform between each pair of bounds); none: nothing.
+    #[serde(default)]
+    pub randomization: Randomization,
+}
+
+/// The distributions of a Monte Carlo run's per-trial draws, each uniform within `[low, high]`.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct Randomization {
+    /// Shift of the stitch (the tissue) along the world's x, m.
+    pub stitch_x_m: [f64; 2],
+    /// ... along y, m.
+    pub stitch_y_m: [f64; 2],
+    /// ... along z, m.
+    pub stitch_z_m: [f64; 2],
+    /// Turn of the stitch about the tissue's normal, rad.
+    pub stitch_rotate_rad: [f64; 2],
+    /// Backlash of every arm joint, rad (servo.play_rad).
+    pub play_rad: [f64; 2],
+    /// Calibration error: every arm joint's offset, drawn each, rad.
+    pub calibration_rad: [f64; 2],
+    /// The thread's friction coefficient.
+    pub thread_friction: [f64; 2],
+    /// The thread's bending stiffness, N m/rad.
+    pub thread_bend_stiffness: [f64; 2],
+    /// The strain gauges' noise, N.
+    pub force_noise_n: [f64; 2],
 }
 
 /// The half-circle needle.
@@ -176,6 +203,10 @@ pub(crate) type RangeProblem = (String, String);
 
 struct Check<'a>(&'a mut Vec<RangeProblem>);
 
+fn problems_push(c: &mut Check<'_>, key: String, reason: String) {
+    c.0.push((key, reason));
+}
+
 impl Check<'_> {
     fn range(&mut self, key: &str, value: f64, lo: f64, hi: f64) {
         if !(value.is_finite() && value >= lo && value <= hi) {
@@ -280,6 +311,28 @@ impl SceneConfig {
         {
             for (i, v) in offsets.iter().enumerate() {
                 c.range(&format!("servo.calibration_offset_rad.{name}[{i}]"), *v, -0.2, 0.2);
+            }
+        }
+        let r = &self.randomization;
+        for (key, [lo, hi], min, max) in [
+            ("stitch_x_m", r.stitch_x_m, -0.1, 0.1),
+            ("stitch_y_m", r.stitch_y_m, -0.1, 0.1),
+            ("stitch_z_m", r.stitch_z_m, -0.1, 0.1),
+            ("stitch_rotate_rad", r.stitch_rotate_rad, -3.2, 3.2),
+            ("play_rad", r.play_rad, 0.0, 0.1),
+            ("calibration_rad", r.calibration_rad, -0.2, 0.2),
+            ("thread_friction", r.thread_friction, 0.0, 2.0),
+            ("thread_bend_stiffness", r.thread_bend_stiffness, 0.0, 1.0),
+            ("force_noise_n", r.force_noise_n, 0.0, 10.0),
+        ] {
+            c.range(&format!("randomization.{key}[0]"), lo, min, max);
+            c.range(&format!("randomization.{key}[1]"), hi, min, max);
+            if hi < lo {
+                problems_push(
+                    &mut c,
+                    format!("randomization.{key}"),
+                    format!("the high bound {hi} is below the low {lo}"),
+                );
             }
         }
         for (i, obstacle) in self.obstacles.iter().enumerate() {

@@ -1,0 +1,222 @@
+//! Monte Carlo evaluation: learn once, then per trial draw a scene from the scene file's
+//! `[randomization]` ([`draw`]), synthesize the skill there by each method, run it on the simulated rig
+//! and evaluate the knot. Trials run on `jobs` threads; each is fully determined by the run's seed and
+//! its index. Every finished trial is appended to `results.jsonl` at once, so an interrupted run
+//! resumes where it stopped (trials already there are skipped); `summary.json` is made from the
+//! results sorted by trial and method, so it is the same bytes whatever the number of jobs.
+
+pub mod draw;
+pub mod summary;
+
+use std::collections::BTreeSet;
+use std::io::Write;
+use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::mpsc;
+
+use knotlab_learner::synthesis::Method;
+use knotlab_scenarios::expert::RecordOptions;
+use knotlab_scenarios::trial::{Learned, TrialSetup, run_trial};
+use knotlab_sim::knot::Verdict;
+use knotlab_sim::scene::SceneConfig;
+use serde::{Deserialize, Serialize};
+
+pub use draw::{Draw, draw};
+pub use summary::{MethodSummary, Summary, summarize, wilson_interval};
+
+/// A Monte Carlo run.
+#[derive(Clone, Debug)]
+pub struct McOptions {
+    /// The scene (its `[randomization]` says what is drawn).
+    pub scene: SceneConfig,
+    /// Its file, for the record.
+    pub scene_name: String,
+    /// Trials 0 to N-1.
+    pub trials: u64,
+    /// The run's seed.
+    pub seed: u64,
+    /// Threads.
+    pub jobs: usize,
+    /// The methods, each run on every trial.
+    pub methods: Vec<Method>,
+    /// Where `results.jsonl` and `summary.json` go.
+    pub out: PathBuf,
+    /// Stop each trial's skill at this time, s (short runs for tests).
+    pub until_s: Option<f64>,
+}
+
+/// One finished trial of one method: a line of `results.jsonl`.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct TrialLine {
+    /// The trial's index.
+    pub trial: u64,
+    /// The run's seed.
+    pub seed: u64,
+    /// The method.
+    pub method: String,
+    /// What was drawn.
+    pub draw: serde_json::Value,
+    /// `success` or the failure mode.
+    pub verdict: String,
+    /// The knot before release, if any.
+    pub knot: Option<String>,
+    /// The wound gap at the end, m (none when the trial could not be set up).
+    pub wound_gap_m: Option<f64>,
+    /// Simulated time, s.
+    pub sim_seconds: f64,
+    /// Wall time, s (not in the summary).
+    pub wall_seconds: f64,
+    /// A fault or a synthesis error, if one ended the trial.
+    pub error: Option<String>,
+}
+
+/// Why the run stopped.
+#[derive(Debug, thiserror::Error)]
+pub enum McError {
+    /// The results file.
+    #[error("{file}: {reason}")]
+    Results {
+        /// The file.
+        file: String,
+        /// Why.
+        reason: String,
+    },
+}
+
+fn results_path(out: &Path) -> PathBuf {
+    out.join("results.jsonl")
+}
+
+/// The lines already in `results.jsonl` (none when it does not exist). A last line cut short by a kill
+/// is dropped (and its trial run again); any other bad line is an error naming it.
+pub fn read_results(out: &Path) -> Result<Vec<TrialLine>, McError> {
+    let path = results_path(out);
+    let file = path.display().to_string();
+    let text = match std::fs::read_to_string(&path) {
+        Ok(t) => t,
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(Vec::new()),
+        Err(e) => return Err(McError::Results { file, reason: e.to_string() }),
+    };
+    let lines: Vec<&str> = text.lines().collect();
+    let complete = text.ends_with('\n');
+    let mut out = Vec::new();
+    for (k, line) in lines.iter().enumerate() {
+        match serde_json::from_str::<TrialLine>(line) {
+            Ok(l) => out.push(l),
+            Err(_) if k + 1 == lines.len() && !complete => {}
+            Err(e) => return Err(McError::Results { file, reason: format!("line {}: {e}", k + 1) }),
+        }
+    }
+    Ok(out)
+}
+
+fn run_one(learned: &Learned, options: &McOptions, trial: u64, method: Method) -> TrialLine {
+    let (scene, stitch, drawn) = draw(&options.scene, options.seed, trial);
+    let setup =
+        TrialSetup { scene, scene_name: options.scene_name.clone(), seed: drawn.sim_seed, stitch, method };
+    let record =
+        RecordOptions { cycles_per_sample: 10, stop_after_s: options.until_s, ..RecordOptions::default() };
+    let draw_json = serde_json::to_value(drawn).unwrap_or(serde_json::Value::Null);
+    match run_trial(learned, &setup, &record, None) {
+        Ok(t) => {
+            let e = &t.run.evaluation;
+            TrialLine {
+                trial,
+                seed: options.seed,
+                method: method.to_string(),
+                draw: draw_json,
+                verdict: e.verdict.label().to_owned(),
+                knot: e.knot_before.map(|k| k.name().to_owned()),
+                wound_gap_m: Some(e.gap_after_m.unwrap_or(e.gap_before_m)),
+                sim_seconds: t.run.simulated_s,
+                wall_seconds: t.run.wall_s,
+                error: t.run.fault.clone(),
+            }
+        }
+        Err(error) => TrialLine {
+            trial,
+            seed: options.seed,
+            method: method.to_string(),
+            draw: draw_json,
+            verdict: Verdict::Failure(knotlab_sim::knot::FailureMode::Unreachable).label().to_owned(),
+            knot: None,
+            wound_gap_m: None,
+            sim_seconds: 0.0,
+            wall_seconds: 0.0,
+            error: Some(format!("{error:#}")),
+        },
+    }
+}
+
+/// Runs (or resumes) the Monte Carlo run; `progress` sees each finished line. Returns the summary
+/// (also written to `summary.json`).
+pub fn run_mc(
+    learned: &Learned,
+    options: &McOptions,
+    mut progress: impl FnMut(&TrialLine, usize, usize),
+) -> Result<Summary, McError> {
+    let file = results_path(&options.out).display().to_string();
+    std::fs::create_dir_all(&options.out)
+        .map_err(|e| McError::Results { file: file.clone(), reason: e.to_string() })?;
+    let mut done = read_results(&options.out)?;
+    let finished: BTreeSet<(u64, String)> = done.iter().map(|l| (l.trial, l.method.clone())).collect();
+    let todo: Vec<(u64, Method)> = (0..options.trials)
+        .flat_map(|t| options.methods.iter().map(move |m| (t, *m)))
+        .filter(|(t, m)| !finished.contains(&(*t, m.to_string())))
+        .collect();
+    // Rewrite the file without a line cut short, then append.
+    let mut text = String::new();
+    for l in &done {
+        text.push_str(
+            &serde_json::to_string(l)
+                .map_err(|e| McError::Results { file: file.clone(), reason: e.to_string() })?,
+        );
+        text.push('\n');
+    }
+    std::fs::write(results_path(&options.out), text)
+        .map_err(|e| McError::Results { file: file.clone(), reason: e.to_string() })?;
+    let mut writer = std::fs::OpenOptions::new()
+        .append(true)
+        .open(results_path(&options.out))
+        .map_err(|e| McError::Results { file: file.clone(), reason: e.to_string() })?;
+    let total = todo.len();
+    let next = AtomicUsize::new(0);
+    let (tx, rx) = mpsc::channel::<TrialLine>();
+    let mut write_error = None;
+    std::thread::scope(|scope| {
+        for _ in 0..options.jobs.max(1) {
+            let tx = tx.clone();
+            let (todo, next) = (&todo, &next);
+            scope.spawn(move || {
+                loop {
+                    let k = next.fetch_add(1, Ordering::Relaxed);
+                    let Some(&(trial, method)) = todo.get(k) else { break };
+                    if tx.send(run_one(learned, options, trial, method)).is_err() {
+                        break;
+                    }
+                }
+            });
+        }
+        drop(tx);
+        for (count, line) in rx.iter().enumerate() {
+            let written = serde_json::to_string(&line).map_err(|e| e.to_string()).and_then(|json| {
+                writeln!(writer, "{json}").and_then(|()| writer.flush()).map_err(|e| e.to_string())
+            });
+            if let Err(reason) = written {
+                write_error.get_or_insert(reason);
+            }
+            progress(&line, count + 1, total);
+            done.push(line);
+        }
+    });
+    if let Some(reason) = write_error {
+        return Err(McError::Results { file, reason });
+    }
+    let summary = summarize(&options.scene_name, options.seed, options.trials, &options.methods, &done);
+    let summary_file = options.out.join("summary.json");
+    let text = serde_json::to_string_pretty(&summary)
+        .map_err(|e| McError::Results { file: summary_file.display().to_string(), reason: e.to_string() })?;
+    std::fs::write(&summary_file, text + "\n")
+        .map_err(|e| McError::Results { file: summary_file.display().to_string(), reason: e.to_string() })?;
+    Ok(summary)
+}

@@ -1,0 +1,153 @@
+//! The run's summary: per method the success rate with its 95 % Wilson interval, the failure modes,
+//! and success against the stitch's displacement and the play in bins. Built from the results sorted by
+//! trial, so it does not depend on the order trials finished in.
+
+use std::collections::BTreeMap;
+
+use knotlab_learner::synthesis::Method;
+use serde::Serialize;
+
+use super::TrialLine;
+
+/// The 95 % Wilson score interval of `successes` out of `n` (`(0, 1)` for none).
+pub fn wilson_interval(successes: usize, n: usize) -> (f64, f64) {
+    if n == 0 {
+        return (0.0, 1.0);
+    }
+    let z = 1.959_963_984_540_054;
+    let (n, p) = (n as f64, successes as f64 / n as f64);
+    let denominator = 1.0 + z * z / n;
+    let centre = (p + z * z / (2.0 * n)) / denominator;
+    let half = z * ((p * (1.0 - p) + z * z / (4.0 * n)) / n).sqrt() / denominator;
+    ((centre - half).max(0.0), (centre + half).min(1.0))
+}
+
+/// Success in one bin of a drawn parameter.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Bin {
+    /// The bin's bounds.
+    pub from: f64,
+    /// ...
+    pub to: f64,
+    /// Trials in it.
+    pub trials: usize,
+    /// Successes.
+    pub successes: usize,
+}
+
+/// One method's figures.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct MethodSummary {
+    /// The method.
+    pub method: String,
+    /// Trials finished.
+    pub trials: usize,
+    /// Knots accepted.
+    pub successes: usize,
+    /// successes / trials.
+    pub success_rate: f64,
+    /// The 95 % Wilson interval of the rate.
+    pub wilson_95: [f64; 2],
+    /// Trials per verdict.
+    pub verdicts: BTreeMap<String, usize>,
+    /// Success against the stitch's displacement (m), in 4 bins.
+    pub by_stitch_displacement_m: Vec<Bin>,
+    /// Success against the play (rad), in 4 bins.
+    pub by_play_rad: Vec<Bin>,
+}
+
+/// The summary file.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Summary {
+    /// The scene.
+    pub scene: String,
+    /// The run's seed.
+    pub seed: u64,
+    /// Trials asked for.
+    pub trials: u64,
+    /// Per method.
+    pub methods: Vec<MethodSummary>,
+}
+
+fn bins(lines: &[&TrialLine], value: impl Fn(&TrialLine) -> f64) -> Vec<Bin> {
+    let values: Vec<f64> = lines.iter().map(|l| value(l)).collect();
+    let lo = values.iter().copied().fold(f64::INFINITY, f64::min);
+    let hi = values.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+    if !(lo.is_finite() && hi.is_finite()) {
+        return Vec::new();
+    }
+    let width = ((hi - lo) / 4.0).max(1e-12);
+    (0..4)
+        .map(|b| {
+            let (from, to) = (lo + width * b as f64, lo + width * (b + 1) as f64);
+            let inside: Vec<&&TrialLine> = lines
+                .iter()
+                .zip(&values)
+                .filter(|(_, v)| **v >= from && (**v < to || (b == 3 && **v <= to + 1e-12)))
+                .map(|(l, _)| l)
+                .collect();
+            Bin {
+                from,
+                to,
+                trials: inside.len(),
+                successes: inside.iter().filter(|l| l.verdict == "success").count(),
+            }
+        })
+        .collect()
+}
+
+fn number(l: &TrialLine, key: &str) -> f64 {
+    l.draw.get(key).and_then(serde_json::Value::as_f64).unwrap_or(0.0)
+}
+
+fn displacement(l: &TrialLine) -> f64 {
+    l.draw
+        .get("stitch_offset_m")
+        .and_then(|v| v.as_array())
+        .map_or(0.0, |a| a.iter().filter_map(serde_json::Value::as_f64).map(|x| x * x).sum::<f64>().sqrt())
+}
+
+/// The summary of `lines` (any order) for `methods`.
+pub fn summarize(scene: &str, seed: u64, trials: u64, methods: &[Method], lines: &[TrialLine]) -> Summary {
+    let mut sorted: Vec<&TrialLine> = lines.iter().filter(|l| l.trial < trials).collect();
+    sorted.sort_by(|a, b| (a.trial, &a.method).cmp(&(b.trial, &b.method)));
+    sorted.dedup_by(|a, b| a.trial == b.trial && a.method == b.method);
+    let methods = methods
+        .iter()
+        .map(|m| {
+            let mine: Vec<&TrialLine> = sorted.iter().copied().filter(|l| l.method == m.as_str()).collect();
+            let successes = mine.iter().filter(|l| l.verdict == "success").count();
+            let (lo, hi) = wilson_interval(successes, mine.len());
+            let mut verdicts = BTreeMap::new();
+            for l in &mine {
+                *verdicts.entry(l.verdict.clone()).or_insert(0) += 1;
+            }
+            MethodSummary {
+                method: m.to_string(),
+                trials: mine.len(),
+                successes,
+                success_rate: if mine.is_empty() { 0.0 } else { successes as f64 / mine.len() as f64 },
+                wilson_95: [lo, hi],
+                verdicts,
+                by_stitch_displacement_m: bins(&mine, displacement),
+                by_play_rad: bins(&mine, |l| number(l, "play_rad")),
+            }
+        })
+        .collect();
+    Summary { scene: scene.to_owned(), seed, trials, methods }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn wilson_intervals_match_the_textbook() {
+        // 8 of 10: 0.490 to 0.943 (Wilson 1927, z = 1.96).
+        let (lo, hi) = wilson_interval(8, 10);
+        assert!((lo - 0.4902).abs() < 1e-4 && (hi - 0.9433).abs() < 1e-4, "{lo} {hi}");
+        let (lo, hi) = wilson_interval(0, 50);
+        assert!(lo == 0.0 && (hi - 0.0714).abs() < 1e-4, "{hi}");
+        assert_eq!(wilson_interval(0, 0), (0.0, 1.0));
+    }
+}

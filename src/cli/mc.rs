@@ -1,0 +1,112 @@
+//! `knotlab mc`: the Monte Carlo knot-tying evaluation. Learns once from the demonstration, then runs
+//! N trials drawn from the scene's `[randomization]`, each by every method asked for, on `--jobs`
+//! threads; results go to OUT/results.jsonl as they finish (a rerun resumes), the summary to
+//! OUT/summary.json.
+
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use anyhow::Context;
+use clap::Args;
+
+use knotlab_bench::mc::{McOptions, run_mc};
+use knotlab_learner::demonstration::load_demonstration;
+use knotlab_learner::pattern::load_pattern;
+use knotlab_learner::primitive::learn;
+use knotlab_learner::synthesis::Method;
+use knotlab_scenarios::trial::Learned;
+use knotlab_sim::scene::load_scene;
+
+use super::output::{Output, outln};
+
+#[derive(Debug, Args)]
+pub struct McArgs {
+    /// The scene file (its [randomization] table says what each trial draws).
+    #[arg(long, default_value = "scenarios/default.toml")]
+    scene: PathBuf,
+    /// The demonstration learned from.
+    #[arg(long, default_value = "scenarios/demos/instrument-tie")]
+    demo: PathBuf,
+    /// The task pattern.
+    #[arg(long, default_value = "scenarios/patterns/knot_tying.toml")]
+    pattern: PathBuf,
+    /// Trials 0 to N-1.
+    #[arg(long, default_value_t = 10)]
+    trials: u64,
+    /// The run's seed: trial i draws from (seed, i) alone.
+    #[arg(long, default_value_t = 0)]
+    seed: u64,
+    /// Threads (default: one per core).
+    #[arg(long)]
+    jobs: Option<usize>,
+    /// The methods, each on every trial (repeat the flag): fluid, dmp, replay.
+    #[arg(long = "method", default_value = "fluid")]
+    methods: Vec<Method>,
+    /// Stop each trial's skill at this time, s (short runs, to try the machinery).
+    #[arg(long, value_name = "S")]
+    until: Option<f64>,
+    /// Where results.jsonl and summary.json go (an existing results.jsonl is resumed).
+    #[arg(long)]
+    out: PathBuf,
+    /// Print the summary as JSON.
+    #[arg(long)]
+    json: bool,
+}
+
+pub fn run(args: McArgs, out: &mut Output) -> anyhow::Result<ExitCode> {
+    if let Some(t) = args.until
+        && !(t.is_finite() && t > 0.0)
+    {
+        anyhow::bail!("--until {t}: must be a positive number of seconds");
+    }
+    let demonstration = load_demonstration(&args.demo)?;
+    let pattern = load_pattern(&args.pattern)?;
+    let knowledge = learn(&demonstration, &pattern)
+        .with_context(|| format!("learning from {} with {}", args.demo.display(), args.pattern.display()))?;
+    let learned = Learned { knowledge, demonstration };
+    let mut methods = args.methods.clone();
+    methods.dedup();
+    let jobs =
+        args.jobs.unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get())).max(1);
+    let options = McOptions {
+        scene: load_scene(&args.scene)?,
+        scene_name: args.scene.display().to_string(),
+        trials: args.trials,
+        seed: args.seed,
+        jobs,
+        methods,
+        out: args.out.clone(),
+        until_s: args.until,
+    };
+    let started = std::time::Instant::now();
+    let json = args.json;
+    let summary = run_mc(&learned, &options, |line, done, total| {
+        if !json {
+            let rate = done as f64 / started.elapsed().as_secs_f64().max(1e-9) * 60.0;
+            eprintln!(
+                "[{done}/{total}] trial {} {}: {} ({:.0} trials/min)",
+                line.trial, line.method, line.verdict, rate
+            );
+        }
+    })?;
+    if args.json {
+        outln!(out, "{}", serde_json::to_string_pretty(&summary)?);
+    } else {
+        for m in &summary.methods {
+            outln!(
+                out,
+                "{}: {} of {} trials tied the knot ({:.1} %, 95 % Wilson {:.1}-{:.1} %); {}",
+                m.method,
+                m.successes,
+                m.trials,
+                100.0 * m.success_rate,
+                100.0 * m.wilson_95[0],
+                100.0 * m.wilson_95[1],
+                m.verdicts.iter().map(|(v, n)| format!("{v} {n}")).collect::<Vec<_>>().join(", ")
+            );
+        }
+        outln!(out, "results: {}", args.out.join("results.jsonl").display());
+        outln!(out, "summary: {}", args.out.join("summary.json").display());
+    }
+    Ok(ExitCode::SUCCESS)
+}
