@@ -30,16 +30,16 @@ fn mc(out: &Path, trials: u64, jobs: u64) -> (i32, String) {
         "--method",
         "replay",
         "--out",
-        out.to_str().unwrap(),
+        out.to_str().expect("a UTF-8 path"),
     ]);
     (code, format!("{stdout}{stderr}"))
 }
 
 fn lines(out: &Path) -> Vec<serde_json::Value> {
     std::fs::read_to_string(out.join("results.jsonl"))
-        .unwrap()
+        .expect("results.jsonl")
         .lines()
-        .map(|l| serde_json::from_str(l).unwrap())
+        .map(|l| serde_json::from_str(l).expect("a JSON line"))
         .collect()
 }
 
@@ -48,7 +48,8 @@ fn the_same_seed_gives_the_same_summary_with_one_or_two_jobs() {
     let (a, b) = (dir("jobs1"), dir("jobs2"));
     assert_eq!(mc(&a, 3, 1).0, 0);
     assert_eq!(mc(&b, 3, 2).0, 0);
-    let (sa, sb) = (std::fs::read(a.join("summary.json")).unwrap(), std::fs::read(b.join("summary.json")).unwrap());
+    let (sa, sb) =
+        (std::fs::read(a.join("summary.json")).unwrap(), std::fs::read(b.join("summary.json")).unwrap());
     assert_eq!(sa, sb, "summary.json differs between --jobs 1 and --jobs 2");
     let summary: serde_json::Value = serde_json::from_slice(&sa).unwrap();
     assert_eq!(summary["methods"][0]["trials"], 3);
