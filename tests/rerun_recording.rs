@@ -143,3 +143,28 @@ fn one_recording_is_one_trial() {
     assert_ne!(code, 0);
     assert!(err.contains("--seed N, not --seeds"), "{err}");
 }
+
+#[test]
+fn a_monte_carlo_run_records_the_trials_asked_for_and_the_failures() {
+    let dir = std::env::temp_dir().join(format!("knotlab-rerun-mc-{}", std::process::id()));
+    std::fs::remove_dir_all(&dir).ok();
+    let run = |extra: &[&str]| {
+        let mut args =
+            vec!["mc", "--trials", "2", "--until", "0.3", "--method", "dmp", "--out", dir.to_str().unwrap()];
+        args.extend_from_slice(extra);
+        knotlab(&args)
+    };
+    let (code, out, err) = run(&["--record-trials", "1"]);
+    assert_eq!(code, 0, "{out}{err}");
+    let rerun = dir.join("rerun");
+    assert!(!rerun.join("trial-0-dmp.rrd").exists(), "trial 0 was not asked for");
+    let (paths, timelines) = contents(&rerun.join("trial-1-dmp.rrd"));
+    assert_has(&paths, &["/scene/thread", "/instruments/left/tip", "/verdict"]);
+    assert!(timelines.contains("sim_time"), "timelines {timelines:?}");
+    // Stopped at 0.3 s no trial ties a knot: with --record-failures every trial is recorded.
+    std::fs::remove_dir_all(&dir).ok();
+    let (code, out, err) = run(&["--record-failures"]);
+    assert_eq!(code, 0, "{out}{err}");
+    assert!(rerun.join("trial-0-dmp.rrd").exists() && rerun.join("trial-1-dmp.rrd").exists());
+    let _ = std::fs::remove_dir_all(&dir);
+}

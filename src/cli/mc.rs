@@ -9,15 +9,17 @@ use std::process::ExitCode;
 use anyhow::Context;
 use clap::Args;
 
-use knotlab_bench::mc::{McOptions, run_mc};
+use knotlab_bench::mc::{McOptions, run_mc_with};
 use knotlab_learner::demonstration::load_demonstration;
 use knotlab_learner::pattern::load_pattern;
 use knotlab_learner::primitive::learn;
 use knotlab_learner::synthesis::Method;
-use knotlab_scenarios::trial::Learned;
+use knotlab_scenarios::expert::RecordOptions;
+use knotlab_scenarios::trial::{Learned, TrialError, TrialRun, TrialSetup, run_trial};
 use knotlab_sim::scene::load_scene;
 
 use super::output::{Output, outln};
+use crate::rerun_log::{self, RerunArgs};
 
 #[derive(Debug, Args)]
 pub struct McArgs {
@@ -48,9 +50,58 @@ pub struct McArgs {
     /// Where results.jsonl and summary.json go (an existing results.jsonl is resumed).
     #[arg(long)]
     out: PathBuf,
+    /// Record these trials for the Rerun viewer (comma-separated indices), into OUT/rerun/.
+    #[arg(long, value_delimiter = ',', value_name = "I,J,...")]
+    record_trials: Vec<u64>,
+    /// Record every trial that fails for the Rerun viewer, into OUT/rerun/.
+    #[arg(long)]
+    record_failures: bool,
     /// Print the summary as JSON.
     #[arg(long)]
     json: bool,
+}
+
+/// Runs a trial, recording it into `OUT/rerun/trial-I-METHOD.rrd` when asked (a success is not kept when
+/// only failures are asked for).
+fn recorded_trial(
+    learned: &Learned,
+    args: &McArgs,
+    setup: &TrialSetup,
+    options: &RecordOptions,
+    trial: u64,
+) -> Result<TrialRun, TrialError> {
+    let listed = args.record_trials.contains(&trial);
+    if !listed && !args.record_failures {
+        return run_trial(learned, setup, options, None);
+    }
+    let path = args.out.join("rerun").join(format!("trial-{trial}-{}.rrd", setup.method));
+    let rerun = RerunArgs { rerun: Some(path.clone()), rerun_connect: None };
+    let recording = match rerun.open(&format!("mc trial {trial} {}", setup.method)) {
+        Ok(r) => r,
+        Err(e) => {
+            eprintln!("warning: trial {trial}: not recorded: {e:#}");
+            return run_trial(learned, setup, options, None);
+        }
+    };
+    let result = rerun_log::record_trial(
+        recording.as_ref(),
+        |observer| run_trial(learned, setup, options, observer),
+        |t| &t.run,
+    );
+    if let Err(e) = rerun_log::finish(recording) {
+        eprintln!("warning: trial {trial}: {e:#}");
+    }
+    match result {
+        Ok(run) => {
+            if !listed && run.run.evaluation.verdict == knotlab_sim::knot::Verdict::Success {
+                std::fs::remove_file(&path).ok();
+            }
+            Ok(run)
+        }
+        // A trial that could not be set up: run again without the recording for its own typed error
+        // (it fails before simulating anything).
+        Err(_) => run_trial(learned, setup, options, None),
+    }
 }
 
 pub fn run(args: McArgs, out: &mut Output) -> anyhow::Result<ExitCode> {
@@ -80,7 +131,10 @@ pub fn run(args: McArgs, out: &mut Output) -> anyhow::Result<ExitCode> {
     };
     let started = std::time::Instant::now();
     let json = args.json;
-    let summary = run_mc(&learned, &options, |line, done, total| {
+    let runner = |setup: &TrialSetup, record: &RecordOptions, trial: u64| {
+        recorded_trial(&learned, &args, setup, record, trial)
+    };
+    let summary = run_mc_with(&learned, &options, &runner, |line, done, total| {
         if !json {
             let rate = done as f64 / started.elapsed().as_secs_f64().max(1e-9) * 60.0;
             eprintln!(

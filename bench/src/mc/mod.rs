@@ -16,7 +16,7 @@ use std::sync::mpsc;
 
 use knotlab_learner::synthesis::Method;
 use knotlab_scenarios::expert::RecordOptions;
-use knotlab_scenarios::trial::{Learned, TrialSetup, run_trial};
+use knotlab_scenarios::trial::{Learned, TrialError, TrialRun, TrialSetup, run_trial};
 use knotlab_sim::knot::Verdict;
 use knotlab_sim::scene::SceneConfig;
 use serde::{Deserialize, Serialize};
@@ -110,14 +110,26 @@ pub fn read_results(out: &Path) -> Result<Vec<TrialLine>, McError> {
     Ok(out)
 }
 
-fn run_one(learned: &Learned, options: &McOptions, trial: u64, method: Method) -> TrialLine {
+/// Runs one trial's set-up (the default: [`run_trial`] without an observer); a caller can wrap it, to
+/// record a trial for a viewer, say.
+pub type TrialRunner<'a> =
+    dyn Fn(&TrialSetup, &RecordOptions, u64) -> Result<TrialRun, TrialError> + Sync + 'a;
+
+fn run_one(
+    learned: &Learned,
+    options: &McOptions,
+    trial: u64,
+    method: Method,
+    runner: &TrialRunner<'_>,
+) -> TrialLine {
     let (scene, stitch, drawn) = draw(&options.scene, options.seed, trial);
     let setup =
         TrialSetup { scene, scene_name: options.scene_name.clone(), seed: drawn.sim_seed, stitch, method };
     let record =
         RecordOptions { cycles_per_sample: 10, stop_after_s: options.until_s, ..RecordOptions::default() };
     let draw_json = serde_json::to_value(drawn).unwrap_or(serde_json::Value::Null);
-    match run_trial(learned, &setup, &record, None) {
+    let _ = learned;
+    match runner(&setup, &record, trial) {
         Ok(t) => {
             let e = &t.run.evaluation;
             TrialLine {
@@ -153,6 +165,18 @@ fn run_one(learned: &Learned, options: &McOptions, trial: u64, method: Method) -
 pub fn run_mc(
     learned: &Learned,
     options: &McOptions,
+    progress: impl FnMut(&TrialLine, usize, usize),
+) -> Result<Summary, McError> {
+    let runner =
+        |setup: &TrialSetup, record: &RecordOptions, _trial: u64| run_trial(learned, setup, record, None);
+    run_mc_with(learned, options, &runner, progress)
+}
+
+/// [`run_mc`] with each trial run by `runner`.
+pub fn run_mc_with(
+    learned: &Learned,
+    options: &McOptions,
+    runner: &TrialRunner<'_>,
     mut progress: impl FnMut(&TrialLine, usize, usize),
 ) -> Result<Summary, McError> {
     let file = results_path(&options.out).display().to_string();
@@ -191,7 +215,7 @@ pub fn run_mc(
                 loop {
                     let k = next.fetch_add(1, Ordering::Relaxed);
                     let Some(&(trial, method)) = todo.get(k) else { break };
-                    if tx.send(run_one(learned, options, trial, method)).is_err() {
+                    if tx.send(run_one(learned, options, trial, method, runner)).is_err() {
                         break;
                     }
                 }

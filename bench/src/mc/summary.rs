@@ -147,7 +147,7 @@ mod tests {
         let (lo, hi) = wilson_interval(8, 10);
         assert!((lo - 0.4902).abs() < 1e-4 && (hi - 0.9433).abs() < 1e-4, "{lo} {hi}");
         let (lo, hi) = wilson_interval(0, 50);
-        assert!(lo == 0.0 && (hi - 0.0714).abs() < 1e-4, "{hi}");
+        assert!(lo.abs() < 1e-12 && (hi - 0.0714).abs() < 1e-4, "{lo} {hi}");
         assert_eq!(wilson_interval(0, 0), (0.0, 1.0));
     }
 }
