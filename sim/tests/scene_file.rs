@@ -56,6 +56,27 @@ fn out_of_range_values_are_all_named() {
 }
 
 #[test]
+fn bad_randomization_bounds_are_named() {
+    let text = DEFAULT
+        .replace("thread_friction = [0.25, 0.35]", "thread_friction = [0.35, 0.25]")
+        .replace("play_rad = [0.0, 0.0005]", "play_rad = [0.0, 0.5]");
+    match parse_scene(&text, "bad.toml") {
+        Err(SceneError::Range { problems, .. }) => {
+            let keys: Vec<&str> = problems.iter().map(|(k, _)| k.as_str()).collect();
+            assert!(keys.contains(&"randomization.thread_friction"), "{keys:?}");
+            assert!(keys.contains(&"randomization.play_rad[1]"), "{keys:?}");
+        }
+        other => panic!("expected range errors, got {other:?}"),
+    }
+    let e = err(&DEFAULT.replace(
+        "stitch_z_m = [0.0, 0.0]",
+        "stitch_z_m = [0.0, 0.0]
+stich_w_m = [0.0, 0.0]",
+    ));
+    assert!(e.contains("stich_w_m"), "{e}");
+}
+
+#[test]
 fn broken_toml_gives_the_line() {
     let text = DEFAULT.replace("[stitch]", "[stitch");
     let line = text.lines().position(|l| l == "[stitch").unwrap() + 1;

@@ -6,19 +6,16 @@
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-use anyhow::Context;
 use clap::Args;
 
 use knotlab_bench::mc::{McOptions, run_mc_with};
-use knotlab_learner::demonstration::load_demonstration;
-use knotlab_learner::pattern::load_pattern;
-use knotlab_learner::primitive::learn;
 use knotlab_learner::synthesis::Method;
 use knotlab_scenarios::expert::RecordOptions;
 use knotlab_scenarios::trial::{Learned, TrialError, TrialRun, TrialSetup, run_trial};
 use knotlab_sim::scene::load_scene;
 
 use super::output::{Output, outln};
+use super::skill_source::SkillSource;
 use crate::rerun_log::{self, RerunArgs};
 
 #[derive(Debug, Args)]
@@ -26,12 +23,8 @@ pub struct McArgs {
     /// The scene file (its [randomization] table says what each trial draws).
     #[arg(long, default_value = "scenarios/default.toml")]
     scene: PathBuf,
-    /// The demonstration learned from.
-    #[arg(long, default_value = "scenarios/demos/instrument-tie")]
-    demo: PathBuf,
-    /// The task pattern.
-    #[arg(long, default_value = "scenarios/patterns/knot_tying.toml")]
-    pattern: PathBuf,
+    #[command(flatten)]
+    source: SkillSource,
     /// Trials 0 to N-1.
     #[arg(long, default_value_t = 10)]
     trials: u64,
@@ -110,11 +103,7 @@ pub fn run(args: McArgs, out: &mut Output) -> anyhow::Result<ExitCode> {
     {
         anyhow::bail!("--until {t}: must be a positive number of seconds");
     }
-    let demonstration = load_demonstration(&args.demo)?;
-    let pattern = load_pattern(&args.pattern)?;
-    let knowledge = learn(&demonstration, &pattern)
-        .with_context(|| format!("learning from {} with {}", args.demo.display(), args.pattern.display()))?;
-    let learned = Learned { knowledge, demonstration };
+    let learned = args.source.learned()?;
     let mut methods = args.methods.clone();
     methods.dedup();
     let jobs =
@@ -134,7 +123,7 @@ pub fn run(args: McArgs, out: &mut Output) -> anyhow::Result<ExitCode> {
     let runner = |setup: &TrialSetup, record: &RecordOptions, trial: u64| {
         recorded_trial(&learned, &args, setup, record, trial)
     };
-    let summary = run_mc_with(&learned, &options, &runner, |line, done, total| {
+    let summary = run_mc_with(&options, &runner, |line, done, total| {
         if !json {
             let rate = done as f64 / started.elapsed().as_secs_f64().max(1e-9) * 60.0;
             eprintln!(

@@ -13,6 +13,7 @@ mod rig;
 mod run;
 mod session;
 mod sim;
+mod skill_source;
 
 use std::process::ExitCode;
 

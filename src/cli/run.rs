@@ -17,17 +17,16 @@ use knotlab_hw::controller::{PreviewOutcome, RunOutcome, may_execute};
 use knotlab_hw::rig::Rig;
 use knotlab_hw::rig_config::{RigConfig, build_rig, load_rig_config};
 use knotlab_hw::skill::Skill;
-use knotlab_learner::demonstration::{load_demonstration, write_demonstration};
-use knotlab_learner::pattern::load_pattern;
-use knotlab_learner::primitive::{learn, load_knowledge_base};
+use knotlab_learner::demonstration::write_demonstration;
 use knotlab_learner::synthesis::Method;
 use knotlab_scenarios::expert::RecordOptions;
-use knotlab_scenarios::trial::{Learned, StitchMove, TrialRun, TrialSetup, run_trial};
+use knotlab_scenarios::trial::{StitchMove, TrialRun, TrialSetup, run_trial};
 use knotlab_sim::knot::Verdict;
 use knotlab_sim::scene::load_scene;
 
 use super::numbers::parse_vector3;
 use super::output::{Output, outln};
+use super::skill_source::SkillSource;
 use crate::rerun_log::{self, RerunArgs};
 
 /// The exit code of a skill refused by a failed preview (1 is an error, 2 a bad command line).
@@ -35,16 +34,8 @@ const REFUSED: u8 = 4;
 
 #[derive(Debug, Args)]
 pub struct RunArgs {
-    /// The knowledge base (`knotlab learn --out FILE`); without it the demonstration is learned from
-    /// here and now with `--pattern`.
-    #[arg(long)]
-    skill: Option<PathBuf>,
-    /// The demonstration (learned from without `--skill`; played back by `--method replay`).
-    #[arg(long, default_value = "scenarios/demos/instrument-tie")]
-    demo: PathBuf,
-    /// The task pattern (used without `--skill`).
-    #[arg(long, default_value = "scenarios/patterns/knot_tying.toml")]
-    pattern: PathBuf,
+    #[command(flatten)]
+    source: SkillSource,
     /// The scene file.
     #[arg(long, default_value = "scenarios/default.toml")]
     scene: PathBuf,
@@ -162,17 +153,7 @@ pub fn run(args: RunArgs, out: &mut Output) -> anyhow::Result<ExitCode> {
     if !args.stitch_rotate.is_finite() {
         anyhow::bail!("--stitch-rotate {}: not a number of degrees", args.stitch_rotate);
     }
-    let demonstration = load_demonstration(&args.demo)?;
-    let knowledge = match &args.skill {
-        Some(path) => load_knowledge_base(path)?,
-        None => {
-            let pattern = load_pattern(&args.pattern)?;
-            learn(&demonstration, &pattern).with_context(|| {
-                format!("learning from {} with {}", args.demo.display(), args.pattern.display())
-            })?
-        }
-    };
-    let learned = Learned { knowledge, demonstration };
+    let learned = args.source.learned()?;
     let scene_name = args.scene.display().to_string();
     let setup = TrialSetup {
         scene: load_scene(&args.scene)?,

@@ -12,16 +12,14 @@ use serde::Serialize;
 use knotlab_hw::controller::TeleopSettings;
 use knotlab_hw::rig::Rig;
 use knotlab_hw::rig_config::load_rig_config;
-use knotlab_learner::demonstration::{load_demonstration, write_demonstration};
-use knotlab_learner::pattern::load_pattern;
-use knotlab_learner::primitive::learn;
+use knotlab_learner::demonstration::write_demonstration;
 use knotlab_learner::synthesis::Method;
 use knotlab_scenarios::session::run_session;
-use knotlab_scenarios::trial::Learned;
 use knotlab_sim::scene::load_scene;
 use knotlab_sim::world::SimWorld;
 
 use super::output::{Output, outln};
+use super::skill_source::SkillSource;
 
 #[derive(Debug, Args)]
 pub struct SessionArgs {
@@ -32,12 +30,8 @@ pub struct SessionArgs {
     /// The scene file.
     #[arg(long, default_value = "scenarios/default.toml")]
     scene: PathBuf,
-    /// The demonstration the skill is learned from.
-    #[arg(long, default_value = "scenarios/demos/instrument-tie")]
-    demo: PathBuf,
-    /// The task pattern.
-    #[arg(long, default_value = "scenarios/patterns/knot_tying.toml")]
-    pattern: PathBuf,
+    #[command(flatten)]
+    source: SkillSource,
     /// How the skill is carried to the stitch: fluid, dmp or replay.
     #[arg(long, default_value = "fluid")]
     method: Method,
@@ -74,11 +68,7 @@ pub fn run(args: SessionArgs, out: &mut Output) -> anyhow::Result<ExitCode> {
         anyhow::bail!("--seconds {}: must be a positive number of seconds", args.seconds);
     }
     let config = load_rig_config(&args.rig)?;
-    let demonstration = load_demonstration(&args.demo)?;
-    let pattern = load_pattern(&args.pattern)?;
-    let knowledge = learn(&demonstration, &pattern)
-        .with_context(|| format!("learning from {} with {}", args.demo.display(), args.pattern.display()))?;
-    let learned = Learned { knowledge, demonstration };
+    let learned = args.source.learned()?;
     let rig = Rig::shipped().context("the shipped rig")?;
     let world = SimWorld::new(load_scene(&args.scene)?, rig.clone())
         .with_context(|| args.scene.display().to_string())?;

@@ -115,20 +115,13 @@ pub fn read_results(out: &Path) -> Result<Vec<TrialLine>, McError> {
 pub type TrialRunner<'a> =
     dyn Fn(&TrialSetup, &RecordOptions, u64) -> Result<TrialRun, TrialError> + Sync + 'a;
 
-fn run_one(
-    learned: &Learned,
-    options: &McOptions,
-    trial: u64,
-    method: Method,
-    runner: &TrialRunner<'_>,
-) -> TrialLine {
+fn run_one(options: &McOptions, trial: u64, method: Method, runner: &TrialRunner<'_>) -> TrialLine {
     let (scene, stitch, drawn) = draw(&options.scene, options.seed, trial);
     let setup =
         TrialSetup { scene, scene_name: options.scene_name.clone(), seed: drawn.sim_seed, stitch, method };
     let record =
         RecordOptions { cycles_per_sample: 10, stop_after_s: options.until_s, ..RecordOptions::default() };
     let draw_json = serde_json::to_value(drawn).unwrap_or(serde_json::Value::Null);
-    let _ = learned;
     match runner(&setup, &record, trial) {
         Ok(t) => {
             let e = &t.run.evaluation;
@@ -169,12 +162,11 @@ pub fn run_mc(
 ) -> Result<Summary, McError> {
     let runner =
         |setup: &TrialSetup, record: &RecordOptions, _trial: u64| run_trial(learned, setup, record, None);
-    run_mc_with(learned, options, &runner, progress)
+    run_mc_with(options, &runner, progress)
 }
 
 /// [`run_mc`] with each trial run by `runner`.
 pub fn run_mc_with(
-    learned: &Learned,
     options: &McOptions,
     runner: &TrialRunner<'_>,
     mut progress: impl FnMut(&TrialLine, usize, usize),
@@ -215,7 +207,7 @@ pub fn run_mc_with(
                 loop {
                     let k = next.fetch_add(1, Ordering::Relaxed);
                     let Some(&(trial, method)) = todo.get(k) else { break };
-                    if tx.send(run_one(learned, options, trial, method, runner)).is_err() {
+                    if tx.send(run_one(options, trial, method, runner)).is_err() {
                         break;
                     }
                 }
