@@ -2,3 +2,4 @@
 //! `benches/` (`cargo bench -p knotlab-bench`).
 
 pub mod mc;
+pub mod report;

@@ -77,6 +77,33 @@ stich_w_m = [0.0, 0.0]",
 }
 
 #[test]
+fn presets_are_checked_applied_and_named() {
+    // A preset's bounds are checked as applied, under the preset's name.
+    let text = DEFAULT.replace("play_rad = [0.0005, 0.002]", "play_rad = [0.002, 0.0005]");
+    match parse_scene(&text, "bad.toml") {
+        Err(SceneError::Range { problems, .. }) => {
+            let keys: Vec<&str> = problems.iter().map(|(k, _)| k.as_str()).collect();
+            assert_eq!(keys, vec!["presets.endopar.play_rad"], "{problems:?}");
+        }
+        other => panic!("expected range errors, got {other:?}"),
+    }
+    let scene = parse_scene(DEFAULT, "default.toml").expect("the default scene");
+    let endopar = scene.with_preset("endopar").expect("endopar");
+    assert_eq!(endopar.randomization.play_rad, [0.0005, 0.002]);
+    assert_eq!(endopar.randomization.calibration_rad, [-0.002, 0.002]);
+    // What the preset does not name stays as declared.
+    assert_eq!(endopar.randomization.stitch_x_m, scene.randomization.stitch_x_m);
+    assert!(endopar.presets.is_empty());
+    let ideal = scene.with_preset("ideal").expect("ideal");
+    assert_eq!((ideal.randomization.play_rad, ideal.randomization.calibration_rad), ([0.0; 2], [0.0; 2]));
+    let e = scene.with_preset("endopr").expect_err("no such preset").to_string();
+    assert!(e.contains("presets.endopr") && e.contains("endopar, ideal"), "{e}");
+    // Unknown keys in a preset are named too.
+    let e = err(&DEFAULT.replace("[presets.ideal]", "[presets.ideal]\nplay = [0.0, 0.0]"));
+    assert!(e.contains("play"), "{e}");
+}
+
+#[test]
 fn broken_toml_gives_the_line() {
     let text = DEFAULT.replace("[stitch]", "[stitch");
     let line = text.lines().position(|l| l == "[stitch").unwrap() + 1;

@@ -1,14 +1,18 @@
 //! `knotlab mc`: the Monte Carlo knot-tying evaluation. Learns once from the demonstration, then runs
 //! N trials drawn from the scene's `[randomization]`, each by every method asked for, on `--jobs`
 //! threads; results go to OUT/results.jsonl as they finish (a rerun resumes), the summary to
-//! OUT/summary.json.
+//! OUT/summary.json. `--shard I/N` runs one of N disjoint parts of the trials; `knotlab mc merge` combines
+//! the parts into the result one run gives. A progress bar shows trials done, rate and ETA; Ctrl-C
+//! stops taking trials (those running finish and are kept; rerunning resumes), a second Ctrl-C at once.
 
 use std::path::PathBuf;
 use std::process::ExitCode;
+use std::sync::Arc;
+use std::sync::atomic::{AtomicBool, Ordering};
 
-use clap::Args;
+use clap::{Args, Subcommand};
 
-use knotlab_bench::mc::{McOptions, run_mc_with};
+use knotlab_bench::mc::{McOptions, Shard, merge, run_mc_with};
 use knotlab_learner::synthesis::Method;
 use knotlab_scenarios::expert::RecordOptions;
 use knotlab_scenarios::trial::{Learned, TrialError, TrialRun, TrialSetup, run_trial};
@@ -19,10 +23,19 @@ use super::skill_source::SkillSource;
 use crate::rerun_log::{self, RerunArgs};
 
 #[derive(Debug, Args)]
+#[command(args_conflicts_with_subcommands = true, subcommand_negates_reqs = true)]
 pub struct McArgs {
+    #[command(subcommand)]
+    command: Option<McCommand>,
     /// The scene file (its [randomization] table says what each trial draws).
     #[arg(long, default_value = "scenarios/default.toml")]
     scene: PathBuf,
+    /// A preset of the scene file's [presets] applied to its randomization (e.g. endopar, ideal).
+    #[arg(long)]
+    preset: Option<String>,
+    /// Run only shard I of N (I from 0): trials t with t % N == I. Combine shards with `knotlab mc merge`.
+    #[arg(long, value_name = "I/N")]
+    shard: Option<Shard>,
     #[command(flatten)]
     source: SkillSource,
     /// Trials 0 to N-1.
@@ -40,15 +53,34 @@ pub struct McArgs {
     /// Stop each trial's skill at this time, s (short runs, to try the machinery).
     #[arg(long, value_name = "S")]
     until: Option<f64>,
-    /// Where results.jsonl and summary.json go (an existing results.jsonl is resumed).
-    #[arg(long)]
-    out: PathBuf,
+    /// Where run.json, results.jsonl and summary.json go (an existing run there is resumed).
+    #[arg(long, required = true)]
+    out: Option<PathBuf>,
     /// Record these trials for the Rerun viewer (comma-separated indices), into OUT/rerun/.
     #[arg(long, value_delimiter = ',', value_name = "I,J,...")]
     record_trials: Vec<u64>,
     /// Record every trial that fails for the Rerun viewer, into OUT/rerun/.
     #[arg(long)]
     record_failures: bool,
+    /// Print the summary as JSON.
+    #[arg(long)]
+    json: bool,
+}
+
+#[derive(Debug, Subcommand)]
+enum McCommand {
+    /// Combine the shards of one run (directories run with --shard I/N) into the result one run gives.
+    Merge(MergeArgs),
+}
+
+#[derive(Debug, Args)]
+struct MergeArgs {
+    /// The shards' directories.
+    #[arg(required = true)]
+    dirs: Vec<PathBuf>,
+    /// Where the merged run.json, results.jsonl and summary.json go.
+    #[arg(long)]
+    out: PathBuf,
     /// Print the summary as JSON.
     #[arg(long)]
     json: bool,
@@ -67,7 +99,7 @@ fn recorded_trial(
     if !listed && !args.record_failures {
         return run_trial(learned, setup, options, None);
     }
-    let path = args.out.join("rerun").join(format!("trial-{trial}-{}.rrd", setup.method));
+    let path = out_dir(args).join("rerun").join(format!("trial-{trial}-{}.rrd", setup.method));
     let rerun = RerunArgs { rerun: Some(path.clone()), rerun_connect: None };
     let recording = match rerun.open(&format!("mc trial {trial} {}", setup.method)) {
         Ok(r) => r,
@@ -97,11 +129,61 @@ fn recorded_trial(
     }
 }
 
-pub fn run(args: McArgs, out: &mut Output) -> anyhow::Result<ExitCode> {
+fn out_dir(args: &McArgs) -> PathBuf {
+    args.out.clone().unwrap_or_default()
+}
+
+fn print_summary(out: &mut Output, summary: &knotlab_bench::mc::Summary) -> anyhow::Result<()> {
+    for m in &summary.methods {
+        outln!(
+            out,
+            "{}: {} of {} trials tied the knot ({:.1} %, 95 % Wilson {:.1}-{:.1} %); {}",
+            m.method,
+            m.successes,
+            m.trials,
+            100.0 * m.success_rate,
+            100.0 * m.wilson_95[0],
+            100.0 * m.wilson_95[1],
+            m.verdicts.iter().map(|(v, n)| format!("{v} {n}")).collect::<Vec<_>>().join(", ")
+        );
+    }
+    Ok(())
+}
+
+fn run_merge(args: MergeArgs, out: &mut Output) -> anyhow::Result<ExitCode> {
+    let merged = merge(&args.dirs, &args.out)?;
+    if args.json {
+        outln!(out, "{}", serde_json::to_string_pretty(&merged.summary)?);
+    } else {
+        outln!(
+            out,
+            "merged shards {} into {} ({} lines)",
+            merged.shards.join(", "),
+            args.out.display(),
+            merged.lines
+        );
+        print_summary(out, &merged.summary)?;
+        outln!(out, "summary: {}", args.out.join("summary.json").display());
+    }
+    Ok(ExitCode::SUCCESS)
+}
+
+/// Exit status of a run stopped by Ctrl-C (128 + SIGINT, as shells report it).
+const INTERRUPTED: u8 = 130;
+
+pub fn run(mut args: McArgs, out: &mut Output) -> anyhow::Result<ExitCode> {
+    if let Some(McCommand::Merge(merge_args)) = args.command.take() {
+        return run_merge(merge_args, out);
+    }
     if let Some(t) = args.until
         && !(t.is_finite() && t > 0.0)
     {
         anyhow::bail!("--until {t}: must be a positive number of seconds");
+    }
+    let out_dir = out_dir(&args);
+    let mut scene = load_scene(&args.scene)?;
+    if let Some(preset) = &args.preset {
+        scene = scene.with_preset(preset).map_err(|e| anyhow::anyhow!("{}: {e}", args.scene.display()))?;
     }
     let learned = args.source.learned()?;
     let mut methods = args.methods.clone();
@@ -109,47 +191,71 @@ pub fn run(args: McArgs, out: &mut Output) -> anyhow::Result<ExitCode> {
     let jobs =
         args.jobs.unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get())).max(1);
     let options = McOptions {
-        scene: load_scene(&args.scene)?,
+        scene,
         scene_name: args.scene.display().to_string(),
+        preset: args.preset.clone(),
         trials: args.trials,
         seed: args.seed,
         jobs,
         methods,
-        out: args.out.clone(),
+        out: out_dir.clone(),
         until_s: args.until,
+        shard: args.shard,
     };
-    let started = std::time::Instant::now();
+    // Ctrl-C: the first stops taking trials, the second exits at once (every finished trial is already
+    // in results.jsonl).
+    let stop = Arc::new(AtomicBool::new(false));
+    {
+        let stop = Arc::clone(&stop);
+        ctrlc::set_handler(move || {
+            if stop.swap(true, Ordering::SeqCst) {
+                std::process::exit(i32::from(INTERRUPTED));
+            }
+            eprintln!("\nstopping: the trials running finish and are kept (Ctrl-C again to quit now)");
+        })?;
+    }
     let json = args.json;
+    let bar = indicatif::ProgressBar::new(0);
+    bar.set_style(indicatif::ProgressStyle::with_template(
+        "{bar:40} {pos}/{len} trials, {msg}, elapsed {elapsed}, ETA {eta}",
+    )?);
+    // Without a terminal the bar draws nothing: a line per trial then.
+    let lines = bar.is_hidden() && !json;
+    let already = knotlab_bench::mc::read_results(&out_dir)?.len();
+    let per_trial = options.methods.len() as u64;
+    let in_run = (0..options.trials).filter(|t| options.shard.is_none_or(|s| s.holds(*t))).count() as u64;
+    bar.set_length((in_run * per_trial).saturating_sub(already as u64));
+    let started = std::time::Instant::now();
     let runner = |setup: &TrialSetup, record: &RecordOptions, trial: u64| {
         recorded_trial(&learned, &args, setup, record, trial)
     };
-    let summary = run_mc_with(&options, &runner, |line, done, total| {
-        if !json {
-            let rate = done as f64 / started.elapsed().as_secs_f64().max(1e-9) * 60.0;
+    let result = run_mc_with(&options, &runner, &stop, |line, done, total| {
+        let rate = done as f64 / started.elapsed().as_secs_f64().max(1e-9) * 60.0;
+        bar.set_length(total as u64);
+        bar.set_position(done as u64);
+        bar.set_message(format!("{rate:.1} trials/min"));
+        if lines {
             eprintln!(
-                "[{done}/{total}] trial {} {}: {} ({:.0} trials/min)",
+                "[{done}/{total}] trial {} {}: {} ({:.1} trials/min)",
                 line.trial, line.method, line.verdict, rate
             );
         }
     })?;
+    bar.finish_and_clear();
+    let summary = &result.summary;
     if args.json {
-        outln!(out, "{}", serde_json::to_string_pretty(&summary)?);
+        outln!(out, "{}", serde_json::to_string_pretty(summary)?);
     } else {
-        for m in &summary.methods {
-            outln!(
-                out,
-                "{}: {} of {} trials tied the knot ({:.1} %, 95 % Wilson {:.1}-{:.1} %); {}",
-                m.method,
-                m.successes,
-                m.trials,
-                100.0 * m.success_rate,
-                100.0 * m.wilson_95[0],
-                100.0 * m.wilson_95[1],
-                m.verdicts.iter().map(|(v, n)| format!("{v} {n}")).collect::<Vec<_>>().join(", ")
-            );
-        }
-        outln!(out, "results: {}", args.out.join("results.jsonl").display());
-        outln!(out, "summary: {}", args.out.join("summary.json").display());
+        print_summary(out, summary)?;
+        outln!(out, "results: {}", knotlab_bench::mc::results_path(&out_dir).display());
+        outln!(out, "summary: {}", out_dir.join("summary.json").display());
+    }
+    if result.interrupted {
+        eprintln!(
+            "interrupted: {} of {} trials done; the same command resumes the run",
+            result.finished, result.expected
+        );
+        return Ok(ExitCode::from(INTERRUPTED));
     }
     Ok(ExitCode::SUCCESS)
 }

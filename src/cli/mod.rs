@@ -9,6 +9,7 @@ mod melfa;
 mod numbers;
 mod obstacles;
 mod output;
+mod report;
 mod rig;
 mod run;
 mod session;
@@ -52,6 +53,9 @@ enum Command {
     Run(run::RunArgs),
     /// Monte Carlo: learn once, then N randomized trials per method; success rates with Wilson intervals.
     Mc(mc::McArgs),
+    /// A self-contained HTML report of a Monte Carlo run: success against play, calibration and stitch
+    /// displacement; failure modes; methods side by side.
+    Report(report::ReportArgs),
     /// The lab's workflow at a desk: teleoperate (a gamepad), the skill pedal, preview, execute; recorded.
     Session(session::SessionArgs),
 }
@@ -71,5 +75,6 @@ pub fn run(cli: Cli) -> anyhow::Result<ExitCode> {
         Command::Run(args) => run::run(args, &mut out),
         Command::Session(args) => session::run(args, &mut out),
         Command::Mc(args) => mc::run(args, &mut out),
+        Command::Report(args) => report::run(args, &mut out),
     }
 }

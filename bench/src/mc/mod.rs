@@ -3,15 +3,19 @@
 //! and evaluate the knot. Trials run on `jobs` threads; each is fully determined by the run's seed and
 //! its index. Every finished trial is appended to `results.jsonl` at once, so an interrupted run
 //! resumes where it stopped (trials already there are skipped); `summary.json` is made from the
-//! results sorted by trial and method, so it is the same bytes whatever the number of jobs.
+//! results sorted by trial and method, so it is the same bytes whatever the number of jobs. A run can be
+//! cut into shards (`run_info::Shard`) run apart and combined by [`merge::merge`]; `run.json` says which
+//! run a directory holds.
 
 pub mod draw;
+pub mod merge;
+pub mod run_info;
 pub mod summary;
 
 use std::collections::BTreeSet;
 use std::io::Write;
 use std::path::{Path, PathBuf};
-use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::sync::mpsc;
 
 use knotlab_learner::synthesis::Method;
@@ -22,15 +26,19 @@ use knotlab_sim::scene::SceneConfig;
 use serde::{Deserialize, Serialize};
 
 pub use draw::{Draw, draw};
+pub use merge::{MergeOutcome, merge};
+pub use run_info::{RunInfo, Shard};
 pub use summary::{MethodSummary, Summary, summarize, wilson_interval};
 
 /// A Monte Carlo run.
 #[derive(Clone, Debug)]
 pub struct McOptions {
-    /// The scene (its `[randomization]` says what is drawn).
+    /// The scene (its `[randomization]` says what is drawn), with the preset applied if one was picked.
     pub scene: SceneConfig,
     /// Its file, for the record.
     pub scene_name: String,
+    /// The preset applied to the scene's randomization, for the record.
+    pub preset: Option<String>,
     /// Trials 0 to N-1.
     pub trials: u64,
     /// The run's seed.
@@ -43,6 +51,39 @@ pub struct McOptions {
     pub out: PathBuf,
     /// Stop each trial's skill at this time, s (short runs for tests).
     pub until_s: Option<f64>,
+    /// Only this shard's trials.
+    pub shard: Option<Shard>,
+}
+
+impl McOptions {
+    /// The run's `run.json`.
+    pub fn run_info(&self) -> RunInfo {
+        RunInfo {
+            format: run_info::RUN_FORMAT.to_owned(),
+            scene: self.scene_name.clone(),
+            preset: self.preset.clone(),
+            scene_fingerprint: run_info::scene_fingerprint(&self.scene),
+            randomization: self.scene.randomization,
+            seed: self.seed,
+            trials: self.trials,
+            methods: self.methods.iter().map(|m| m.to_string()).collect(),
+            until_s: self.until_s,
+            shard: self.shard,
+        }
+    }
+}
+
+/// How a run ended.
+#[derive(Clone, Debug)]
+pub struct McRun {
+    /// The summary of the trials finished so far (also in `summary.json`).
+    pub summary: Summary,
+    /// (trial, method) pairs the run (or shard) is made of.
+    pub expected: usize,
+    /// ... of which finished, this time or before.
+    pub finished: usize,
+    /// Whether it was stopped before all were done (rerunning resumes it).
+    pub interrupted: bool,
 }
 
 /// One finished trial of one method: a line of `results.jsonl`.
@@ -83,7 +124,8 @@ pub enum McError {
     },
 }
 
-fn results_path(out: &Path) -> PathBuf {
+/// `results.jsonl` in a run directory.
+pub fn results_path(out: &Path) -> PathBuf {
     out.join("results.jsonl")
 }
 
@@ -162,24 +204,57 @@ pub fn run_mc(
 ) -> Result<Summary, McError> {
     let runner =
         |setup: &TrialSetup, record: &RecordOptions, _trial: u64| run_trial(learned, setup, record, None);
-    run_mc_with(options, &runner, progress)
+    Ok(run_mc_with(options, &runner, &AtomicBool::new(false), progress)?.summary)
 }
 
-/// [`run_mc`] with each trial run by `runner`.
+/// Writes `summary.json` into `out`.
+pub fn write_summary(out: &Path, summary: &Summary) -> Result<(), McError> {
+    let summary_file = out.join("summary.json");
+    let text = serde_json::to_string_pretty(summary)
+        .map_err(|e| McError::Results { file: summary_file.display().to_string(), reason: e.to_string() })?;
+    std::fs::write(&summary_file, text + "\n")
+        .map_err(|e| McError::Results { file: summary_file.display().to_string(), reason: e.to_string() })
+}
+
+/// [`run_mc`] with each trial run by `runner`. Once `stop` is set no trial is started any more: those
+/// running finish and are written, the summary covers what is done, and the result says it was
+/// interrupted.
 pub fn run_mc_with(
     options: &McOptions,
     runner: &TrialRunner<'_>,
+    stop: &AtomicBool,
     mut progress: impl FnMut(&TrialLine, usize, usize),
-) -> Result<Summary, McError> {
+) -> Result<McRun, McError> {
     let file = results_path(&options.out).display().to_string();
     std::fs::create_dir_all(&options.out)
         .map_err(|e| McError::Results { file: file.clone(), reason: e.to_string() })?;
+    let info = options.run_info();
+    match RunInfo::read(&options.out)? {
+        Some(there) => {
+            if let Some(difference) = there.difference(&info, false) {
+                return Err(McError::Results {
+                    file: RunInfo::path(&options.out).display().to_string(),
+                    reason: format!(
+                        "the directory holds another run ({difference}): resume it with the same arguments \
+                         or give another --out"
+                    ),
+                });
+            }
+            if there.trials != info.trials {
+                info.write(&options.out)?;
+            }
+        }
+        None => info.write(&options.out)?,
+    }
     let mut done = read_results(&options.out)?;
     let finished: BTreeSet<(u64, String)> = done.iter().map(|l| (l.trial, l.method.clone())).collect();
-    let todo: Vec<(u64, Method)> = (0..options.trials)
+    let all: Vec<(u64, Method)> = (0..options.trials)
+        .filter(|t| options.shard.is_none_or(|s| s.holds(*t)))
         .flat_map(|t| options.methods.iter().map(move |m| (t, *m)))
-        .filter(|(t, m)| !finished.contains(&(*t, m.to_string())))
         .collect();
+    let expected = all.len();
+    let todo: Vec<(u64, Method)> =
+        all.into_iter().filter(|(t, m)| !finished.contains(&(*t, m.to_string()))).collect();
     // Rewrite the file without a line cut short, then append.
     let mut text = String::new();
     for l in &done {
@@ -204,7 +279,7 @@ pub fn run_mc_with(
             let tx = tx.clone();
             let (todo, next) = (&todo, &next);
             scope.spawn(move || {
-                loop {
+                while !stop.load(Ordering::SeqCst) {
                     let k = next.fetch_add(1, Ordering::Relaxed);
                     let Some(&(trial, method)) = todo.get(k) else { break };
                     if tx.send(run_one(options, trial, method, runner)).is_err() {
@@ -229,10 +304,7 @@ pub fn run_mc_with(
         return Err(McError::Results { file, reason });
     }
     let summary = summarize(&options.scene_name, options.seed, options.trials, &options.methods, &done);
-    let summary_file = options.out.join("summary.json");
-    let text = serde_json::to_string_pretty(&summary)
-        .map_err(|e| McError::Results { file: summary_file.display().to_string(), reason: e.to_string() })?;
-    std::fs::write(&summary_file, text + "\n")
-        .map_err(|e| McError::Results { file: summary_file.display().to_string(), reason: e.to_string() })?;
-    Ok(summary)
+    write_summary(&options.out, &summary)?;
+    let finished = done.len();
+    Ok(McRun { summary, expected, finished, interrupted: finished < expected })
 }

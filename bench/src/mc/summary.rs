@@ -50,10 +50,10 @@ pub struct MethodSummary {
     pub wilson_95: [f64; 2],
     /// Trials per verdict.
     pub verdicts: BTreeMap<String, usize>,
-    /// Success against the stitch's displacement (m), in 4 bins.
-    pub by_stitch_displacement_m: Vec<Bin>,
-    /// Success against the play (rad), in 4 bins.
-    pub by_play_rad: Vec<Bin>,
+    /// Success against each drawn parameter, in 4 equal bins over its drawn range: the stitch's
+    /// displacement (m) and turn (|rad|), the play (rad), the largest calibration error drawn over the
+    /// arms' joints (rad), the thread's friction and bending stiffness (N m/rad), the sensor noise (N).
+    pub bins: BTreeMap<String, Vec<Bin>>,
 }
 
 /// The summary file.
@@ -107,6 +107,19 @@ fn displacement(l: &TrialLine) -> f64 {
         .map_or(0.0, |a| a.iter().filter_map(serde_json::Value::as_f64).map(|x| x * x).sum::<f64>().sqrt())
 }
 
+/// Success against every drawn parameter.
+fn binned(lines: &[&TrialLine]) -> BTreeMap<String, Vec<Bin>> {
+    let mut out = BTreeMap::new();
+    out.insert("stitch_displacement_m".to_owned(), bins(lines, displacement));
+    out.insert("stitch_rotate_rad".to_owned(), bins(lines, |l| number(l, "stitch_rotate_rad").abs()));
+    for key in
+        ["play_rad", "calibration_max_rad", "thread_friction", "thread_bend_stiffness", "force_noise_n"]
+    {
+        out.insert(key.to_owned(), bins(lines, |l| number(l, key)));
+    }
+    out
+}
+
 /// The summary of `lines` (any order) for `methods`.
 pub fn summarize(scene: &str, seed: u64, trials: u64, methods: &[Method], lines: &[TrialLine]) -> Summary {
     let mut sorted: Vec<&TrialLine> = lines.iter().filter(|l| l.trial < trials).collect();
@@ -129,8 +142,7 @@ pub fn summarize(scene: &str, seed: u64, trials: u64, methods: &[Method], lines:
                 success_rate: if mine.is_empty() { 0.0 } else { successes as f64 / mine.len() as f64 },
                 wilson_95: [lo, hi],
                 verdicts,
-                by_stitch_displacement_m: bins(&mine, displacement),
-                by_play_rad: bins(&mine, |l| number(l, "play_rad")),
+                bins: binned(&mine),
             }
         })
         .collect();

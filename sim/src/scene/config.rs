@@ -38,6 +38,82 @@ pub struct SceneConfig {
     /// What a Monte Carlo run draws per trial (uniform between each pair of bounds); none: nothing.
     #[serde(default)]
     pub randomization: Randomization,
+    /// Named changes to `randomization` a Monte Carlo run may pick (`knotlab mc --preset NAME`), such as
+    /// `endopar` (the paper's hardware) and `ideal` (no play, no calibration error).
+    #[serde(default)]
+    pub presets: std::collections::BTreeMap<String, RandomizationPreset>,
+}
+
+/// A preset: the bounds it sets, the others left as `[randomization]` has them.
+#[derive(Clone, Debug, Default, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct RandomizationPreset {
+    /// A line saying what the preset stands for and where its figures come from.
+    pub description: String,
+    /// See [`Randomization::stitch_x_m`].
+    pub stitch_x_m: Option<[f64; 2]>,
+    /// See [`Randomization::stitch_y_m`].
+    pub stitch_y_m: Option<[f64; 2]>,
+    /// See [`Randomization::stitch_z_m`].
+    pub stitch_z_m: Option<[f64; 2]>,
+    /// See [`Randomization::stitch_rotate_rad`].
+    pub stitch_rotate_rad: Option<[f64; 2]>,
+    /// See [`Randomization::play_rad`].
+    pub play_rad: Option<[f64; 2]>,
+    /// See [`Randomization::calibration_rad`].
+    pub calibration_rad: Option<[f64; 2]>,
+    /// See [`Randomization::thread_friction`].
+    pub thread_friction: Option<[f64; 2]>,
+    /// See [`Randomization::thread_bend_stiffness`].
+    pub thread_bend_stiffness: Option<[f64; 2]>,
+    /// See [`Randomization::force_noise_n`].
+    pub force_noise_n: Option<[f64; 2]>,
+}
+
+impl RandomizationPreset {
+    /// `base` with this preset's bounds in place of its own.
+    pub fn apply(&self, base: &Randomization) -> Randomization {
+        Randomization {
+            stitch_x_m: self.stitch_x_m.unwrap_or(base.stitch_x_m),
+            stitch_y_m: self.stitch_y_m.unwrap_or(base.stitch_y_m),
+            stitch_z_m: self.stitch_z_m.unwrap_or(base.stitch_z_m),
+            stitch_rotate_rad: self.stitch_rotate_rad.unwrap_or(base.stitch_rotate_rad),
+            play_rad: self.play_rad.unwrap_or(base.play_rad),
+            calibration_rad: self.calibration_rad.unwrap_or(base.calibration_rad),
+            thread_friction: self.thread_friction.unwrap_or(base.thread_friction),
+            thread_bend_stiffness: self.thread_bend_stiffness.unwrap_or(base.thread_bend_stiffness),
+            force_noise_n: self.force_noise_n.unwrap_or(base.force_noise_n),
+        }
+    }
+}
+
+/// A preset the scene does not have.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+#[error("presets.{name}: the scene has no such preset (it has: {available})")]
+pub struct UnknownPreset {
+    /// The name asked for.
+    pub name: String,
+    /// The scene's presets, comma-separated (or "none").
+    pub available: String,
+}
+
+impl SceneConfig {
+    /// The scene with preset `name`'s bounds in its `[randomization]` (and no presets left: the result
+    /// is the scene a run draws from).
+    pub fn with_preset(&self, name: &str) -> Result<SceneConfig, UnknownPreset> {
+        let preset = self.presets.get(name).ok_or_else(|| UnknownPreset {
+            name: name.to_owned(),
+            available: if self.presets.is_empty() {
+                "none".to_owned()
+            } else {
+                self.presets.keys().cloned().collect::<Vec<_>>().join(", ")
+            },
+        })?;
+        let mut scene = self.clone();
+        scene.randomization = preset.apply(&self.randomization);
+        scene.presets.clear();
+        Ok(scene)
+    }
 }
 
 /// The distributions of a Monte Carlo run's per-trial draws, each uniform within `[low, high]`.
@@ -203,6 +279,27 @@ pub(crate) type RangeProblem = (String, String);
 
 struct Check<'a>(&'a mut Vec<RangeProblem>);
 
+/// The range checks of a `[randomization]` table (or a preset applied to it), keys under `prefix`.
+fn randomization_problems(c: &mut Check<'_>, prefix: &str, r: &Randomization) {
+    for (key, [lo, hi], min, max) in [
+        ("stitch_x_m", r.stitch_x_m, -0.1, 0.1),
+        ("stitch_y_m", r.stitch_y_m, -0.1, 0.1),
+        ("stitch_z_m", r.stitch_z_m, -0.1, 0.1),
+        ("stitch_rotate_rad", r.stitch_rotate_rad, -3.2, 3.2),
+        ("play_rad", r.play_rad, 0.0, 0.1),
+        ("calibration_rad", r.calibration_rad, -0.2, 0.2),
+        ("thread_friction", r.thread_friction, 0.0, 2.0),
+        ("thread_bend_stiffness", r.thread_bend_stiffness, 0.0, 1.0),
+        ("force_noise_n", r.force_noise_n, 0.0, 10.0),
+    ] {
+        c.range(&format!("{prefix}.{key}[0]"), lo, min, max);
+        c.range(&format!("{prefix}.{key}[1]"), hi, min, max);
+        if hi < lo {
+            problems_push(c, format!("{prefix}.{key}"), format!("the high bound {hi} is below the low {lo}"));
+        }
+    }
+}
+
 fn problems_push(c: &mut Check<'_>, key: String, reason: String) {
     c.0.push((key, reason));
 }
@@ -313,27 +410,9 @@ impl SceneConfig {
                 c.range(&format!("servo.calibration_offset_rad.{name}[{i}]"), *v, -0.2, 0.2);
             }
         }
-        let r = &self.randomization;
-        for (key, [lo, hi], min, max) in [
-            ("stitch_x_m", r.stitch_x_m, -0.1, 0.1),
-            ("stitch_y_m", r.stitch_y_m, -0.1, 0.1),
-            ("stitch_z_m", r.stitch_z_m, -0.1, 0.1),
-            ("stitch_rotate_rad", r.stitch_rotate_rad, -3.2, 3.2),
-            ("play_rad", r.play_rad, 0.0, 0.1),
-            ("calibration_rad", r.calibration_rad, -0.2, 0.2),
-            ("thread_friction", r.thread_friction, 0.0, 2.0),
-            ("thread_bend_stiffness", r.thread_bend_stiffness, 0.0, 1.0),
-            ("force_noise_n", r.force_noise_n, 0.0, 10.0),
-        ] {
-            c.range(&format!("randomization.{key}[0]"), lo, min, max);
-            c.range(&format!("randomization.{key}[1]"), hi, min, max);
-            if hi < lo {
-                problems_push(
-                    &mut c,
-                    format!("randomization.{key}"),
-                    format!("the high bound {hi} is below the low {lo}"),
-                );
-            }
+        randomization_problems(&mut c, "randomization", &self.randomization);
+        for (name, preset) in &self.presets {
+            randomization_problems(&mut c, &format!("presets.{name}"), &preset.apply(&self.randomization));
         }
         for (i, obstacle) in self.obstacles.iter().enumerate() {
             c.point(&format!("obstacles[{i}].centre_m"), &obstacle.centre_m);

@@ -1,0 +1,160 @@
+//! The run and each method's figures: trials, successes, the success rate with its 95 % Wilson
+//! interval, and the trials per verdict. Plain numbers, no drawing.
+
+use std::collections::{BTreeMap, BTreeSet};
+
+use serde::Serialize;
+
+use crate::mc::{TrialLine, wilson_interval};
+
+/// The verdict of a knot accepted.
+pub const SUCCESS: &str = "success";
+
+/// Whether the line's trial tied the knot.
+pub fn is_success(line: &TrialLine) -> bool {
+    line.verdict == SUCCESS
+}
+
+/// The lines sorted by (trial, method), each (trial, method) once (the first in the file), as
+/// `summary.json` counts them.
+pub fn unique_lines(lines: &[TrialLine]) -> Vec<TrialLine> {
+    let mut sorted = lines.to_vec();
+    sorted.sort_by(|a, b| (a.trial, &a.method).cmp(&(b.trial, &b.method)));
+    sorted.dedup_by(|a, b| a.trial == b.trial && a.method == b.method);
+    sorted
+}
+
+/// The run as the lines tell it.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct RunOverview {
+    /// The run's seeds (one, unless files were merged).
+    pub seeds: Vec<u64>,
+    /// Distinct trial indices.
+    pub trials: usize,
+    /// The smallest and largest trial index.
+    pub trial_range: (u64, u64),
+    /// The methods, by name.
+    pub methods: Vec<String>,
+    /// Lines (one per trial and method).
+    pub lines: usize,
+}
+
+/// What `lines` (as [`unique_lines`] gives them) say about the run; none for no lines.
+pub fn run_overview(lines: &[TrialLine]) -> Option<RunOverview> {
+    let trials: BTreeSet<u64> = lines.iter().map(|l| l.trial).collect();
+    Some(RunOverview {
+        seeds: lines.iter().map(|l| l.seed).collect::<BTreeSet<_>>().into_iter().collect(),
+        trials: trials.len(),
+        trial_range: (*trials.first()?, *trials.last()?),
+        methods: method_names(lines),
+        lines: lines.len(),
+    })
+}
+
+/// The methods in `lines`, by name (sorted).
+pub fn method_names(lines: &[TrialLine]) -> Vec<String> {
+    lines.iter().map(|l| l.method.clone()).collect::<BTreeSet<_>>().into_iter().collect()
+}
+
+/// One method's figures.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct MethodStats {
+    /// The method.
+    pub method: String,
+    /// Trials finished.
+    pub trials: usize,
+    /// Knots accepted.
+    pub successes: usize,
+    /// successes / trials.
+    pub success_rate: f64,
+    /// The 95 % Wilson interval of the rate.
+    pub wilson_95: [f64; 2],
+    /// Trials per verdict.
+    pub verdicts: BTreeMap<String, usize>,
+}
+
+/// The figures of each of `methods` in `lines`.
+pub fn method_stats(lines: &[TrialLine], methods: &[String]) -> Vec<MethodStats> {
+    methods
+        .iter()
+        .map(|m| {
+            let mine: Vec<&TrialLine> = lines.iter().filter(|l| &l.method == m).collect();
+            let successes = mine.iter().filter(|l| is_success(l)).count();
+            let (lo, hi) = wilson_interval(successes, mine.len());
+            let mut verdicts = BTreeMap::new();
+            for l in &mine {
+                *verdicts.entry(l.verdict.clone()).or_insert(0) += 1;
+            }
+            MethodStats {
+                method: m.clone(),
+                trials: mine.len(),
+                successes,
+                success_rate: if mine.is_empty() { 0.0 } else { successes as f64 / mine.len() as f64 },
+                wilson_95: [lo, hi],
+                verdicts,
+            }
+        })
+        .collect()
+}
+
+/// The failure modes seen over all methods, the most frequent first (ties by name).
+pub fn failure_modes(stats: &[MethodStats]) -> Vec<String> {
+    let mut total: BTreeMap<&str, usize> = BTreeMap::new();
+    for s in stats {
+        for (v, n) in &s.verdicts {
+            if v != SUCCESS {
+                *total.entry(v).or_insert(0) += n;
+            }
+        }
+    }
+    let mut modes: Vec<(&str, usize)> = total.into_iter().collect();
+    modes.sort_by(|a, b| b.1.cmp(&a.1).then(a.0.cmp(b.0)));
+    modes.into_iter().map(|(v, _)| v.to_owned()).collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn line(trial: u64, method: &str, verdict: &str) -> TrialLine {
+        TrialLine {
+            trial,
+            seed: 3,
+            method: method.to_owned(),
+            draw: serde_json::Value::Null,
+            verdict: verdict.to_owned(),
+            knot: None,
+            wound_gap_m: None,
+            sim_seconds: 0.0,
+            wall_seconds: 0.0,
+            error: None,
+        }
+    }
+
+    #[test]
+    fn each_method_counts_its_trials_once_with_its_verdicts() {
+        let lines = unique_lines(&[
+            line(1, "fluid", "success"),
+            line(0, "fluid", "no_knot"),
+            line(0, "dmp", "loose"),
+            line(1, "dmp", "loose"),
+            line(2, "dmp", "success"),
+            // A duplicate of (1, fluid): the first is kept.
+            line(1, "fluid", "loose"),
+        ]);
+        assert_eq!(lines.len(), 5);
+        let info = run_overview(&lines).unwrap();
+        assert_eq!((info.seeds.clone(), info.trials, info.trial_range), (vec![3], 3, (0, 2)));
+        assert_eq!(info.methods, vec!["dmp", "fluid"]);
+        let stats = method_stats(&lines, &info.methods);
+        assert_eq!((stats[0].trials, stats[0].successes), (3, 1));
+        assert_eq!((stats[1].trials, stats[1].successes), (2, 1));
+        assert_eq!(stats[1].verdicts, BTreeMap::from([("no_knot".into(), 1), ("success".into(), 1)]));
+        assert_eq!(stats[0].wilson_95, {
+            let (lo, hi) = wilson_interval(1, 3);
+            [lo, hi]
+        });
+        assert_eq!(failure_modes(&stats), vec!["loose", "no_knot"]);
+        assert!(run_overview(&[]).is_none());
+    }
+}

@@ -1,0 +1,171 @@
+//! The report of a Monte Carlo run (`knotlab report DIR`): one self-contained HTML file from
+//! `DIR/results.jsonl` with per method the success rate, its 95 % Wilson interval and the failure
+//! modes, the methods side by side, and success against play, calibration error and stitch
+//! displacement in bins. The figures come from [`methods`] and [`bins`]; [`plots`] only draws them.
+
+pub mod bins;
+pub mod html;
+pub mod methods;
+pub mod plots;
+
+use std::path::Path;
+
+use serde::Serialize;
+
+use crate::mc::{McError, TrialLine, read_results};
+
+use bins::{BIN_COUNT, Parameter, SweepShape, sweep};
+use html::{Section, note};
+use methods::{MethodStats, RunOverview, failure_modes, method_stats, run_overview, unique_lines};
+use plots::{FAILURES_TITLE, METHODS_TITLE, PlotError};
+
+/// Why no report was written.
+#[derive(Debug, thiserror::Error)]
+pub enum ReportError {
+    /// The results file could not be read, or a line of it is malformed.
+    #[error(transparent)]
+    Results(#[from] McError),
+    /// The results file is missing or holds nothing to report.
+    #[error("{file}: {reason}")]
+    Input {
+        /// The file.
+        file: String,
+        /// Why.
+        reason: String,
+    },
+    /// No lines were given.
+    #[error("no finished trials to report")]
+    NoTrials,
+    /// A chart could not be drawn.
+    #[error(transparent)]
+    Chart(#[from] PlotError),
+    /// The report could not be written.
+    #[error("{file}: {reason}")]
+    Write {
+        /// The file.
+        file: String,
+        /// Why.
+        reason: String,
+    },
+}
+
+/// What was reported.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct ReportSummary {
+    /// The HTML file written.
+    pub report: String,
+    /// The run.
+    pub run: RunOverview,
+    /// Per method.
+    pub methods: Vec<MethodStats>,
+}
+
+/// Reads `dir/results.jsonl` and writes the report to `out`; the scene is taken from `dir/run.json`
+/// (or `dir/summary.json`) when one names it.
+pub fn write_report(dir: &Path, out: &Path) -> Result<ReportSummary, ReportError> {
+    let results = dir.join("results.jsonl");
+    let file = results.display().to_string();
+    if !results.is_file() {
+        let reason = if dir.is_dir() {
+            "not found: is this a Monte Carlo run's directory (knotlab mc --out DIR)?".to_owned()
+        } else {
+            format!("not found: no directory {}", dir.display())
+        };
+        return Err(ReportError::Input { file, reason });
+    }
+    let lines = read_results(dir)?;
+    if lines.is_empty() {
+        return Err(ReportError::Input { file, reason: "holds no finished trial".to_owned() });
+    }
+    let scene = scene_of(dir);
+    let title = format!("Monte Carlo run {}", dir.display());
+    let (text, run, methods) = render(&lines, &title, scene.as_deref())?;
+    let written = out.display().to_string();
+    if let Some(parent) = out.parent().filter(|p| !p.as_os_str().is_empty()) {
+        std::fs::create_dir_all(parent)
+            .map_err(|e| ReportError::Write { file: written.clone(), reason: e.to_string() })?;
+    }
+    std::fs::write(out, text)
+        .map_err(|e| ReportError::Write { file: written.clone(), reason: e.to_string() })?;
+    Ok(ReportSummary { report: written, run, methods })
+}
+
+/// The scene named by `dir/run.json` (with its preset) or else `dir/summary.json`, if either is there
+/// and names one. Both are optional: the report is made from `results.jsonl` alone.
+fn scene_of(dir: &Path) -> Option<String> {
+    let read = |name: &str| -> Option<serde_json::Value> {
+        serde_json::from_str(&std::fs::read_to_string(dir.join(name)).ok()?).ok()
+    };
+    if let Some(run) = read("run.json")
+        && let Some(scene) = run.get("scene").and_then(serde_json::Value::as_str)
+    {
+        return Some(match run.get("preset").and_then(serde_json::Value::as_str) {
+            Some(preset) => format!("{scene} (preset {preset})"),
+            None => scene.to_owned(),
+        });
+    }
+    read("summary.json")?.get("scene")?.as_str().map(str::to_owned)
+}
+
+/// The report's page for `lines` (any order; each (trial, method) counted once).
+pub fn render_report(lines: &[TrialLine], title: &str) -> Result<String, ReportError> {
+    render(lines, title, None).map(|(text, _, _)| text)
+}
+
+fn render(
+    lines: &[TrialLine],
+    title: &str,
+    scene: Option<&str>,
+) -> Result<(String, RunOverview, Vec<MethodStats>), ReportError> {
+    let lines = unique_lines(lines);
+    let info = run_overview(&lines).ok_or(ReportError::NoTrials)?;
+    let stats = method_stats(&lines, &info.methods);
+    let mut sections = vec![
+        Section { title: "Per method".to_owned(), body: html::method_tables(&stats) },
+        Section { title: METHODS_TITLE.to_owned(), body: plots::methods_chart(&stats)? },
+    ];
+    let modes = failure_modes(&stats);
+    sections.push(Section {
+        title: FAILURES_TITLE.to_owned(),
+        body: if modes.is_empty() {
+            note("No failures: every trial of every method tied the knot.")
+        } else {
+            plots::failures_chart(&stats, &modes)?
+        },
+    });
+    for parameter in Parameter::ALL {
+        let s = sweep(&lines, &info.methods, parameter, BIN_COUNT);
+        let shown = |si: f64| format!("{:.3} {}", si * parameter.shown_per_si(), parameter.shown_unit());
+        let mut body = match &s.shape {
+            SweepShape::NoValues => {
+                note(&format!("No line's draw has {}: nothing to plot.", parameter.field()))
+            }
+            SweepShape::Constant(value) => note(&format!(
+                "The {} was the same in every trial ({}): no chart.",
+                parameter.name(),
+                shown(*value)
+            )),
+            SweepShape::Binned { lo, hi, methods } => format!(
+                "{}{}{}{}",
+                html::legend(&info.methods),
+                plots::sweep_chart(parameter, *lo, *hi, methods)?,
+                note(&format!(
+                    "{BIN_COUNT} equal-width bins over {} to {}; bins without trials left out.",
+                    shown(*lo),
+                    shown(*hi)
+                )),
+                html::sweep_table(parameter, methods)
+            ),
+        };
+        if s.lines_without_value > 0 {
+            body.push_str(&note(&format!(
+                "{} line(s) without {} in their draw left out.",
+                s.lines_without_value,
+                parameter.field()
+            )));
+        }
+        sections.push(Section { title: plots::sweep_title(parameter), body });
+    }
+    let page = html::page(title, &html::header(&info, scene), &sections);
+    Ok((page, info, stats))
+}
