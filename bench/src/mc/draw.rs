@@ -1,16 +1,16 @@
 //! One trial's draw: from the run's seed and the trial's index alone (a ChaCha stream per trial), so a
 //! trial is the same whatever the number of jobs or shards. The scene's `[randomization]` says what is
-//! drawn; every draw is uniform within its bounds.
+//! drawn; every draw is uniform within its bounds (an obstacle's presence is a coin of its probability).
 
 use knotlab_scenarios::trial::StitchMove;
-use knotlab_sim::scene::SceneConfig;
-use nalgebra::Vector3;
+use knotlab_sim::scene::{Obstacle, SceneConfig};
+use nalgebra::{Isometry3, Point3, Translation3, UnitQuaternion, Vector3};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use serde::Serialize;
 
 /// What a trial drew.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+#[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct Draw {
     /// The stitch's shift, m.
     pub stitch_offset_m: [f64; 3],
@@ -28,6 +28,9 @@ pub struct Draw {
     pub force_noise_n: f64,
     /// The seed of the trial's own random draws in the simulation (sensor noise).
     pub sim_seed: u64,
+    /// The boxes of `[[randomization.obstacle]]` the trial placed (world frame), in the scene's
+    /// `obstacles` after its own.
+    pub obstacles: Vec<Obstacle>,
 }
 
 fn uniform(rng: &mut ChaCha8Rng, [lo, hi]: [f64; 2]) -> f64 {
@@ -44,7 +47,7 @@ pub fn trial_rng(seed: u64, trial: u64) -> ChaCha8Rng {
 /// Draws trial `trial` of the run `seed` on `scene`: the scene changed by the draw, the stitch move, and
 /// what was drawn.
 pub fn draw(scene: &SceneConfig, seed: u64, trial: u64) -> (SceneConfig, StitchMove, Draw) {
-    let r = scene.randomization;
+    let r = &scene.randomization;
     let mut rng = trial_rng(seed, trial);
     let offset =
         [uniform(&mut rng, r.stitch_x_m), uniform(&mut rng, r.stitch_y_m), uniform(&mut rng, r.stitch_z_m)];
@@ -64,6 +67,21 @@ pub fn draw(scene: &SceneConfig, seed: u64, trial: u64) -> (SceneConfig, StitchM
     let stiffness = uniform(&mut rng, r.thread_bend_stiffness);
     let noise = uniform(&mut rng, r.force_noise_n);
     let sim_seed = rng.random();
+    // Obstacles last, so that a scene without them draws what it drew before they existed.
+    let world_from_tissue = Isometry3::from_parts(
+        Translation3::from(Vector3::from(scene.tissue.centre_m) + Vector3::from(offset)),
+        UnitQuaternion::from_axis_angle(&Vector3::z_axis(), scene.tissue.yaw_rad + rotate),
+    );
+    let mut obstacles = Vec::new();
+    for o in &r.obstacles {
+        let present = rng.random_bool(o.probability.clamp(0.0, 1.0));
+        let at = o.offset_m.map(|b| uniform(&mut rng, b));
+        let half = o.half_extents_m.map(|b| uniform(&mut rng, b));
+        if present {
+            let centre = world_from_tissue * Point3::from(Vector3::from(at));
+            obstacles.push(Obstacle { centre_m: centre.coords.into(), half_extents_m: half });
+        }
+    }
     let drawn =
         |value: f64, [lo, hi]: [f64; 2], nominal: f64| if hi > lo || lo != 0.0 { value } else { nominal };
     out.servo.play_rad = drawn(play, r.play_rad, scene.servo.play_rad);
@@ -71,6 +89,7 @@ pub fn draw(scene: &SceneConfig, seed: u64, trial: u64) -> (SceneConfig, StitchM
     out.thread.bend_stiffness_n_m_per_rad =
         drawn(stiffness, r.thread_bend_stiffness, scene.thread.bend_stiffness_n_m_per_rad);
     out.sensor.force_noise_n = drawn(noise, r.force_noise_n, scene.sensor.force_noise_n);
+    out.obstacles.extend(obstacles.iter().copied());
     let stitch = StitchMove { offset_m: Vector3::from(offset), rotate_rad: rotate };
     let d = Draw {
         stitch_offset_m: offset,
@@ -81,6 +100,52 @@ pub fn draw(scene: &SceneConfig, seed: u64, trial: u64) -> (SceneConfig, StitchM
         thread_bend_stiffness: out.thread.bend_stiffness_n_m_per_rad,
         force_noise_n: out.sensor.force_noise_n,
         sim_seed,
+        obstacles,
     };
     (out, stitch, d)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use knotlab_sim::scene::{RandomObstacle, parse_scene};
+
+    fn scene() -> SceneConfig {
+        parse_scene(include_str!("../../../scenarios/default.toml"), "default.toml")
+            .expect("the default scene")
+    }
+
+    #[test]
+    fn obstacles_are_placed_near_the_drawn_stitch_and_change_nothing_else() {
+        let plain = scene();
+        let mut with = plain.clone();
+        let sure = RandomObstacle {
+            probability: 1.0,
+            offset_m: [[0.02, 0.03], [-0.01, 0.01], [0.0, 0.005]],
+            half_extents_m: [[0.004, 0.006], [0.004, 0.006], [0.01, 0.01]],
+        };
+        with.randomization.obstacles = vec![sure, RandomObstacle { probability: 0.0, ..sure }];
+        for trial in 0..20 {
+            let (s0, m0, d0) = draw(&plain, 3, trial);
+            let (s1, m1, d1) = draw(&with, 3, trial);
+            // What was drawn before obstacles existed is drawn alike.
+            assert_eq!((m0, d0.sim_seed, d0.play_rad), (m1, d1.sim_seed, d1.play_rad));
+            assert!(d0.obstacles.is_empty() && s0.obstacles.len() == plain.obstacles.len());
+            // The sure one is there, the impossible one is not.
+            assert_eq!(d1.obstacles.len(), 1);
+            assert_eq!(s1.obstacles.len(), plain.obstacles.len() + 1);
+            let o = d1.obstacles[0];
+            // In the moved tissue frame, its centre is within the bounds.
+            let tissue = Isometry3::from_parts(
+                Translation3::from(Vector3::from(plain.tissue.centre_m) + m1.offset_m),
+                UnitQuaternion::from_axis_angle(&Vector3::z_axis(), plain.tissue.yaw_rad + m1.rotate_rad),
+            );
+            let local = tissue.inverse() * Point3::from(Vector3::from(o.centre_m));
+            for (axis, [lo, hi]) in sure.offset_m.iter().enumerate() {
+                assert!(local[axis] >= lo - 1e-12 && local[axis] <= hi + 1e-12, "{local:?}");
+                let [lo, hi] = sure.half_extents_m[axis];
+                assert!((lo..=hi).contains(&o.half_extents_m[axis]));
+            }
+        }
+    }
 }

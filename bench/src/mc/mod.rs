@@ -63,7 +63,7 @@ impl McOptions {
             scene: self.scene_name.clone(),
             preset: self.preset.clone(),
             scene_fingerprint: run_info::scene_fingerprint(&self.scene),
-            randomization: self.scene.randomization,
+            randomization: self.scene.randomization.clone(),
             seed: self.seed,
             trials: self.trials,
             methods: self.methods.iter().map(|m| m.to_string()).collect(),

@@ -83,6 +83,7 @@ impl RandomizationPreset {
             thread_friction: self.thread_friction.unwrap_or(base.thread_friction),
             thread_bend_stiffness: self.thread_bend_stiffness.unwrap_or(base.thread_bend_stiffness),
             force_noise_n: self.force_noise_n.unwrap_or(base.force_noise_n),
+            obstacles: base.obstacles.clone(),
         }
     }
 }
@@ -117,7 +118,7 @@ impl SceneConfig {
 }
 
 /// The distributions of a Monte Carlo run's per-trial draws, each uniform within `[low, high]`.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Deserialize, Serialize)]
+#[derive(Clone, Debug, Default, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct Randomization {
     /// Shift of the stitch (the tissue) along the world's x, m.
@@ -138,6 +139,22 @@ pub struct Randomization {
     pub thread_bend_stiffness: [f64; 2],
     /// The strain gauges' noise, N.
     pub force_noise_n: [f64; 2],
+    /// Boxes a trial may place near the stitch (`[[randomization.obstacle]]`), each drawn apart.
+    #[serde(rename = "obstacle")]
+    pub obstacles: Vec<RandomObstacle>,
+}
+
+/// A box a trial places near the stitch with some probability, its place and size drawn uniformly.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct RandomObstacle {
+    /// The chance that a trial has it, 0 to 1.
+    pub probability: f64,
+    /// Bounds of its centre in the tissue frame as drawn (origin at the wound's centre on the surface, x
+    /// along the wound, y across it, z out of the tissue), per axis, m.
+    pub offset_m: [[f64; 2]; 3],
+    /// Bounds of its half sizes along the world axes, per axis, m.
+    pub half_extents_m: [[f64; 2]; 3],
 }
 
 /// The half-circle needle.
@@ -296,6 +313,25 @@ fn randomization_problems(c: &mut Check<'_>, prefix: &str, r: &Randomization) {
         c.range(&format!("{prefix}.{key}[1]"), hi, min, max);
         if hi < lo {
             problems_push(c, format!("{prefix}.{key}"), format!("the high bound {hi} is below the low {lo}"));
+        }
+    }
+    for (i, o) in r.obstacles.iter().enumerate() {
+        let key = format!("{prefix}.obstacle[{i}]");
+        c.range(&format!("{key}.probability"), o.probability, 0.0, 1.0);
+        for (name, bounds, min, max) in
+            [("offset_m", &o.offset_m, -0.3, 0.3), ("half_extents_m", &o.half_extents_m, 1e-4, 0.2)]
+        {
+            for (axis, [lo, hi]) in ["x", "y", "z"].iter().zip(bounds) {
+                c.range(&format!("{key}.{name}.{axis}[0]"), *lo, min, max);
+                c.range(&format!("{key}.{name}.{axis}[1]"), *hi, min, max);
+                if hi < lo {
+                    problems_push(
+                        c,
+                        format!("{key}.{name}.{axis}"),
+                        format!("the high bound {hi} is below the low {lo}"),
+                    );
+                }
+            }
         }
     }
 }

@@ -5,7 +5,7 @@ mod config;
 mod load;
 
 pub use config::{
-    NeedleParams, Obstacle, Randomization, RandomizationPreset, SceneConfig, SensorParams, ServoParams,
-    StartParams, StitchParams, TissueParams, Trocars, UnknownPreset,
+    NeedleParams, Obstacle, RandomObstacle, Randomization, RandomizationPreset, SceneConfig, SensorParams,
+    ServoParams, StartParams, StitchParams, TissueParams, Trocars, UnknownPreset,
 };
 pub use load::{SceneError, load_scene, parse_scene};
