@@ -1,13 +1,17 @@
 //! The CPU backend: cells in parallel with rayon, each cell's subcells together. A cell's subcells are
-//! solved first (one unreachable subcell settles it), then their arm links are posed. Where each moving
-//! box's centre goes over the cell bounds which environment boxes and which of its own boxes it can
-//! reach at all (bounding spheres); each box left is grown to hold itself in every subcell and tested
-//! once for the whole cell. Only the pairs left after that are tested per subcell (bounding spheres,
-//! then the separating-axis test), stopping at the first collision, and only their boxes are posed.
+//! solved first (one unreachable subcell settles it), then their arm links are posed (the sines and
+//! cosines of the joints from the first subcell's, [`SinCosNear`]). Where each moving box's centre goes
+//! over the cell bounds which environment boxes and which of its own boxes it can reach at all
+//! (bounding spheres); each box left is grown to hold itself in every subcell and tested once for the
+//! whole cell; a pair of its own boxes is also tested with only the joints between them moving (an
+//! instrument's wrist held straight leaves its jaws and shaft rigid over the cell). Only the pairs left
+//! after that are tested per subcell (bounding spheres, then the separating-axis test), stopping at the
+//! first collision, and only their boxes are posed.
 //!
-//! The pruning is conservative, so the verdicts are exactly those of the plain per-subcell reference
-//! ([`PreparedGrid::verdict_at`]), and each cell is computed alone, so the grid is the same whatever the
-//! number of threads. Runs on rayon's current pool: `pool.install(|| compute_cpu(..))` picks the threads.
+//! The pruning is conservative, so the verdicts are those of the plain per-subcell reference
+//! ([`PreparedGrid::verdict_at`]) but for a pose computed 1e-16 apart deciding a box test exactly on
+//! its tolerance, and each cell is computed alone, so the grid is the same whatever the number of
+//! threads. Runs on rayon's current pool: `pool.install(|| compute_cpu(..))` picks the threads.
 
 use nalgebra::{IsometryMatrix3, Vector3};
 use rayon::prelude::*;
@@ -16,7 +20,7 @@ use knotlab_hw::kinematics::ArmJoints;
 
 use super::check::{SubcellVerdict, spheres_meet};
 use super::error::ObstacleError;
-use super::frames::ANCHORS;
+use super::frames::{ANCHORS, CHAIN_JOINTS, SinCosNear, chain_angles};
 use super::grid::{CellVerdict, GridResult};
 use super::obb::Obb;
 use super::prepare::{MAX_MOVING_BOXES, PreparedGrid};
@@ -85,10 +89,19 @@ fn evaluate_cell(
     let Some(k0) = (0..s * s).find(|&k| scratch.joints[k].is_some()) else {
         return (verdict_of(unreachable, false), 0);
     };
-    // Pose every reachable subcell's anchors, and bound how far each anchor moves over the cell.
+    // Pose every reachable subcell's anchors (the others' sines and cosines from k0's), and bound how
+    // far each anchor moves over the cell.
+    let Some(joints_k0) = scratch.joints[k0] else {
+        return (verdict_of(unreachable, false), 0);
+    };
+    let near = SinCosNear::new(&joints_k0);
     for k in 0..s * s {
         if let Some(joints) = &scratch.joints[k] {
-            scratch.anchors[k] = grid.kinematics.world_from_anchors(joints);
+            scratch.anchors[k] = if k == k0 {
+                grid.kinematics.world_from_anchors(joints)
+            } else {
+                grid.kinematics.world_from_anchors_near(joints, &near)
+            };
         }
     }
     let view = Posed { joints: &scratch.joints, anchors: &scratch.anchors };
@@ -142,9 +155,24 @@ fn evaluate_cell(
             list.retain(|&e| big.intersects(&grid.environment[e as usize].obb));
         }
     }
+    // A self pair moves together but for the joints between its two anchors (often none that move over
+    // the cell, such as an instrument's wrist held straight): the box on the later anchor, grown by
+    // how far those joints can move it relative to the earlier one, against the other as posed at k0.
+    let spread = joint_spread_rad(&scratch.joints, k0);
+    let axes = joint_axes(&view.anchors[k0]);
+    let k0_anchors = &view.anchors[k0];
     scratch.self_candidates.retain(|&p| {
         let (a, b) = grid.self_pairs[p as usize];
-        grow(a).intersects(&grow(b))
+        let (fixed, moving) = if grid.moving[a].anchor <= grid.moving[b].anchor { (a, b) } else { (b, a) };
+        let joints = grid.moving[fixed].anchor..grid.moving[moving].anchor;
+        let relative_m =
+            relative_stray_m(&spread, &axes, joints, &centre[moving], grid.moving[moving].radius_m);
+        let apart_relative = relative_m.is_finite() && {
+            let m = box_at(grid, k0_anchors, moving);
+            let grown = Obb { half_extents_m: m.half_extents_m.add_scalar(relative_m + RIGID_MARGIN_M), ..m };
+            !box_at(grid, k0_anchors, fixed).intersects(&grown)
+        };
+        !apart_relative && grow(a).intersects(&grow(b))
     });
     // The boxes the remaining pairs need.
     let mut needed = [false; MAX_MOVING_BOXES];
@@ -199,6 +227,70 @@ fn evaluate_cell(
         }
     }
     (verdict_of(unreachable, collides), tested)
+}
+
+/// Added all round in the relative test of a self pair, m: far beyond the round-off of posing the two
+/// boxes at another subcell and beyond the separating-axis test's tolerance.
+const RIGID_MARGIN_M: f64 = 1e-5;
+
+/// The largest change of each chain joint from subcell k0 over the reachable subcells, rad.
+fn joint_spread_rad(joints: &[Option<ArmJoints>], k0: usize) -> [f64; CHAIN_JOINTS] {
+    let at_k0 = joints[k0].as_ref().map_or([0.0; CHAIN_JOINTS], chain_angles);
+    let mut spread = [0.0f64; CHAIN_JOINTS];
+    for q in joints.iter().flatten() {
+        for (s, (a, b)) in spread.iter_mut().zip(chain_angles(q).iter().zip(&at_k0)) {
+            *s = s.max((a - b).abs());
+        }
+    }
+    spread
+}
+
+/// Each chain joint's axis at the given anchor poses: a point on it and its direction (world). Arm axis
+/// `k` turns about z of the frame before it (`Rz(q)`, then the DH row's fixed part); the roll turns
+/// about the shaft's z, the pitch about the wrist's x, the yaw about the clevis' y, each through the
+/// origin of the frame it makes.
+fn joint_axes(anchors: &[IsometryMatrix3<f64>; ANCHORS]) -> [(Vector3<f64>, Vector3<f64>); CHAIN_JOINTS] {
+    let axis = |a: usize, column: usize| {
+        (anchors[a].translation.vector, anchors[a].rotation.matrix().column(column).into_owned())
+    };
+    [
+        axis(0, 2),
+        axis(1, 2),
+        axis(2, 2),
+        axis(3, 2),
+        axis(4, 2),
+        axis(5, 2),
+        axis(7, 2),
+        axis(8, 0),
+        axis(9, 1),
+    ]
+}
+
+/// How far any point of a box (centre `centre_m` at subcell k0, within `radius_m` of it) can move
+/// relative to the anchor of chain joint `joints.start` when only the chain joints `joints` change, each
+/// by at most `spread`, m. Along the straight joint-space path a point moves at `sum_j |dq_j|
+/// dist(point, axis_j)`, and its distance to each axis grows by at most how far it has moved, which the
+/// same bound holds: with `D = sum |dq_j|` and `d_j` the distances at k0, within `sum_j |dq_j| (d_j + r)
+/// / (1 - D)`. Zero when the anchors are the same; infinite when `D` is not small.
+fn relative_stray_m(
+    spread: &[f64; CHAIN_JOINTS],
+    axes: &[(Vector3<f64>, Vector3<f64>); CHAIN_JOINTS],
+    joints: std::ops::Range<usize>,
+    centre_m: &Vector3<f64>,
+    radius_m: f64,
+) -> f64 {
+    let joints = joints.start.min(CHAIN_JOINTS)..joints.end.min(CHAIN_JOINTS);
+    let total: f64 = spread[joints.clone()].iter().sum();
+    if total >= 0.5 {
+        return f64::INFINITY;
+    }
+    let moved: f64 = joints
+        .map(|j| {
+            let (point, dir) = &axes[j];
+            spread[j] * ((centre_m - point).cross(dir).norm() + radius_m)
+        })
+        .sum();
+    moved / (1.0 - total)
 }
 
 /// What [`grown_box`] reads of the scratch space.
