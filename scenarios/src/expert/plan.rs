@@ -352,9 +352,9 @@ pub fn plan_instrument_tie(world: &SimWorld, geometry: &TieGeometry, variation: 
     for (track, to) in [(&mut left, geometry.left_pull_to_m), (&mut right, geometry.right_pull_to_m)] {
         track.wait_until(pull_s);
         let from_s = pull_s;
-        let to = at(to);
-        let along_shaft = to - trocar_of(&world.config, track.arm());
-        track.go_pointing(Path::To(to), d(2.5), along_shaft);
+        // The jaws keep pointing as they do: turning them along the shaft on the way passes the
+        // straight wrist, where the arm crawls and the pull never reaches its force.
+        track.go(Path::To(at(to)), d(2.5));
         track.event(ForceEvent {
             name: "set force".into(),
             from_s: from_s + d(0.5),
