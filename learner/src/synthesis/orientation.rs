@@ -1,7 +1,8 @@
 //! How a synthesized key orients the tip. Only the jaws' direction is commanded, never the roll about
 //! it: a recorded frame commanded whole makes the wrist chase its roll through the straight-wrist
 //! singularity (a tenth of a degree of tremor there asks for a half turn of the roll joint), and the arm
-//! lags centimetres behind. A nearly straight wrist is commanded straight.
+//! lags centimetres behind. A nearly straight wrist is commanded straight, and one bent further than
+//! the wrist can bend (a skill turned with a moved stitch can ask for that) is bent as far as it can.
 
 use nalgebra::Vector3;
 
@@ -9,6 +10,11 @@ use knotlab_hw::skill::Orientation;
 
 /// A wrist bent less than this is commanded straight, rad.
 pub const STRAIGHT_WRIST_RAD: f64 = 0.05;
+
+/// The most a key bends the jaws away from the line from the trocar to the tip, rad: the shipped
+/// instruments' wrist yaw limit (1.396 rad, which takes the whole bend of a jaw-direction key), less
+/// 0.15 rad for the shaft, which runs through the wrist's pitch axis, not through the tip.
+pub const MAX_WRIST_BEND_RAD: f64 = 1.25;
 
 /// The orientation of a key whose jaws point along `jaw_direction`, the tip at `tip_m` and the shaft
 /// through `trocar_m`.
@@ -20,6 +26,14 @@ pub fn jaw_orientation(
     let shaft = tip_m - trocar_m;
     match (jaw_direction.try_normalize(1e-12), shaft.try_normalize(1e-9)) {
         (Some(jaw), Some(shaft)) if jaw.angle(&shaft) >= STRAIGHT_WRIST_RAD => {
+            let bend = jaw.angle(&shaft);
+            let jaw = if bend > MAX_WRIST_BEND_RAD {
+                // Turned back towards the shaft in their common plane.
+                let across = (jaw - shaft * jaw.dot(&shaft)).normalize();
+                shaft * MAX_WRIST_BEND_RAD.cos() + across * MAX_WRIST_BEND_RAD.sin()
+            } else {
+                jaw
+            };
             Orientation::JawDirection { direction: jaw.into() }
         }
         _ => Orientation::AlongShaft,
@@ -41,5 +55,14 @@ mod tests {
         );
         let nearly = Vector3::new(0.01, 0.0, -1.0);
         assert_eq!(jaw_orientation(&nearly, &tip, &trocar), Orientation::AlongShaft);
+        // Bent past what the wrist can do (here 100 degrees from the shaft): bent as far as it can, in
+        // the same plane.
+        let over = Vector3::new(1.0, 0.0, 0.18);
+        let Orientation::JawDirection { direction } = jaw_orientation(&over, &tip, &trocar) else {
+            panic!("a bent wrist keeps a jaw direction");
+        };
+        let d = Vector3::from(direction);
+        assert!((d.angle(&-Vector3::z()) - MAX_WRIST_BEND_RAD).abs() < 1e-12, "{d:?}");
+        assert!(d.y.abs() < 1e-12 && d.x > 0.0, "{d:?}");
     }
 }
