@@ -102,7 +102,9 @@ pub fn prepend_approach(skill: &mut Skill, starts: &[StartPose], settings: &Appr
     for (t, mut keys) in ways {
         // The way in ends where the track's first key is, once the slowest has arrived.
         let duration = keys.last().map_or(0.0, |k| k.time_s);
-        let shift = lead_s - duration;
+        // Not below zero: `duration * k / (n - 1)` can round above the duration `lead_s` came from,
+        // which put the slowest way's first key at -2e-16 s (a skill the controller refuses).
+        let shift = (lead_s - duration).max(0.0);
         for key in &mut keys {
             key.time_s += shift;
         }
