@@ -19,7 +19,10 @@ pub fn wilson_interval(successes: usize, n: usize) -> (f64, f64) {
     let denominator = 1.0 + z * z / n;
     let centre = (p + z * z / (2.0 * n)) / denominator;
     let half = z * ((p * (1.0 - p) + z * z / (4.0 * n)) / n).sqrt() / denominator;
-    ((centre - half).max(0.0), (centre + half).min(1.0))
+    // No success (or no failure) puts the bound exactly at 0 (or 1); the formula leaves round-off there.
+    let lo = if successes == 0 { 0.0 } else { (centre - half).max(0.0) };
+    let hi = if successes == n as usize { 1.0 } else { (centre + half).min(1.0) };
+    (lo, hi)
 }
 
 /// Success in one bin of a drawn parameter.
@@ -159,7 +162,9 @@ mod tests {
         let (lo, hi) = wilson_interval(8, 10);
         assert!((lo - 0.4902).abs() < 1e-4 && (hi - 0.9433).abs() < 1e-4, "{lo} {hi}");
         let (lo, hi) = wilson_interval(0, 50);
-        assert!(lo.abs() < 1e-12 && (hi - 0.0714).abs() < 1e-4, "{lo} {hi}");
+        assert!(lo == 0.0 && (hi - 0.0714).abs() < 1e-4, "{lo} {hi}");
+        let (lo, hi) = wilson_interval(50, 50);
+        assert!((lo - 0.9286).abs() < 1e-4 && hi == 1.0, "{lo} {hi}");
         assert_eq!(wilson_interval(0, 0), (0.0, 1.0));
     }
 }
