@@ -190,6 +190,10 @@ pub fn run(args: RunArgs, out: &mut Output) -> anyhow::Result<ExitCode> {
             passed: false,
             reason: trial.kinematics.as_ref().err().map(ToString::to_string).unwrap_or_default(),
         },
+        _ if trial.collision.is_some() => Preview {
+            passed: false,
+            reason: trial.collision.as_ref().map(|c| format!("link collision: {c}")).unwrap_or_default(),
+        },
         (Some(fault), _) => Preview { passed: false, reason: format!("fault: {fault}") },
         (None, Verdict::Success) => Preview { passed: true, reason: String::new() },
         (None, verdict) => Preview { passed: false, reason: format!("knot: {}", verdict.label()) },

@@ -28,8 +28,22 @@ pub fn kinematic_preview(
     current: &[(ArmName, ArmJoints)],
     step_s: f64,
 ) -> Result<(), KinematicProblem> {
+    kinematic_trajectory(skill, setups, current, step_s).map(|_| ())
+}
+
+/// The joints every track of `skill` whose arm has a setup takes, every `step_s` of the skill from 0 to
+/// its end (a track that ends earlier holds its last joints), solved as [`kinematic_preview`] does; each
+/// arm's list has one entry per step.
+pub fn kinematic_trajectory(
+    skill: &Skill,
+    setups: &[ArmSetup],
+    current: &[(ArmName, ArmJoints)],
+    step_s: f64,
+) -> Result<Vec<(ArmName, Vec<ArmJoints>)>, KinematicProblem> {
     let step_s = if step_s.is_finite() && step_s > 0.0 { step_s } else { 0.01 };
     let end_s = skill.duration_s();
+    let steps = (end_s / step_s).ceil() as usize;
+    let mut out = Vec::new();
     for track in &skill.tracks {
         let (Some(setup), Some((_, joints))) =
             (setups.iter().find(|s| s.arm == track.arm), current.iter().find(|(a, _)| *a == track.arm))
@@ -37,17 +51,20 @@ pub fn kinematic_preview(
             continue;
         };
         let mut joints = *joints;
-        let steps = (end_s / step_s).ceil() as usize;
+        let mut along = Vec::with_capacity(steps + 1);
         for k in 0..=steps {
             let time_s = (k as f64 * step_s).min(end_s);
-            let Some(target) = track.target_at(time_s) else { break };
-            joints = setup
-                .model
-                .solve_tip(&target, &setup.world_trocar_m, &joints)
-                .map_err(|source| KinematicProblem { arm: track.arm, time_s, source })?;
+            if let Some(target) = track.target_at(time_s) {
+                joints = setup
+                    .model
+                    .solve_tip(&target, &setup.world_trocar_m, &joints)
+                    .map_err(|source| KinematicProblem { arm: track.arm, time_s, source })?;
+            }
+            along.push(joints);
         }
+        out.push((track.arm, along));
     }
-    Ok(())
+    Ok(out)
 }
 
 #[cfg(test)]

@@ -24,6 +24,7 @@ pub mod plane;
 pub mod postprocess;
 pub mod prepare;
 pub mod request;
+pub mod sweep;
 pub mod world;
 
 pub use check::SubcellVerdict;
@@ -34,4 +35,5 @@ pub use mask::ObstacleMask;
 pub use plane::GridPlane;
 pub use prepare::PreparedGrid;
 pub use request::{GridRequest, SubcellOrientation};
+pub use sweep::{LinkCollision, first_link_collision};
 pub use world::{ArmBoxes, ArmState, CollisionWorld, FixedBox, FixedKind, LinkBox};

@@ -12,9 +12,10 @@ use knotlab_hw::kinematics::ArmJoints;
 use knotlab_hw::rig::{ArmName, Rig};
 use knotlab_hw::rig_config::parse_rig_config;
 use knotlab_hw::skill::Skill;
-use knotlab_hw::skill::preview::{KinematicProblem, kinematic_preview};
+use knotlab_hw::skill::preview::{KinematicProblem, kinematic_preview, kinematic_trajectory};
 use knotlab_learner::demonstration::Demonstration;
 use knotlab_learner::fluid::{GridRegion, Instantiation, PlaneFrame};
+use knotlab_learner::obstacles::{LinkCollision, first_link_collision};
 use knotlab_learner::primitive::{KnowledgeBase, Primitive};
 use knotlab_learner::synthesis::site::pose_isometry;
 use knotlab_learner::synthesis::{
@@ -98,6 +99,9 @@ pub struct TrialRun {
     pub fluid: Vec<(String, Instantiation, f64)>,
     /// The kinematic preview: every target reachable within the joints' limits, or the first that is not.
     pub kinematics: Result<(), KinematicProblem>,
+    /// The collision preview: the first link collision along the skill, if any (not looked for when
+    /// the kinematic preview failed).
+    pub collision: Option<LinkCollision>,
 }
 
 /// The kinematic preview of `skill` on `world`'s instruments as they stand.
@@ -113,6 +117,30 @@ pub fn kinematic_check(world: &SimWorld, skill: &Skill) -> Result<(), KinematicP
         })
         .collect();
     kinematic_preview(skill, &setups, &current, 0.01)
+}
+
+/// Step of the collision preview, s.
+const COLLISION_STEP_S: f64 = 0.02;
+
+/// The collision preview of `skill` on `world` as it stands: every arm's link boxes along the joints the
+/// kinematic preview finds, every 20 ms, against the other arms, the gantry, the table, the patient and
+/// the scene's obstacles. `Ok(None)` when nothing collides (or a target is out of reach: the kinematic
+/// preview reports that).
+pub fn collision_check(world: &SimWorld, skill: &Skill) -> Result<Option<LinkCollision>, SynthesisError> {
+    let arms = [ArmName::Left, ArmName::Right, ArmName::Assist];
+    let current: Vec<(ArmName, ArmJoints)> = arms.iter().map(|&a| (a, world.arm(a).command)).collect();
+    let setups: Vec<ArmSetup> = arms
+        .iter()
+        .map(|&a| ArmSetup {
+            arm: a,
+            model: world.rig.arm(a).model,
+            world_trocar_m: trocar_of(&world.config, a),
+        })
+        .collect();
+    let Ok(trajectory) = kinematic_trajectory(skill, &setups, &current, COLLISION_STEP_S) else {
+        return Ok(None);
+    };
+    Ok(first_link_collision(&collision_world(world)?, &trajectory, COLLISION_STEP_S))
 }
 
 fn isometry(world_from_tip: &nalgebra::IsometryMatrix3<f64>) -> Isometry3<f64> {
@@ -210,11 +238,16 @@ pub fn run_trial(
         synthesize_for(&world, learned, setup.method)
             .map_err(|reason| TrialError::Synthesis { method: setup.method, reason })?;
     let kinematics = kinematic_check(&world, &skill);
+    let collision = match kinematics {
+        Ok(()) => collision_check(&world, &skill)
+            .map_err(|reason| TrialError::Synthesis { method: setup.method, reason })?,
+        Err(_) => None,
+    };
     let rate_hz = 1.0 / (world.config.solver.dt_s * options.cycles_per_sample.max(1) as f64);
     let mut metadata = expert_metadata(&world, &setup.scene_name, Some(setup.seed), rate_hz);
     metadata.source = format!("knotlab run ({})", setup.method);
     metadata.description = format!("{} at a moved stitch", learned.knowledge.task);
     let run = record_demonstration(world, &rig, &config, skill.clone(), metadata, options, observer)
         .map_err(ExpertError::from)?;
-    Ok(TrialRun { run, skill, approach_s, obstacles, fluid, kinematics })
+    Ok(TrialRun { run, skill, approach_s, obstacles, fluid, kinematics, collision })
 }
