@@ -1,7 +1,8 @@
 //! The lab's workflow, in the simulator (the paper's, section II): the surgeon teleoperates the
 //! instruments through the master devices (clutch and motion scaling) and establishes the initial
 //! condition; pressing the skill pedal instantiates the learned skill at the stitch as it is now, blocks
-//! manual input, previews the skill (every target reachable within the joints' limits) and executes it;
+//! manual input, previews the skill (every target reachable within the joints' limits, no link
+//! collision along the way) and executes it;
 //! afterwards manual control resumes. The emergency pedal stops everything at any time.
 //!
 //! The surgeon is a script of handle poses and pedal presses on the simulated rig's dummy masters and
@@ -18,7 +19,7 @@ use nalgebra::{IsometryMatrix3, Translation3, Vector3};
 use knotlab_learner::demonstration::Demonstration;
 
 use crate::expert::record::{RecordError, empty_records, expert_metadata, sample_instruments};
-use crate::trial::{Learned, kinematic_check, synthesize_for};
+use crate::trial::{Learned, collision_check, kinematic_check, synthesize_for};
 
 /// The assignable pedal that instantiates and executes the skill (0 is the clutch).
 pub const SKILL_PEDAL: usize = 1;
@@ -175,7 +176,14 @@ pub fn run_session(
         if rising && matches!(record.status, Status::Idle | Status::Finished) {
             let world = backend.world();
             let made = synthesize_for(&world, learned, method).map(|m| {
-                let preview = kinematic_check(&world, &m.skill);
+                // Reachability, then link collisions along the joints that takes.
+                let preview = kinematic_check(&world, &m.skill).map_err(|p| p.to_string()).and_then(|()| {
+                    match collision_check(&world, &m.skill) {
+                        Ok(None) => Ok(()),
+                        Ok(Some(collision)) => Err(format!("link collision: {collision}")),
+                        Err(e) => Err(format!("collision check: {e}")),
+                    }
+                });
                 (m, preview)
             });
             drop(world);
@@ -186,7 +194,7 @@ pub fn run_session(
                 }
                 Ok((made, preview)) => match preview {
                     Err(problem) => {
-                        report.refused = Some(problem.to_string());
+                        report.refused = Some(problem.clone());
                         report.log.push((record.time_s, format!("skill refused by the preview: {problem}")));
                     }
                     Ok(()) => {
