@@ -123,6 +123,38 @@ fn binned(lines: &[&TrialLine]) -> BTreeMap<String, Vec<Bin>> {
     out
 }
 
+/// How `lines` ended: trials, successes, the rate, its 95 % Wilson interval, trials per verdict.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Tally {
+    /// Trials.
+    pub trials: usize,
+    /// Knots accepted.
+    pub successes: usize,
+    /// successes / trials (0 for none).
+    pub success_rate: f64,
+    /// The 95 % Wilson interval of the rate.
+    pub wilson_95: [f64; 2],
+    /// Trials per verdict.
+    pub verdicts: BTreeMap<String, usize>,
+}
+
+/// The [`Tally`] of `lines`.
+pub fn tally(lines: &[&TrialLine]) -> Tally {
+    let successes = lines.iter().filter(|l| l.verdict == "success").count();
+    let (lo, hi) = wilson_interval(successes, lines.len());
+    let mut verdicts = BTreeMap::new();
+    for l in lines {
+        *verdicts.entry(l.verdict.clone()).or_insert(0) += 1;
+    }
+    Tally {
+        trials: lines.len(),
+        successes,
+        success_rate: if lines.is_empty() { 0.0 } else { successes as f64 / lines.len() as f64 },
+        wilson_95: [lo, hi],
+        verdicts,
+    }
+}
+
 /// The summary of `lines` (any order) for `methods`.
 pub fn summarize(scene: &str, seed: u64, trials: u64, methods: &[Method], lines: &[TrialLine]) -> Summary {
     let mut sorted: Vec<&TrialLine> = lines.iter().filter(|l| l.trial < trials).collect();
@@ -132,18 +164,13 @@ pub fn summarize(scene: &str, seed: u64, trials: u64, methods: &[Method], lines:
         .iter()
         .map(|m| {
             let mine: Vec<&TrialLine> = sorted.iter().copied().filter(|l| l.method == m.as_str()).collect();
-            let successes = mine.iter().filter(|l| l.verdict == "success").count();
-            let (lo, hi) = wilson_interval(successes, mine.len());
-            let mut verdicts = BTreeMap::new();
-            for l in &mine {
-                *verdicts.entry(l.verdict.clone()).or_insert(0) += 1;
-            }
+            let Tally { trials, successes, success_rate, wilson_95, verdicts } = tally(&mine);
             MethodSummary {
                 method: m.to_string(),
-                trials: mine.len(),
+                trials,
                 successes,
-                success_rate: if mine.is_empty() { 0.0 } else { successes as f64 / mine.len() as f64 },
-                wilson_95: [lo, hi],
+                success_rate,
+                wilson_95,
                 verdicts,
                 bins: binned(&mine),
             }

@@ -5,7 +5,8 @@ use std::collections::{BTreeMap, BTreeSet};
 
 use serde::Serialize;
 
-use crate::mc::{TrialLine, wilson_interval};
+use crate::mc::TrialLine;
+use crate::mc::summary::{Tally, tally};
 
 /// The verdict of a knot accepted.
 pub const SUCCESS: &str = "success";
@@ -79,20 +80,8 @@ pub fn method_stats(lines: &[TrialLine], methods: &[String]) -> Vec<MethodStats>
         .iter()
         .map(|m| {
             let mine: Vec<&TrialLine> = lines.iter().filter(|l| &l.method == m).collect();
-            let successes = mine.iter().filter(|l| is_success(l)).count();
-            let (lo, hi) = wilson_interval(successes, mine.len());
-            let mut verdicts = BTreeMap::new();
-            for l in &mine {
-                *verdicts.entry(l.verdict.clone()).or_insert(0) += 1;
-            }
-            MethodStats {
-                method: m.clone(),
-                trials: mine.len(),
-                successes,
-                success_rate: if mine.is_empty() { 0.0 } else { successes as f64 / mine.len() as f64 },
-                wilson_95: [lo, hi],
-                verdicts,
-            }
+            let Tally { trials, successes, success_rate, wilson_95, verdicts } = tally(&mine);
+            MethodStats { method: m.clone(), trials, successes, success_rate, wilson_95, verdicts }
         })
         .collect()
 }
@@ -115,6 +104,7 @@ pub fn failure_modes(stats: &[MethodStats]) -> Vec<String> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::mc::wilson_interval;
 
     fn line(trial: u64, method: &str, verdict: &str) -> TrialLine {
         TrialLine {

@@ -106,9 +106,15 @@ pub struct TrialRun {
 
 /// The kinematic preview of `skill` on `world`'s instruments as they stand.
 pub fn kinematic_check(world: &SimWorld, skill: &Skill) -> Result<(), KinematicProblem> {
+    let (setups, current) = preview_arms(world);
+    kinematic_preview(skill, &setups, &current, 0.01)
+}
+
+/// The instruments' setups and joints as they stand, for the previews.
+fn preview_arms(world: &SimWorld) -> (Vec<ArmSetup>, Vec<(ArmName, ArmJoints)>) {
     let arms = [ArmName::Left, ArmName::Right, ArmName::Assist];
-    let current: Vec<(ArmName, ArmJoints)> = arms.iter().map(|&a| (a, world.arm(a).command)).collect();
-    let setups: Vec<ArmSetup> = arms
+    let current = arms.iter().map(|&a| (a, world.arm(a).command)).collect();
+    let setups = arms
         .iter()
         .map(|&a| ArmSetup {
             arm: a,
@@ -116,7 +122,7 @@ pub fn kinematic_check(world: &SimWorld, skill: &Skill) -> Result<(), KinematicP
             world_trocar_m: trocar_of(&world.config, a),
         })
         .collect();
-    kinematic_preview(skill, &setups, &current, 0.01)
+    (setups, current)
 }
 
 /// Step of the collision preview, s.
@@ -127,16 +133,7 @@ const COLLISION_STEP_S: f64 = 0.02;
 /// the scene's obstacles. `Ok(None)` when nothing collides (or a target is out of reach: the kinematic
 /// preview reports that).
 pub fn collision_check(world: &SimWorld, skill: &Skill) -> Result<Option<LinkCollision>, SynthesisError> {
-    let arms = [ArmName::Left, ArmName::Right, ArmName::Assist];
-    let current: Vec<(ArmName, ArmJoints)> = arms.iter().map(|&a| (a, world.arm(a).command)).collect();
-    let setups: Vec<ArmSetup> = arms
-        .iter()
-        .map(|&a| ArmSetup {
-            arm: a,
-            model: world.rig.arm(a).model,
-            world_trocar_m: trocar_of(&world.config, a),
-        })
-        .collect();
+    let (setups, current) = preview_arms(world);
     let Ok(trajectory) = kinematic_trajectory(skill, &setups, &current, COLLISION_STEP_S) else {
         return Ok(None);
     };
