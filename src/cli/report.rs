@@ -34,11 +34,11 @@ pub fn run(args: ReportArgs, out: &mut Output) -> anyhow::Result<ExitCode> {
                 out,
                 "{}: {} of {} trials tied the knot ({:.1} %, 95 % Wilson {:.1}-{:.1} %)",
                 m.method,
-                m.successes,
-                m.trials,
-                100.0 * m.success_rate,
-                100.0 * m.wilson_95[0],
-                100.0 * m.wilson_95[1]
+                m.tally.successes,
+                m.tally.trials,
+                100.0 * m.tally.success_rate,
+                100.0 * m.tally.wilson_95[0],
+                100.0 * m.tally.wilson_95[1]
             );
         }
     }

@@ -124,7 +124,7 @@ fn binned(lines: &[&TrialLine]) -> BTreeMap<String, Vec<Bin>> {
 }
 
 /// How `lines` ended: trials, successes, the rate, its 95 % Wilson interval, trials per verdict.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct Tally {
     /// Trials.
     pub trials: usize,

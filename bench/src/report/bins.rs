@@ -229,18 +229,8 @@ mod tests {
     use super::*;
 
     fn line(method: &str, play_rad: f64, offset_m: [f64; 3], verdict: &str) -> TrialLine {
-        TrialLine {
-            trial: 0,
-            seed: 1,
-            method: method.to_owned(),
-            draw: serde_json::json!({ "play_rad": play_rad, "calibration_max_rad": 0.0, "stitch_offset_m": offset_m }),
-            verdict: verdict.to_owned(),
-            knot: None,
-            wound_gap_m: None,
-            sim_seconds: 0.0,
-            wall_seconds: 0.0,
-            error: None,
-        }
+        let draw = serde_json::json!({ "play_rad": play_rad, "calibration_max_rad": 0.0, "stitch_offset_m": offset_m });
+        super::super::test_line(method, draw, verdict)
     }
 
     #[test]

@@ -79,11 +79,14 @@ pub fn method_tables(stats: &[MethodStats]) -> String {
             "<table class=\"method\" id=\"method-{name}\">\n<caption>{}{name}</caption>\n",
             swatch(i)
         ));
-        out.push_str(&format!("<tr><th>trials</th><td>{}</td></tr>\n", s.trials));
-        out.push_str(&format!("<tr><th>successes</th><td>{}</td></tr>\n", s.successes));
-        out.push_str(&format!("<tr><th>success rate</th><td>{}</td></tr>\n", percent(s.success_rate)));
-        out.push_str(&format!("<tr><th>95 % Wilson interval</th><td>{}</td></tr>\n", interval(s.wilson_95)));
-        for (verdict, n) in &s.verdicts {
+        out.push_str(&format!("<tr><th>trials</th><td>{}</td></tr>\n", s.tally.trials));
+        out.push_str(&format!("<tr><th>successes</th><td>{}</td></tr>\n", s.tally.successes));
+        out.push_str(&format!("<tr><th>success rate</th><td>{}</td></tr>\n", percent(s.tally.success_rate)));
+        out.push_str(&format!(
+            "<tr><th>95 % Wilson interval</th><td>{}</td></tr>\n",
+            interval(s.tally.wilson_95)
+        ));
+        for (verdict, n) in &s.tally.verdicts {
             out.push_str(&format!("<tr><th>verdict: {}</th><td>{n}</td></tr>\n", escape(verdict)));
         }
         out.push_str("</table>\n");

@@ -57,21 +57,14 @@ pub fn method_names(lines: &[TrialLine]) -> Vec<String> {
     lines.iter().map(|l| l.method.clone()).collect::<BTreeSet<_>>().into_iter().collect()
 }
 
-/// One method's figures.
+/// One method's figures (in JSON, the tally's fields beside the method's name).
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct MethodStats {
     /// The method.
     pub method: String,
-    /// Trials finished.
-    pub trials: usize,
-    /// Knots accepted.
-    pub successes: usize,
-    /// successes / trials.
-    pub success_rate: f64,
-    /// The 95 % Wilson interval of the rate.
-    pub wilson_95: [f64; 2],
-    /// Trials per verdict.
-    pub verdicts: BTreeMap<String, usize>,
+    /// Its trials, successes, rate, Wilson interval and verdicts.
+    #[serde(flatten)]
+    pub tally: Tally,
 }
 
 /// The figures of each of `methods` in `lines`.
@@ -80,8 +73,7 @@ pub fn method_stats(lines: &[TrialLine], methods: &[String]) -> Vec<MethodStats>
         .iter()
         .map(|m| {
             let mine: Vec<&TrialLine> = lines.iter().filter(|l| &l.method == m).collect();
-            let Tally { trials, successes, success_rate, wilson_95, verdicts } = tally(&mine);
-            MethodStats { method: m.clone(), trials, successes, success_rate, wilson_95, verdicts }
+            MethodStats { method: m.clone(), tally: tally(&mine) }
         })
         .collect()
 }
@@ -90,7 +82,7 @@ pub fn method_stats(lines: &[TrialLine], methods: &[String]) -> Vec<MethodStats>
 pub fn failure_modes(stats: &[MethodStats]) -> Vec<String> {
     let mut total: BTreeMap<&str, usize> = BTreeMap::new();
     for s in stats {
-        for (v, n) in &s.verdicts {
+        for (v, n) in &s.tally.verdicts {
             if v != SUCCESS {
                 *total.entry(v).or_insert(0) += n;
             }
@@ -107,18 +99,7 @@ mod tests {
     use crate::mc::wilson_interval;
 
     fn line(trial: u64, method: &str, verdict: &str) -> TrialLine {
-        TrialLine {
-            trial,
-            seed: 3,
-            method: method.to_owned(),
-            draw: serde_json::Value::Null,
-            verdict: verdict.to_owned(),
-            knot: None,
-            wound_gap_m: None,
-            sim_seconds: 0.0,
-            wall_seconds: 0.0,
-            error: None,
-        }
+        TrialLine { trial, seed: 3, ..super::super::test_line(method, serde_json::Value::Null, verdict) }
     }
 
     #[test]
@@ -137,10 +118,10 @@ mod tests {
         assert_eq!((info.seeds.clone(), info.trials, info.trial_range), (vec![3], 3, (0, 2)));
         assert_eq!(info.methods, vec!["dmp", "fluid"]);
         let stats = method_stats(&lines, &info.methods);
-        assert_eq!((stats[0].trials, stats[0].successes), (3, 1));
-        assert_eq!((stats[1].trials, stats[1].successes), (2, 1));
-        assert_eq!(stats[1].verdicts, BTreeMap::from([("no_knot".into(), 1), ("success".into(), 1)]));
-        assert_eq!(stats[0].wilson_95, {
+        assert_eq!((stats[0].tally.trials, stats[0].tally.successes), (3, 1));
+        assert_eq!((stats[1].tally.trials, stats[1].tally.successes), (2, 1));
+        assert_eq!(stats[1].tally.verdicts, BTreeMap::from([("no_knot".into(), 1), ("success".into(), 1)]));
+        assert_eq!(stats[0].tally.wilson_95, {
             let (lo, hi) = wilson_interval(1, 3);
             [lo, hi]
         });

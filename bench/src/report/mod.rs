@@ -169,3 +169,20 @@ fn render(
     let page = html::page(title, &html::header(&info, scene), &sections);
     Ok((page, info, stats))
 }
+
+/// A results line for the report's unit tests: trial 0 of seed 1, `method`, `draw`, `verdict`.
+#[cfg(test)]
+fn test_line(method: &str, draw: serde_json::Value, verdict: &str) -> TrialLine {
+    TrialLine {
+        trial: 0,
+        seed: 1,
+        method: method.to_owned(),
+        draw,
+        verdict: verdict.to_owned(),
+        knot: None,
+        wound_gap_m: None,
+        sim_seconds: 0.0,
+        wall_seconds: 0.0,
+        error: None,
+    }
+}

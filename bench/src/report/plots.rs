@@ -94,14 +94,17 @@ pub fn methods_chart(stats: &[MethodStats]) -> Result<String, PlotError> {
         let centres = (0..).step_by(CATEGORY as usize);
         chart.draw_series(stats.iter().zip(centres.clone()).enumerate().map(|(i, (s, x))| {
             let half = CATEGORY * 3 / 10;
-            Rectangle::new([(x - half, 0.0), (x + half, 100.0 * s.success_rate)], method_colour(i).filled())
+            Rectangle::new(
+                [(x - half, 0.0), (x + half, 100.0 * s.tally.success_rate)],
+                method_colour(i).filled(),
+            )
         }))?;
         chart.draw_series(stats.iter().zip(centres).map(|(s, x)| {
-            let [lo, hi] = s.wilson_95;
+            let [lo, hi] = s.tally.wilson_95;
             ErrorBar::new_vertical(
                 x,
                 100.0 * lo,
-                100.0 * s.success_rate,
+                100.0 * s.tally.success_rate,
                 100.0 * hi,
                 BLACK.stroke_width(2),
                 18,
@@ -116,7 +119,7 @@ pub fn failures_chart(stats: &[MethodStats], modes: &[String]) -> Result<String,
     svg(FAILURES_TITLE, |text| {
         let root = SVGBackend::with_string(text, SIZE_PX).into_drawing_area();
         root.fill(&WHITE)?;
-        let count = |s: &MethodStats, mode: &String| s.verdicts.get(mode).copied().unwrap_or(0) as u32;
+        let count = |s: &MethodStats, mode: &String| s.tally.verdicts.get(mode).copied().unwrap_or(0) as u32;
         let most = stats.iter().flat_map(|s| modes.iter().map(move |m| count(s, m))).max().unwrap_or(0);
         let mut chart = ChartBuilder::on(&root)
             .caption(FAILURES_TITLE, (FONT, 20))
