@@ -41,14 +41,18 @@ fn grasp_middle(w: &mut SimWorld) -> usize {
     w.arm(ArmName::Left).grasp.expect("the closed jaws hold a segment").segment
 }
 
-/// Pulls the thread's tail along its length with `force_n` for up to 0.5 s; stops pulling when the
-/// grasp slips (an unopposed pull would fling the thread) and returns whether it did.
+/// Pulls the thread's tail along its length with `force_n` for up to 0.5 s, the force rising over the
+/// first 0.1 s (a hand's pull, not a blow: a step force on the light end segment sends a tension wave
+/// along the chain several times the force); stops pulling when the grasp slips (an unopposed pull
+/// would fling the thread) and returns whether it did.
 fn pull(w: &mut SimWorld, force_n: f64) -> bool {
     let tail = *w.thread.segments.last().expect("segments");
     let line = w.thread.centreline(&w.physics);
-    let along = (line[line.len() - 1] - line[0]).normalize() * force_n;
-    w.physics.bodies[tail].add_force(Vector::new(along.x, along.y, along.z), true);
-    for _ in 0..500 {
+    let direction = (line[line.len() - 1] - line[0]).normalize();
+    for step in 0..500 {
+        let along = direction * force_n * (f64::from(step + 1) / 100.0).min(1.0);
+        w.physics.bodies[tail].reset_forces(true);
+        w.physics.bodies[tail].add_force(Vector::new(along.x, along.y, along.z), true);
         w.step().expect("healthy step");
         if w.events.iter().any(|e| matches!(e, GraspEvent::Slipped { .. })) {
             w.physics.bodies[tail].reset_forces(true);
