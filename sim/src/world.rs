@@ -131,6 +131,19 @@ fn to_pose(iso: &IsometryMatrix3<f64>) -> Pose {
     Pose::from_parts(Vector::new(t.x, t.y, t.z), Rotation::from_xyzw(q.i, q.j, q.k, q.w))
 }
 
+/// `next` with its quaternion in the same hemisphere as `current`'s: the same pose, but Rapier derives
+/// a kinematic body's velocity from the quaternion of `next * current^-1` without taking its shorter
+/// arc, so a sign flip between two steps (which `from_rotation_matrix` makes wherever its branch
+/// changes) became a one-step spin of hundreds of rad/s that flung the thread off a shaft
+/// (`sim/tests/kinematic_link_spun_when_its_quaternion_flipped_sign.rs`).
+fn continuous_pose(next: Pose, current: &Pose) -> Pose {
+    if next.rotation.dot(current.rotation) < 0.0 {
+        Pose::from_parts(next.translation, -next.rotation)
+    } else {
+        next
+    }
+}
+
 fn shape_collider(shape: &knotlab_hw::rig::Shape) -> ColliderBuilder {
     match *shape {
         knotlab_hw::rig::Shape::Box { half_extents_m: h } => ColliderBuilder::cuboid(h.x, h.y, h.z),
@@ -446,7 +459,9 @@ impl SimWorld {
             if let Some(h) = body
                 && self.physics.bodies[*h].is_kinematic()
             {
-                self.physics.bodies[*h].set_next_kinematic_position(to_pose(&poses[i]));
+                let link = &mut self.physics.bodies[*h];
+                let next = continuous_pose(to_pose(&poses[i]), link.position());
+                link.set_next_kinematic_position(next);
             }
         }
         self.update_grasps(&poses);
