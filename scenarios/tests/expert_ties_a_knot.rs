@@ -1,7 +1,7 @@
-//! The scripted expert ties the knot in the simulated thread: seed 32 of the nominal scene, with the
+//! The scripted expert ties the knot in the simulated thread: seed 6 of the nominal scene, with the
 //! human-like variation on (the canonical demonstration), leaves a surgeon's knot down on the tissue
-//! that holds the wound closed once released: the evaluator's success. (It is one seed of 50 so far:
-//! see issue 6's notes.) A change to the scene, the grasp model or the plan that stops the expert from
+//! that holds the wound closed once released: the evaluator's success. (36 of seeds 0-49 do: see
+//! issue 6's notes.) A change to the scene, the grasp model or the plan that stops the expert from
 //! tying it fails here.
 
 use knotlab_scenarios::expert::{RecordOptions, demonstrate};
@@ -9,13 +9,13 @@ use knotlab_sim::knot::KnotType;
 use knotlab_sim::scene::parse_scene;
 
 #[test]
-fn seed_32_ties_a_surgeons_knot_that_holds() {
+fn seed_6_ties_a_surgeons_knot_that_holds() {
     let scene = parse_scene(include_str!("../default.toml"), "default.toml").expect("the shipped scene");
     let options = RecordOptions { cycles_per_sample: 10, ..RecordOptions::default() };
-    let run = demonstrate(scene, "scenarios/default.toml", 32, true, &options, None).expect("records");
+    let run = demonstrate(scene, "scenarios/default.toml", 6, true, &options, None).expect("records");
     let e = &run.evaluation;
     println!(
-        "seed 32: {} (knot {:?}, height {:?} m, stitch distance {:?} m), {:.1} s simulated in {:.1} s",
+        "seed 6: {} (knot {:?}, height {:?} m, stitch distance {:?} m), {:.1} s simulated in {:.1} s",
         e.verdict.label(),
         e.knot_before,
         e.height_m,

@@ -21,7 +21,7 @@ fn the_shipped_scene_loads() {
 
 #[test]
 fn an_unknown_key_is_named_with_its_path_and_line() {
-    let text = DEFAULT.replace("segments = 40", "segments = 40\nsegmnets = 41");
+    let text = DEFAULT.replace("segments = 80", "segments = 80\nsegmnets = 81");
     let e = err(&text);
     let line = text.lines().position(|l| l.starts_with("segmnets")).unwrap() + 1;
     assert!(e.starts_with(&format!("bad.toml:{line}: thread.segmnets: unknown field `segmnets`")), "{e}");
@@ -29,7 +29,7 @@ fn an_unknown_key_is_named_with_its_path_and_line() {
 
 #[test]
 fn a_wrong_type_is_named_with_its_path() {
-    let e = err(&DEFAULT.replace("segments = 40", "segments = \"forty\""));
+    let e = err(&DEFAULT.replace("segments = 80", "segments = \"eighty\""));
     assert!(e.contains("thread.segments:"), "{e}");
 }
 
@@ -41,7 +41,7 @@ fn a_missing_key_is_named() {
 
 #[test]
 fn out_of_range_values_are_all_named() {
-    let text = DEFAULT.replace("dt_s = 0.001", "dt_s = 0.5").replace("segments = 40", "segments = 2");
+    let text = DEFAULT.replace("dt_s = 0.001", "dt_s = 0.5").replace("segments = 80", "segments = 2");
     let text =
         text.replacen("left = [0.0, 0.0, 0.0, 0.0, 0.0, 0.0]", "left = [0.0, 0.0, 0.3, 0.0, 0.0, 0.0]", 1);
     match parse_scene(&text, "bad.toml") {

@@ -5,8 +5,8 @@
 //! ties at any stitch. The sequence is the canonical task of `scenarios/patterns/knot_tying.toml`:
 //! L1 to the winding point (the right takes up the long end meanwhile), the left's jaws close; R2 winds
 //! the long end twice around them; the assist presents the tail in front of the left's jaws, which
-//! open; L3 to the tail, close; the assist lets go and retreats (A1); L4 and R3 pull the ends apart
-//! until the set force, then let go.
+//! open; L3 to the tail, close; the assist lets go and retreats (A1); L4 and R3 pull the ends up over
+//! the wound until the set force, then let go.
 
 use knotlab_hw::rig::ArmName;
 use knotlab_hw::skill::{ForceAction, ForceEvent, Skill};
@@ -54,7 +54,9 @@ pub struct TieGeometry {
     pub loosen_m: f64,
     /// ... and this much back along the left's jaws, drawing the coils towards their hinge, m.
     pub coils_back_m: f64,
-    /// The left opens its jaws this far to take the tail, rad (wide jaws let the coils slip between).
+    /// The left opens its jaws this far to take the tail, rad. Opened only part way (0.5 rad), 3 of
+    /// seeds 0-7 kept a coil on the jaws after the draw (a single throw; the jaws likely closed on it
+    /// with the tail); at 0.8 rad none did.
     pub take_tail_jaw_rad: f64,
     /// The assist first draws the tail this much tauter, m.
     pub tail_tension_m: f64,
@@ -63,7 +65,9 @@ pub struct TieGeometry {
     /// While the right winds, the assist moves the tail this fraction of the way to the entry
     /// point, giving thread.
     pub tail_give_fraction: f64,
-    /// The left pulls the tail towards here.
+    /// The left pulls the tail towards here: up, over the wound. Pulled up, both strands draw their
+    /// flaps towards the knot; pulled out sideways, each end drags its own flap outward and the wound
+    /// stays open.
     pub left_pull_to_m: [f64; 3],
     /// The right pulls the long end towards here.
     pub right_pull_to_m: [f64; 3],
@@ -75,6 +79,8 @@ pub struct TieGeometry {
     pub draw_back_m: f64,
     /// ... while the right moves this fraction of the same way.
     pub right_follows_draw: f64,
+    /// While drawing back, the jaws turn this fraction of the way towards the shaft.
+    pub draw_relax: f64,
     /// Both pulls let go at this force, N.
     pub pull_force_n: f64,
 }
@@ -99,19 +105,20 @@ impl Default for TieGeometry {
             tail_ahead_m: 0.012,
             tail_beyond_m: 0.008,
             tail_tension_m: 0.003,
-            take_tail_jaw_rad: 0.5,
+            take_tail_jaw_rad: 0.8,
             loosen_m: 0.004,
             coils_back_m: 0.0,
             tail_swing_lean: [0.8, 0.0, 0.0],
             tail_via_m: Vec::new(),
             assist_jaw_direction: None,
             tail_give_fraction: 0.0,
-            left_pull_to_m: [0.0, 0.035, 0.01],
-            right_pull_to_m: [0.0, -0.045, 0.01],
+            left_pull_to_m: [0.0, 0.01, 0.045],
+            right_pull_to_m: [0.0, -0.015, 0.045],
             assist_retreat_m: [0.04, 0.04, 0.04],
             speed_fraction: 0.3,
             draw_back_m: 0.032,
             right_follows_draw: 0.0,
+            draw_relax: 0.4,
             pull_force_n: 1.9,
         }
     }
@@ -336,7 +343,7 @@ pub fn plan_instrument_tie(world: &SimWorld, geometry: &TieGeometry, variation: 
 
     // L4 and R3. First the left draws the tail back out of its coils, along its jaws, while the right
     // follows a little so that the coils stay loose and slide off the jaws onto the tail; then both
-    // pull apart until the set force, and let go.
+    // pull up over the wound, a little apart, until the set force, and let go.
     let draw_s = assist.time_s().max(grasped_s + d(0.4));
     left.wait_until(draw_s);
     right.wait_until(draw_s);
@@ -345,7 +352,7 @@ pub fn plan_instrument_tie(world: &SimWorld, geometry: &TieGeometry, variation: 
     // The wrist straightens a little on the way (a bent wrist drawn back runs into its limit).
     let drawn_to = left.position_m() + draw;
     let shaft = (drawn_to - trocar_of(&world.config, ArmName::Left)).normalize();
-    let relaxed = left.jaw_direction().lerp(&shaft, 0.4);
+    let relaxed = left.jaw_direction().lerp(&shaft, geometry.draw_relax);
     left.go_pointing(Path::To(drawn_to), d(1.2), relaxed);
     right.go(Path::To(right.position_m() + draw * geometry.right_follows_draw), left.time_s() - first_s);
     let pull_s = left.time_s() + pause[4];
