@@ -15,7 +15,7 @@ fn err(text: &str) -> String {
 fn the_shipped_scene_loads() {
     let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenarios/default.toml");
     let scene = load_scene(&path).unwrap();
-    assert_eq!(scene.thread.segments, 40);
+    assert_eq!(scene.thread.segments, 80);
     assert_eq!(scene.trocars.left, [-0.08, 0.12, 1.02]);
 }
 
@@ -35,7 +35,11 @@ fn a_wrong_type_is_named_with_its_path() {
 
 #[test]
 fn a_missing_key_is_named() {
-    let e = err(&DEFAULT.replace("friction = 0.3\n", ""));
+    // The thread's own friction line (the first key `friction` in the file), whatever its value.
+    let text: String =
+        DEFAULT.lines().filter(|l| !l.starts_with("friction = ")).map(|l| format!("{l}\n")).collect();
+    assert!(text.len() < DEFAULT.len(), "the scene has a friction line");
+    let e = err(&text);
     assert!(e.contains("thread") && e.contains("missing field `friction`"), "{e}");
 }
 
@@ -58,7 +62,7 @@ fn out_of_range_values_are_all_named() {
 #[test]
 fn bad_randomization_bounds_are_named() {
     let text = DEFAULT
-        .replace("thread_friction = [0.25, 0.35]", "thread_friction = [0.35, 0.25]")
+        .replace("thread_friction = [0.12, 0.18]", "thread_friction = [0.18, 0.12]")
         .replace("play_rad = [0.0, 0.0005]", "play_rad = [0.0, 0.5]");
     match parse_scene(&text, "bad.toml") {
         Err(SceneError::Range { problems, .. }) => {
