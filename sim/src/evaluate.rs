@@ -60,6 +60,9 @@ pub struct KnotEvaluation {
     pub gap_before_m: f64,
     /// Wound gap after the settle time, if the holding test ran, m.
     pub gap_after_m: Option<f64>,
+    /// How often the thread passed through itself during the run (a solver failure; the knot of a
+    /// run with any is not a real thread's).
+    pub thread_self_crossings: usize,
 }
 
 /// The tissue surface and stitch point of a scene.
@@ -87,6 +90,7 @@ pub fn evaluate_knot(world: &mut SimWorld, params: &EvaluationParams) -> KnotEva
         stitch_distance_m: None,
         gap_before_m,
         gap_after_m: None,
+        thread_self_crossings: world.thread_watch.crossings.len(),
     };
     let Some(site) = stitch_site(world) else {
         result.verdict = Verdict::Failure(FailureMode::ThreadUnstable);
@@ -119,6 +123,7 @@ pub fn evaluate_knot(world: &mut SimWorld, params: &EvaluationParams) -> KnotEva
             return result;
         }
     }
+    result.thread_self_crossings = world.thread_watch.crossings.len();
     let gap_after = world.wound_gap_m();
     result.gap_after_m = Some(gap_after);
     let after = classify_thread(world);

@@ -34,6 +34,7 @@ pub mod snapshot;
 pub mod stitch;
 pub mod stress;
 pub mod thread;
+pub mod thread_watch;
 pub mod tissue;
 pub mod tunnelling;
 pub mod world;

@@ -59,8 +59,16 @@ fn along_segment(physics: &Physics, thread: &Thread, i: usize, hole_m: &Vector3<
 }
 
 impl Stitch {
-    /// Ties each flap's stitch point to the segment whose axis passes nearest it.
-    pub fn anchor(physics: &mut Physics, thread: &Thread, tissue: &Tissue, slide_friction_n: f64) -> Self {
+    /// Ties each flap's stitch point to the segment whose axis passes nearest it. The point first
+    /// moves onto that axis (a fraction of a millimetre where the laid chain cuts the corner of its
+    /// path at the hole): the hole is where the thread lies, and the stitch starts without pulling
+    /// the wound (tied to the nominal points, 80 segments of 3.1 mm closed it by 0.6 mm).
+    pub fn anchor(
+        physics: &mut Physics,
+        thread: &Thread,
+        tissue: &mut Tissue,
+        slide_friction_n: f64,
+    ) -> Self {
         let mut holes = [Flap::B, Flap::A].map(|flap| StitchHole { flap, segment: None, joint: None });
         for hole in &mut holes {
             let at = tissue.hole_m(physics, hole.flap);
@@ -71,11 +79,14 @@ impl Stitch {
                 .map(|(i, c)| {
                     let d = c.b_m - c.a_m;
                     let t = ((at - c.a_m).dot(&d) / d.norm_squared()).clamp(0.0, 1.0);
-                    (i, (c.a_m + d * t - at).norm())
+                    let on_axis = c.a_m + d * t;
+                    (i, (on_axis - at).norm(), on_axis)
                 })
-                .min_by(|a, b| a.1.total_cmp(&b.1))
-                .map(|(i, _)| i);
-            if let Some(i) = nearest {
+                .min_by(|a, b| a.1.total_cmp(&b.1));
+            if let Some((i, _, on_axis)) = nearest {
+                let flap_from_world = physics.bodies[tissue.flap(hole.flap)].position().inverse();
+                tissue.flap_from_hole_m[hole.flap.index()] =
+                    to_na(flap_from_world.transform_point(to_vec(&on_axis)));
                 hole.joint = Some(Self::tie(physics, thread, tissue, hole.flap, i, slide_friction_n));
                 hole.segment = Some(i);
             }

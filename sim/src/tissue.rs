@@ -47,7 +47,8 @@ impl Flap {
         }
     }
 
-    fn index(self) -> usize {
+    /// The flap's index in per-flap arrays ([B, A]).
+    pub fn index(self) -> usize {
         match self {
             Flap::B => 0,
             Flap::A => 1,

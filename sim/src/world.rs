@@ -19,6 +19,7 @@ use crate::scene::SceneConfig;
 use crate::servo::{ServoModel, ServoState};
 use crate::stitch::{Stitch, StitchEvent};
 use crate::thread::{THREAD_GROUP, Thread};
+use crate::thread_watch::ThreadWatch;
 use crate::tissue::Tissue;
 
 /// Collision group of robot links (instruments and arms).
@@ -109,6 +110,8 @@ pub struct SimWorld {
     pub stitch: Stitch,
     /// What the stitch noticed so far.
     pub stitch_events: Vec<StitchEvent>,
+    /// The thread's passes through itself so far.
+    pub thread_watch: ThreadWatch,
     /// Body of each URDF link with collision geometry (indexed like the rig's tree links).
     pub link_bodies: Vec<Option<RigidBodyHandle>>,
     /// Simulated time, s.
@@ -268,8 +271,10 @@ impl SimWorld {
         let thread = Thread::build(&mut physics, &config.thread, &layout[0], &(layout[1] - layout[0]));
         thread.lay_along(&mut physics, &layout);
         let needle = Needle::attach(&config.needle, &mut physics, &thread);
-        let stitch = Stitch::anchor(&mut physics, &thread, &tissue, config.stitch.slide_friction_n);
+        let mut tissue = tissue;
+        let stitch = Stitch::anchor(&mut physics, &thread, &mut tissue, config.stitch.slide_friction_n);
         let grip_force_n = config.sensor.grip_force_n;
+        let thread_watch = ThreadWatch::new(&physics, &thread, config.solver.prediction_distance_m);
         let mut world = Self {
             physics,
             rig,
@@ -279,6 +284,7 @@ impl SimWorld {
             tissue,
             stitch,
             stitch_events: Vec::new(),
+            thread_watch,
             link_bodies,
             time_s: 0.0,
             events: Vec::new(),
@@ -474,6 +480,7 @@ impl SimWorld {
             None => "rig link".to_owned(),
         })?;
         self.time_s += dt;
+        self.thread_watch.update(&self.physics, &self.thread, self.config.thread.radius_m, self.time_s);
         let events = self.stitch.follow(&mut self.physics, &self.thread, &self.tissue, self.time_s);
         self.stitch_events.extend(events);
         self.check_slip();

@@ -171,6 +171,7 @@ pub fn record_demonstration(
             stitch_distance_m: None,
             gap_before_m: world.wound_gap_m(),
             gap_after_m: None,
+            thread_self_crossings: world.thread_watch.crossings.len(),
         }
     } else {
         let params = world.config.evaluation.clone();
