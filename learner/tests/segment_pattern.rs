@@ -73,9 +73,9 @@ fn malformed_patterns_are_named_by_line_and_field() {
         ),
         ("format_version = 1", "format_version = 3", "format_version = 3", "format_version", "not supported"),
         (
-            "min_magnitude = 0.5",
-            "min_magnitude = -0.5",
-            "min_magnitude = -0.5",
+            "min_magnitude = 0.2",
+            "min_magnitude = -0.2",
+            "min_magnitude = -0.2",
             "left.feature[7].min_magnitude",
             ">= 0",
         ),

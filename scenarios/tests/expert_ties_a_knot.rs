@@ -1,6 +1,6 @@
 //! The scripted expert ties the knot in the simulated thread: seed 6 of the nominal scene, with the
 //! human-like variation on (the canonical demonstration), leaves a surgeon's knot down on the tissue
-//! that holds the wound closed once released: the evaluator's success. (36 of seeds 0-49 do: see
+//! that holds the wound closed once released: the evaluator's success. (19 of seeds 0-49 do: see
 //! issue 6's notes.) A change to the scene, the grasp model or the plan that stops the expert from
 //! tying it fails here.
 
