@@ -7,15 +7,16 @@ use knotlab_sim::thread_watch::ThreadWatch;
 use nalgebra::Vector3;
 use rapier3d::prelude::Vector;
 
-/// A weightless thread laid in a hook whose last leg crosses its first one `height_m` above it.
+/// A weightless thread laid in a hook whose last leg crosses its first one `height_m` above it, in
+/// the middle of a segment.
 fn lay_crossed(physics: &mut Physics, thread: &Thread, height_m: f64) {
     let h = height_m;
     let polyline = [
         Vector3::new(0.0, 0.0, 0.0),
         Vector3::new(0.05, 0.0, 0.0),
         Vector3::new(0.05, 0.02, h),
-        Vector3::new(0.025, 0.02, h),
-        Vector3::new(0.025, -0.03, h),
+        Vector3::new(0.028, 0.02, h),
+        Vector3::new(0.028, -0.03, h),
     ];
     thread.lay_along(physics, &polyline);
 }
