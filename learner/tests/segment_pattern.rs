@@ -73,9 +73,9 @@ fn malformed_patterns_are_named_by_line_and_field() {
         ),
         ("format_version = 1", "format_version = 3", "format_version = 3", "format_version", "not supported"),
         (
-            "min_magnitude = 0.2",
-            "min_magnitude = -0.2",
-            "min_magnitude = -0.2",
+            "min_magnitude = 0.12",
+            "min_magnitude = -0.12",
+            "min_magnitude = -0.12",
             "left.feature[7].min_magnitude",
             ">= 0",
         ),
@@ -171,7 +171,7 @@ fn structural_mistakes_are_refused() {
     assert!(e.line() > 0, "{e}");
 
     // A detector threshold out of range.
-    let e = error(&(shipped_text() + "\n[detector]\nforce_onset_n = -1.0\n"));
+    let e = error(&edited("force_onset_n = 0.12", "force_onset_n = -1.0"));
     assert_eq!(e.field(), "detector.force_onset_n", "{e}");
 
     // Not a pattern at all.
@@ -185,9 +185,13 @@ fn structural_mistakes_are_refused() {
 
 #[test]
 fn detector_thresholds_can_be_set_in_the_pattern() {
-    let p =
-        parse_pattern(&(shipped_text() + "\n[detector]\nforce_onset_n = 0.3\nloop_turns = 0.9\n"), "p.toml")
+    // The shipped pattern sets the force thresholds; a key it leaves out keeps its default.
+    let shipped =
+        load_pattern(&Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenarios/patterns/knot_tying.toml"))
             .unwrap();
+    assert_eq!(shipped.detector.force_onset_n, 0.12);
+    let text = edited("force_onset_n = 0.12", "force_onset_n = 0.3\nloop_turns = 0.9");
+    let p = parse_pattern(&text, "p.toml").unwrap();
     assert_eq!(p.detector.force_onset_n, 0.3);
     assert_eq!(p.detector.loop_turns, 0.9);
     assert_eq!(p.detector.smoothing_s, knotlab_learner::features::DetectorParams::default().smoothing_s);
