@@ -15,9 +15,9 @@
 //!
 //! (columns: solver iterations x Gauss-Seidel sweeps per iteration). Halving dt equals doubling the
 //! iterations; the thread's mass does not matter. Default: 80 segments of 3.1 mm, 8 x 4: 4.1 % stretch
-//! under 2 N (the expert's pulls now stay under 0.5 N: under 1 %). At 40 segments (1.0 %) a wrap
-//! round the jaws was a triangle and the scripted expert's knot held in 1 of 50 runs; at 80 in 36 of 50
-//! (session 20), at about 1.7 times the cost of a trial.
+//! under 2 N (the expert's pulls peak at 0.2-0.9 N: 0.4-1.8 %). At 40 segments (1.0 %) a wrap round
+//! the jaws was a triangle and the scripted expert's knot held in 1 of 50 runs; at 80, in 19 of 50
+//! (session 21, with the wound starting at its rest gap), at about 1.7 times the cost of a trial.
 
 use rapier3d::prelude::*;
 

@@ -20,7 +20,8 @@ pub struct SelfCrossing {
     pub segments: (usize, usize),
 }
 
-/// The thread's self-crossings so far.
+/// The thread's self-crossings so far. Moving the thread by hand between steps (`Thread::lay_straight`,
+/// `lay_along`) looks like passes: experiments that do so should not read the count.
 #[derive(Clone, Debug)]
 pub struct ThreadWatch {
     monitor: TunnellingMonitor,
