@@ -91,6 +91,10 @@ fn the_same_seed_gives_the_same_summary_with_one_or_two_jobs() {
     // The draws vary from trial to trial (the scene's [randomization]).
     let draws: Vec<String> = lines(&a).iter().map(|l| l["draw"]["stitch_offset_m"].to_string()).collect();
     assert!(draws.iter().any(|d| d != &draws[0]), "{draws:?}");
+    // Each line counts the thread's passes through itself.
+    for l in lines(&a) {
+        assert!(l["thread_self_crossings"].as_u64().is_some(), "{l}");
+    }
     std::fs::remove_dir_all(&a).ok();
     std::fs::remove_dir_all(&b).ok();
 }

@@ -103,6 +103,10 @@ pub struct TrialLine {
     pub knot: Option<String>,
     /// The wound gap at the end, m (none when the trial could not be set up).
     pub wound_gap_m: Option<f64>,
+    /// How often the thread passed through itself (a solver failure, not part of the verdict); none
+    /// when the trial could not be set up, or in lines written before it was counted.
+    #[serde(default)]
+    pub thread_self_crossings: Option<usize>,
     /// Simulated time, s.
     pub sim_seconds: f64,
     /// Wall time, s (not in the summary).
@@ -175,6 +179,7 @@ fn run_one(options: &McOptions, trial: u64, method: Method, runner: &TrialRunner
                 verdict: e.verdict.label().to_owned(),
                 knot: e.knot_before.map(|k| k.name().to_owned()),
                 wound_gap_m: Some(e.gap_after_m.unwrap_or(e.gap_before_m)),
+                thread_self_crossings: Some(e.thread_self_crossings),
                 sim_seconds: t.run.simulated_s,
                 wall_seconds: t.run.wall_s,
                 error: t.run.fault.clone(),
@@ -188,6 +193,7 @@ fn run_one(options: &McOptions, trial: u64, method: Method, runner: &TrialRunner
             verdict: Verdict::Failure(knotlab_sim::knot::FailureMode::Unreachable).label().to_owned(),
             knot: None,
             wound_gap_m: None,
+            thread_self_crossings: None,
             sim_seconds: 0.0,
             wall_seconds: 0.0,
             error: Some(format!("{error:#}")),
@@ -307,4 +313,22 @@ pub fn run_mc_with(
     write_summary(&options.out, &summary)?;
     let finished = done.len();
     Ok(McRun { summary, expected, finished, interrupted: finished < expected })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn lines_written_before_self_crossings_were_counted_still_read() {
+        let out = std::env::temp_dir().join(format!("knotlab-mc-old-lines-{}", std::process::id()));
+        std::fs::create_dir_all(&out).unwrap();
+        let old = r#"{"trial":0,"seed":7,"method":"dmp","draw":null,"verdict":"no_knot","knot":null,"wound_gap_m":0.004,"sim_seconds":0.3,"wall_seconds":1.0,"error":null}"#;
+        std::fs::write(results_path(&out), format!("{old}\n")).unwrap();
+        let lines = read_results(&out).expect("an old line reads");
+        assert_eq!(lines.len(), 1);
+        assert_eq!(lines[0].thread_self_crossings, None);
+        assert_eq!(lines[0].verdict, "no_knot");
+        std::fs::remove_dir_all(&out).ok();
+    }
 }

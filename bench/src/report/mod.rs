@@ -181,6 +181,7 @@ fn test_line(method: &str, draw: serde_json::Value, verdict: &str) -> TrialLine 
         verdict: verdict.to_owned(),
         knot: None,
         wound_gap_m: None,
+        thread_self_crossings: None,
         sim_seconds: 0.0,
         wall_seconds: 0.0,
         error: None,
