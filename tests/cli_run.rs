@@ -26,7 +26,8 @@ fn a_short_trial_reports_its_verdict_for_every_method() {
         assert_eq!(r["failure_mode"], "no_knot");
         assert!((r["sim_seconds"].as_f64().unwrap() - 1.5).abs() < 0.01, "{r}");
         assert!(r["wound_gap_m"].as_f64().unwrap() > 0.002, "{r}");
-        // The thread lies untouched so far: it cannot have passed through itself.
+        // At the nominal stitch nothing has touched the thread 1.5 s in: no pass is counted (a drawn
+        // Monte Carlo scene has shown one this early, so this holds for the nominal scene only).
         assert_eq!(r["thread_self_crossings"].as_u64(), Some(0), "{r}");
         assert_eq!(r["execution"]["status"], "simulated");
         assert_eq!(r["preview"]["passed"], false);
