@@ -53,10 +53,34 @@ pub struct MethodSummary {
     pub wilson_95: [f64; 2],
     /// Trials per verdict.
     pub verdicts: BTreeMap<String, usize>,
+    /// How often the thread passed through itself (a solver failure, not a verdict): in how many
+    /// trials, and how often in all, over the trials whose lines count it.
+    pub thread_self_crossings: SelfCrossings,
     /// Success against each drawn parameter, in 4 equal bins over its drawn range: the stitch's
     /// displacement (m) and turn (|rad|), the play (rad), the largest calibration error drawn over the
     /// arms' joints (rad), the thread's friction and bending stiffness (N m/rad), the sensor noise (N).
     pub bins: BTreeMap<String, Vec<Bin>>,
+}
+
+/// Thread self-crossings over a method's trials.
+#[derive(Clone, Debug, Default, PartialEq, Serialize)]
+pub struct SelfCrossings {
+    /// Trials whose line counts them (lines written before the count was recorded do not).
+    pub counted_trials: usize,
+    /// Of those, trials where the thread passed through itself at least once.
+    pub trials_with_any: usize,
+    /// Self-crossings over all counted trials.
+    pub total: usize,
+}
+
+/// The [`SelfCrossings`] of `lines`.
+pub fn self_crossings(lines: &[&TrialLine]) -> SelfCrossings {
+    let counts: Vec<usize> = lines.iter().filter_map(|l| l.thread_self_crossings).collect();
+    SelfCrossings {
+        counted_trials: counts.len(),
+        trials_with_any: counts.iter().filter(|&&n| n > 0).count(),
+        total: counts.iter().sum(),
+    }
 }
 
 /// The summary file.
@@ -172,6 +196,7 @@ pub fn summarize(scene: &str, seed: u64, trials: u64, methods: &[Method], lines:
                 success_rate,
                 wilson_95,
                 verdicts,
+                thread_self_crossings: self_crossings(&mine),
                 bins: binned(&mine),
             }
         })
@@ -193,5 +218,22 @@ mod tests {
         let (lo, hi) = wilson_interval(50, 50);
         assert!((lo - 0.9286).abs() < 1e-4 && hi == 1.0, "{lo} {hi}");
         assert_eq!(wilson_interval(0, 0), (0.0, 1.0));
+    }
+
+    fn line(trial: u64, crossings: Option<usize>) -> TrialLine {
+        TrialLine {
+            trial,
+            thread_self_crossings: crossings,
+            ..crate::report::test_line("dmp", serde_json::Value::Null, "no_knot")
+        }
+    }
+
+    #[test]
+    fn self_crossings_count_trials_and_passes_and_skip_lines_that_lack_them() {
+        let lines = [line(0, Some(0)), line(1, Some(2)), line(2, None), line(3, Some(1))];
+        let refs: Vec<&TrialLine> = lines.iter().collect();
+        assert_eq!(self_crossings(&refs), SelfCrossings { counted_trials: 3, trials_with_any: 2, total: 3 });
+        let summary = summarize("s", 7, 4, &[Method::Dmp], &lines);
+        assert_eq!(summary.methods[0].thread_self_crossings.total, 3);
     }
 }

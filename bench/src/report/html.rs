@@ -70,7 +70,8 @@ fn swatch(index: usize) -> String {
     format!("<span class=\"swatch\" style=\"background:rgb({},{},{})\"></span>", c.0, c.1, c.2)
 }
 
-/// A table per method: trials, successes, rate, the 95 % Wilson interval and the trials per verdict.
+/// A table per method: trials, successes, rate, the 95 % Wilson interval, the trials per verdict and
+/// the thread's self-crossings.
 pub fn method_tables(stats: &[MethodStats]) -> String {
     let mut out = String::from("<div class=\"methods\">\n");
     for (i, s) in stats.iter().enumerate() {
@@ -89,6 +90,11 @@ pub fn method_tables(stats: &[MethodStats]) -> String {
         for (verdict, n) in &s.tally.verdicts {
             out.push_str(&format!("<tr><th>verdict: {}</th><td>{n}</td></tr>\n", escape(verdict)));
         }
+        let x = &s.thread_self_crossings;
+        out.push_str(&format!(
+            "<tr><th>thread self-crossings (solver failures)</th><td>{} in {} of {} trials counted</td></tr>\n",
+            x.total, x.trials_with_any, x.counted_trials
+        ));
         out.push_str("</table>\n");
     }
     out.push_str("</div>\n");
@@ -175,5 +181,23 @@ mod tests {
     #[test]
     fn text_from_the_results_file_is_escaped() {
         assert_eq!(escape("<b>\"a\" & 'b'</b>"), "&lt;b&gt;&quot;a&quot; &amp; &#39;b&#39;&lt;/b&gt;");
+    }
+
+    #[test]
+    fn a_method_table_counts_the_threads_self_crossings() {
+        let line = |trial, crossings| crate::mc::TrialLine {
+            trial,
+            thread_self_crossings: crossings,
+            ..crate::report::test_line("replay", serde_json::Value::Null, "no_knot")
+        };
+        let lines = [line(0, Some(3)), line(1, Some(0)), line(2, None)];
+        let stats = crate::report::methods::method_stats(&lines, &["replay".to_owned()]);
+        let table = method_tables(&stats);
+        assert!(
+            table.contains(
+                "<th>thread self-crossings (solver failures)</th><td>3 in 1 of 2 trials counted</td>"
+            ),
+            "{table}"
+        );
     }
 }

@@ -6,7 +6,7 @@ use std::collections::{BTreeMap, BTreeSet};
 use serde::Serialize;
 
 use crate::mc::TrialLine;
-use crate::mc::summary::{Tally, tally};
+use crate::mc::summary::{SelfCrossings, Tally, self_crossings, tally};
 
 /// The verdict of a knot accepted.
 pub const SUCCESS: &str = "success";
@@ -65,6 +65,8 @@ pub struct MethodStats {
     /// Its trials, successes, rate, Wilson interval and verdicts.
     #[serde(flatten)]
     pub tally: Tally,
+    /// How often the thread passed through itself (a solver failure, not a verdict).
+    pub thread_self_crossings: SelfCrossings,
 }
 
 /// The figures of each of `methods` in `lines`.
@@ -73,7 +75,11 @@ pub fn method_stats(lines: &[TrialLine], methods: &[String]) -> Vec<MethodStats>
         .iter()
         .map(|m| {
             let mine: Vec<&TrialLine> = lines.iter().filter(|l| &l.method == m).collect();
-            MethodStats { method: m.clone(), tally: tally(&mine) }
+            MethodStats {
+                method: m.clone(),
+                tally: tally(&mine),
+                thread_self_crossings: self_crossings(&mine),
+            }
         })
         .collect()
 }

@@ -172,7 +172,7 @@ fn render(
 
 /// A results line for the report's unit tests: trial 0 of seed 1, `method`, `draw`, `verdict`.
 #[cfg(test)]
-fn test_line(method: &str, draw: serde_json::Value, verdict: &str) -> TrialLine {
+pub(crate) fn test_line(method: &str, draw: serde_json::Value, verdict: &str) -> TrialLine {
     TrialLine {
         trial: 0,
         seed: 1,
