@@ -1,7 +1,7 @@
 //! The knot's verdict in the simulator: the topology and tightness judged on the thread's centreline
 //! ([`crate::knot::judge`]), then the holding test no public surgical simulator runs: every
-//! instrument lets go, the wound's elastic load acts for a settle time, and the knot holds if the
-//! wound gap stays below a threshold and the knot type persists.
+//! instrument lets go, the wound's elastic load and a holding load on each flap act for a settle time,
+//! and the knot holds if the wound gap stays below a threshold and the knot type persists.
 
 use nalgebra::{Point3, Vector3};
 use serde::{Deserialize, Serialize};
@@ -10,6 +10,7 @@ use crate::knot::{
     Classification, DownLimits, FailureMode, KnotPlacement, KnotType, StitchSite, TissueSurface, Verdict,
     classify, judge,
 };
+use crate::tissue::Flap;
 use crate::world::SimWorld;
 
 /// How a knot is judged (the scene file's `[evaluation]`).
@@ -26,11 +27,23 @@ pub struct EvaluationParams {
     pub settle_s: f64,
     /// The wound gap a holding knot keeps below, m.
     pub max_wound_gap_m: f64,
+    /// During the settle, each flap is also pulled away from the wound with this force, N (0: the
+    /// tissue's elastic load alone). A load below the stitch's friction cannot draw the thread through
+    /// the tissue, so the wound cannot open whether or not a knot holds it (see
+    /// `sim/tests/holding_test_passed_an_untied_stitch.rs`).
+    #[serde(default = "default_holding_load_n")]
+    pub holding_load_n: f64,
+}
+
+/// Six times a stitch point's default friction (0.05 N): an untied stitch opens under it, and it is a
+/// sixth of the force the scripted expert cinches with (1.9 N).
+fn default_holding_load_n() -> f64 {
+    0.3
 }
 
 impl Default for EvaluationParams {
     /// A surgeon's knot (or the square knot the surgeon's knot is often taken for), down within
-    /// [`DownLimits::default`], holding the wound below 1.5 mm for one second.
+    /// [`DownLimits::default`], holding the wound below 1.5 mm for one second against 0.3 N a flap.
     fn default() -> Self {
         let down = DownLimits::default();
         Self {
@@ -39,6 +52,7 @@ impl Default for EvaluationParams {
             max_stitch_distance_m: down.max_stitch_distance_m,
             settle_s: 1.0,
             max_wound_gap_m: 0.0015,
+            holding_load_n: default_holding_load_n(),
         }
     }
 }
@@ -56,6 +70,10 @@ pub struct KnotEvaluation {
     pub height_m: Option<f64>,
     /// Distance from the stitch to the knot's nearest crossing before release, m.
     pub stitch_distance_m: Option<f64>,
+    /// The thread outside the tissue between the stitch and the knot, both sides, m
+    /// ([`crate::knot::KnotSpan::loop_outside_m`]): about the two bites for a knot cinched down on the
+    /// wound, twice its height for one cinched in the air. Not part of the verdict.
+    pub loop_outside_m: Option<f64>,
     /// Wound gap before release, m.
     pub gap_before_m: f64,
     /// Wound gap after the settle time, if the holding test ran, m.
@@ -78,6 +96,32 @@ fn classify_thread(world: &SimWorld) -> Option<Classification> {
     classify(&line).ok()
 }
 
+/// The holding test's load: every jaw opens and, for the settle time, the tissue's elastic load and
+/// `holding_load_n` on each flap pull the wound open. Returns the wound gap at the end, m; `None` when
+/// the thread went unstable.
+pub fn hold(world: &mut SimWorld, params: &EvaluationParams) -> Option<f64> {
+    world.release_all();
+    let load = |world: &mut SimWorld, scale: f64| {
+        for flap in Flap::ALONG_THREAD {
+            let outward = world.tissue.world_from_tissue.rotation * Vector3::new(0.0, flap.side(), 0.0);
+            let f = outward * (params.holding_load_n * scale);
+            let body = &mut world.physics.bodies[world.tissue.flaps[flap.index()]];
+            body.add_force(rapier3d::prelude::Vector::new(f.x, f.y, f.z), true);
+        }
+    };
+    load(world, 1.0);
+    let steps = (params.settle_s / world.config.solver.dt_s).round() as usize;
+    let mut stable = true;
+    for _ in 0..steps {
+        if world.step().is_err() {
+            stable = false;
+            break;
+        }
+    }
+    load(world, -1.0);
+    stable.then(|| world.wound_gap_m())
+}
+
 /// Judges the thread as it lies, then (if the knot is right and down) lets go of everything and runs
 /// the holding test. Advances the world by the settle time when the holding test runs.
 pub fn evaluate_knot(world: &mut SimWorld, params: &EvaluationParams) -> KnotEvaluation {
@@ -88,6 +132,7 @@ pub fn evaluate_knot(world: &mut SimWorld, params: &EvaluationParams) -> KnotEva
         knot_after: None,
         height_m: None,
         stitch_distance_m: None,
+        loop_outside_m: None,
         gap_before_m,
         gap_after_m: None,
         thread_self_crossings: world.thread_watch.crossings.len(),
@@ -105,6 +150,10 @@ pub fn evaluate_knot(world: &mut SimWorld, params: &EvaluationParams) -> KnotEva
         let placement = KnotPlacement::measure(span, &site.surface, &site.stitch_m);
         result.height_m = Some(placement.height_m);
         result.stitch_distance_m = Some(placement.stitch_distance_m);
+        let arc_at = |flap| world.stitch.arc_at_m(&world.physics, &world.thread, &world.tissue, flap);
+        if let (Some(exit_m), Some(entry_m)) = (arc_at(Flap::B), arc_at(Flap::A)) {
+            result.loop_outside_m = span.loop_outside_m(exit_m, entry_m);
+        }
     }
     let limits = DownLimits {
         max_height_m: params.max_knot_height_m,
@@ -115,13 +164,9 @@ pub fn evaluate_knot(world: &mut SimWorld, params: &EvaluationParams) -> KnotEva
         return result;
     }
     // The holding test: every jaw opens, the load pulls the wound open for the settle time.
-    world.release_all();
-    let steps = (params.settle_s / world.config.solver.dt_s).round() as usize;
-    for _ in 0..steps {
-        if world.step().is_err() {
-            result.verdict = Verdict::Failure(FailureMode::ThreadUnstable);
-            return result;
-        }
+    if hold(world, params).is_none() {
+        result.verdict = Verdict::Failure(FailureMode::ThreadUnstable);
+        return result;
     }
     result.thread_self_crossings = world.thread_watch.crossings.len();
     let gap_after = world.wound_gap_m();

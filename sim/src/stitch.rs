@@ -181,7 +181,13 @@ impl Stitch {
     /// The length of thread on the needle's side of the exit point, m: grows as the thread is pulled
     /// through.
     pub fn needle_side_length_m(&self, physics: &Physics, thread: &Thread, tissue: &Tissue) -> Option<f64> {
-        let hole = &self.holes[0];
+        self.arc_at_m(physics, thread, tissue, self.holes[0].flap)
+    }
+
+    /// Where `flap`'s point sits on the thread: the arc length from the needle end, m (`None` while
+    /// the thread is not through it).
+    pub fn arc_at_m(&self, physics: &Physics, thread: &Thread, tissue: &Tissue, flap: Flap) -> Option<f64> {
+        let hole = self.holes.iter().find(|h| h.flap == flap)?;
         let i = hole.segment?;
         let x = along_segment(physics, thread, i, &tissue.hole_m(physics, hole.flap));
         Some(thread.segment_length_m * (i as f64 + 0.5) + x)

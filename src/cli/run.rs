@@ -82,6 +82,9 @@ struct Report {
     wound_gap_after_release_m: Option<f64>,
     knot_height_m: Option<f64>,
     knot_stitch_distance_m: Option<f64>,
+    /// The thread outside the tissue between the stitch and the knot, both sides (about the two bites
+    /// for a knot cinched down on the wound); not part of the verdict.
+    knot_loop_outside_m: Option<f64>,
     /// How often the thread passed through itself during the trial (a solver failure: a knot tied
     /// with any is not a real thread's); not part of the verdict.
     thread_self_crossings: usize,
@@ -242,6 +245,7 @@ pub fn run(args: RunArgs, out: &mut Output) -> anyhow::Result<ExitCode> {
         wound_gap_after_release_m: e.gap_after_m,
         knot_height_m: e.height_m,
         knot_stitch_distance_m: e.stitch_distance_m,
+        knot_loop_outside_m: e.loop_outside_m,
         thread_self_crossings: e.thread_self_crossings,
         method: args.method.as_str(),
         seed: args.seed,

@@ -112,13 +112,15 @@ impl<'a> TrialLogger<'a> {
         let mm = |m: Option<f64>| m.map_or("-".to_owned(), |m| format!("{:.2} mm", m * 1e3));
         let text = format!(
             "# Verdict: {}\n\n| | |\n|---|---|\n| knot before release | {} |\n| knot after the holding test | {} |\n\
-             | height above the tissue | {} |\n| distance from the stitch | {} |\n| wound gap before release | {} |\n\
+             | height above the tissue | {} |\n| distance from the stitch | {} |\n\
+             | thread between the stitch and the knot | {} |\n| wound gap before release | {} |\n\
              | wound gap after the holding test | {} |\n",
             e.verdict.label(),
             e.knot_before.map_or("-", |k| k.name()),
             e.knot_after.map_or("-", |k| k.name()),
             mm(e.height_m),
             mm(e.stitch_distance_m),
+            mm(e.loop_outside_m),
             mm(Some(e.gap_before_m)),
             mm(e.gap_after_m),
         );

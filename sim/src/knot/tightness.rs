@@ -21,6 +21,8 @@ pub struct KnotSpan {
     pub centre_m: Vector3<f64>,
     /// Largest distance from `centre_m` to a point of `points_m`, m.
     pub radius_m: f64,
+    /// Arc length from the needle end of every passage through a crossing, ascending, m.
+    pub passages_m: Vec<f64>,
 }
 
 impl KnotSpan {
@@ -49,8 +51,9 @@ impl KnotSpan {
         if located.is_empty() {
             return None;
         }
-        let start_m = located.iter().map(|l| l.0).fold(f64::INFINITY, f64::min);
-        let end_m = located.iter().map(|l| l.0).fold(f64::NEG_INFINITY, f64::max);
+        let mut passages_m: Vec<f64> = located.iter().map(|l| l.0).collect();
+        passages_m.sort_by(f64::total_cmp);
+        let (start_m, end_m) = (passages_m[0], passages_m[passages_m.len() - 1]);
         let points_m: Vec<Vector3<f64>> = located.into_iter().map(|l| l.1).collect();
         let centre_m = points_m.iter().sum::<Vector3<f64>>() / points_m.len() as f64;
         let radius_m = points_m.iter().map(|p| (p - centre_m).norm()).fold(0.0, f64::max);
@@ -61,7 +64,20 @@ impl KnotSpan {
             points_m,
             centre_m,
             radius_m,
+            passages_m,
         })
+    }
+
+    /// The thread outside the tissue between the stitch and the knot, both sides together, m: from
+    /// the last passage through a crossing before the exit point (arc length `exit_m` from the needle
+    /// end) to the exit, plus from the entry (`entry_m`, further along) to the first passage after it.
+    /// A knot cinched down on the wound leaves about the two bites; one cinched in the air above it
+    /// leaves a loop twice its height, which falls slack once the ends are let go. `None` when the
+    /// knot's crossings do not enclose the stitch.
+    pub fn loop_outside_m(&self, exit_m: f64, entry_m: f64) -> Option<f64> {
+        let before = self.passages_m.iter().copied().filter(|&a| a < exit_m).fold(None, |_, a| Some(a))?;
+        let after = self.passages_m.iter().copied().find(|&a| a > entry_m)?;
+        Some((exit_m - before) + (after - entry_m))
     }
 
     /// Thread length taken up between the first and last crossing, m: small for a tight knot.
@@ -162,7 +178,23 @@ mod tests {
             points_m: points.to_vec(),
             centre_m,
             radius_m: 0.0,
+            passages_m: vec![0.1, 0.12],
         }
+    }
+
+    #[test]
+    fn the_loop_outside_runs_from_the_knot_to_the_exit_and_from_the_entry_to_the_knot() {
+        // Wraps at 100-110 mm, the exit at 150 mm, the entry at 165 mm, the tail through at 210 mm.
+        let span =
+            KnotSpan { passages_m: vec![0.10, 0.105, 0.11, 0.21, 0.21], ..span_at(&[Vector3::zeros()]) };
+        let outside = span.loop_outside_m(0.15, 0.165).expect("the knot encloses the stitch");
+        assert!((outside - (0.04 + 0.045)).abs() < 1e-12, "{outside}");
+        // Cinched down: the passages close to the points.
+        let down = KnotSpan { passages_m: vec![0.145, 0.147, 0.17], ..span.clone() };
+        assert!((down.loop_outside_m(0.15, 0.165).unwrap() - 0.008).abs() < 1e-12);
+        // A knot all on one side of the stitch does not close a loop through it.
+        let aside = KnotSpan { passages_m: vec![0.01, 0.02], ..span };
+        assert_eq!(aside.loop_outside_m(0.15, 0.165), None);
     }
 
     #[test]

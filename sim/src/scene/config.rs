@@ -423,6 +423,7 @@ impl SceneConfig {
         c.range("evaluation.max_stitch_distance_m", ev.max_stitch_distance_m, 0.0, 0.05);
         c.range("evaluation.settle_s", ev.settle_s, 0.0, 60.0);
         c.range("evaluation.max_wound_gap_m", ev.max_wound_gap_m, 0.0, 0.05);
+        c.range("evaluation.holding_load_n", ev.holding_load_n, 0.0, 10.0);
         if ev.accepted.is_empty() {
             c.0.push(("evaluation.accepted".to_owned(), "must name at least one knot".to_owned()));
         }
