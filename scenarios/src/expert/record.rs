@@ -169,6 +169,7 @@ pub fn record_demonstration(
             knot_after: None,
             height_m: None,
             stitch_distance_m: None,
+            loop_outside_m: None,
             gap_before_m: world.wound_gap_m(),
             gap_after_m: None,
             thread_self_crossings: world.thread_watch.crossings.len(),
