@@ -3,9 +3,9 @@
 //! the stitch. A change to the scene, the grasp model or the plan that stops the expert from tying it
 //! fails here.
 //!
-//! The knot does not hold yet (issue 6): it is cinched in the air above the wound, so its loop falls
-//! slack when the instruments let go (34 mm of thread between the stitch and the knot at seed 6), and
-//! the holding load opens the wound. Once the expert cinches it down, assert the success here again.
+//! The knot does not hold yet (issue 6): it is cinched in the air above the wound (37 mm up while the
+//! instruments hold the ends), so its loop falls slack when they let go, and the holding load opens the
+//! wound. Once the expert cinches it down, assert the success here again.
 
 use knotlab_scenarios::expert::{RecordOptions, demonstrate};
 use knotlab_sim::knot::KnotType;

@@ -72,7 +72,8 @@ pub struct KnotEvaluation {
     pub stitch_distance_m: Option<f64>,
     /// The thread outside the tissue between the stitch and the knot, both sides, m
     /// ([`crate::knot::KnotSpan::loop_outside_m`]): about the two bites for a knot cinched down on the
-    /// wound, twice its height for one cinched in the air. Not part of the verdict.
+    /// wound, twice its height and more for one cinched in the air. Read it while the ends are held
+    /// taut: a slack loop lying over itself adds crossings, which shorten it. Not part of the verdict.
     pub loop_outside_m: Option<f64>,
     /// Wound gap before release, m.
     pub gap_before_m: f64,

@@ -72,8 +72,9 @@ impl KnotSpan {
     /// the last passage through a crossing before the exit point (arc length `exit_m` from the needle
     /// end) to the exit, plus from the entry (`entry_m`, further along) to the first passage after it.
     /// A knot cinched down on the wound leaves about the two bites; one cinched in the air above it
-    /// leaves a loop twice its height, which falls slack once the ends are let go. `None` when the
-    /// knot's crossings do not enclose the stitch.
+    /// leaves a loop twice its height, which falls slack once the ends are let go (and, lying over
+    /// itself, adds crossings that shorten this). `None` when the knot's crossings do not enclose the
+    /// stitch.
     pub fn loop_outside_m(&self, exit_m: f64, entry_m: f64) -> Option<f64> {
         let before = self.passages_m.iter().copied().filter(|&a| a < exit_m).fold(None, |_, a| Some(a))?;
         let after = self.passages_m.iter().copied().find(|&a| a > entry_m)?;
