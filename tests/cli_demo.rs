@@ -19,6 +19,8 @@ fn demo_json_reports_each_run_and_writes_loadable_demonstrations() {
     assert_eq!(run["seed"], 5);
     assert!(run["verdict"].is_string(), "{run}");
     assert_eq!(run["fault"], serde_json::Value::Null, "{run}");
+    // The knot where the pulls left it, taken as the left let go of the tail.
+    assert!(run["knot_at_release"]["knot"].is_string(), "{run}");
     assert!(run["samples"].as_u64().unwrap() > 3000, "three instruments at 100 Hz for 10 s or more: {run}");
     // The learner reads what the expert wrote (and accepts or rejects it with its reason).
     let demo = dir.join("seed-5");

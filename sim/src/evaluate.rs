@@ -7,8 +7,8 @@ use nalgebra::{Point3, Vector3};
 use serde::{Deserialize, Serialize};
 
 use crate::knot::{
-    Classification, DownLimits, FailureMode, KnotPlacement, KnotType, StitchSite, TissueSurface, Verdict,
-    classify, judge,
+    Classification, DownLimits, FailureMode, KnotPlacement, KnotSpan, KnotType, StitchSite, TissueSurface,
+    Verdict, classify, judge,
 };
 use crate::tissue::Flap;
 use crate::world::SimWorld;
@@ -97,6 +97,39 @@ fn classify_thread(world: &SimWorld) -> Option<Classification> {
     classify(&line).ok()
 }
 
+/// Where the knot sits as the thread lies now, not judged: its type, the height of its lowest
+/// crossing above the tissue and the thread between the stitch and it.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct KnotNow {
+    /// The knot in the thread.
+    pub knot: KnotType,
+    /// Height of its lowest crossing above the tissue, m (none for no knot).
+    pub height_m: Option<f64>,
+    /// The thread outside the tissue between the stitch and the knot, m
+    /// ([`KnotEvaluation::loop_outside_m`]).
+    pub loop_outside_m: Option<f64>,
+}
+
+/// The knot as the thread lies now (`None` when the centreline or the tissue is degenerate): cheap
+/// enough to take at a moment of interest, such as the cycle the instruments let go.
+pub fn knot_now(world: &SimWorld) -> Option<KnotNow> {
+    let site = stitch_site(world)?;
+    let c = classify_thread(world)?;
+    let (height_m, loop_outside_m) = match &c.span {
+        Some(span) => {
+            let placement = KnotPlacement::measure(span, &site.surface, &site.stitch_m);
+            (Some(placement.height_m), loop_outside(world, span))
+        }
+        None => (None, None),
+    };
+    Some(KnotNow { knot: c.knot, height_m, loop_outside_m })
+}
+
+fn loop_outside(world: &SimWorld, span: &KnotSpan) -> Option<f64> {
+    let arc_at = |flap| world.stitch.arc_at_m(&world.physics, &world.thread, &world.tissue, flap);
+    span.loop_outside_m(arc_at(Flap::B)?, arc_at(Flap::A)?)
+}
+
 /// The holding test's load: every jaw opens and, for the settle time, the tissue's elastic load and
 /// `holding_load_n` on each flap pull the wound open. Returns the wound gap at the end, m; `None` when
 /// the thread went unstable.
@@ -151,10 +184,7 @@ pub fn evaluate_knot(world: &mut SimWorld, params: &EvaluationParams) -> KnotEva
         let placement = KnotPlacement::measure(span, &site.surface, &site.stitch_m);
         result.height_m = Some(placement.height_m);
         result.stitch_distance_m = Some(placement.stitch_distance_m);
-        let arc_at = |flap| world.stitch.arc_at_m(&world.physics, &world.thread, &world.tissue, flap);
-        if let (Some(exit_m), Some(entry_m)) = (arc_at(Flap::B), arc_at(Flap::A)) {
-            result.loop_outside_m = span.loop_outside_m(exit_m, entry_m);
-        }
+        result.loop_outside_m = loop_outside(world, span);
     }
     let limits = DownLimits {
         max_height_m: params.max_knot_height_m,

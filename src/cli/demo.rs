@@ -67,6 +67,9 @@ struct RunLine {
     height_m: Option<f64>,
     stitch_distance_m: Option<f64>,
     loop_outside_m: Option<f64>,
+    /// The knot as the thread lay when the left let go of it (before it could fall): its type,
+    /// height and the thread between the stitch and it.
+    knot_at_release: Option<knotlab_sim::evaluate::KnotNow>,
     gap_before_m: f64,
     gap_after_m: Option<f64>,
     thread_self_crossings: usize,
@@ -99,6 +102,7 @@ fn line(seed: u64, run: &DemoRun, dir: &Path) -> RunLine {
         height_m: e.height_m,
         stitch_distance_m: e.stitch_distance_m,
         loop_outside_m: e.loop_outside_m,
+        knot_at_release: run.knot_at_release.clone(),
         gap_before_m: e.gap_before_m,
         gap_after_m: e.gap_after_m,
         thread_self_crossings: e.thread_self_crossings,

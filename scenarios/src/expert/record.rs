@@ -13,7 +13,7 @@ use knotlab_learner::demonstration::{
     Demonstration, FORMAT_VERSION, GraspState, InstrumentRecord, Metadata, Sample, StitchPose,
 };
 use knotlab_sim::backend::SimBackend;
-use knotlab_sim::evaluate::{KnotEvaluation, evaluate_knot};
+use knotlab_sim::evaluate::{KnotEvaluation, KnotNow, evaluate_knot, knot_now};
 use knotlab_sim::knot::{FailureMode, Verdict};
 use knotlab_sim::shapes::{SceneShapes, scene_shapes};
 use knotlab_sim::snapshot::{View, render_png};
@@ -58,6 +58,9 @@ pub struct DemoRun {
     pub demonstration: Demonstration,
     /// The knot the run left.
     pub evaluation: KnotEvaluation,
+    /// The knot as the thread lay in the cycle the left instrument let go of it, after holding it
+    /// (the instrument tie's final release): where the pulls cinched it, before it could fall.
+    pub knot_at_release: Option<KnotNow>,
     /// Why the controller stopped early, if it did.
     pub fault: Option<String>,
     /// Simulated time of the skill, s.
@@ -131,6 +134,7 @@ pub fn record_demonstration(
     snapshot_times.sort_by(f64::total_cmp);
     let mut snapshots = Vec::new();
     let mut fault = None;
+    let (mut left_held, mut knot_at_release) = (false, None);
     loop {
         let record = match controller.step() {
             Ok(record) => record.clone(),
@@ -143,6 +147,11 @@ pub fn record_demonstration(
         if let Some(observe) = observer.as_mut() {
             observe(&record, &world);
         }
+        let left_holds = world.arm(ArmName::Left).grasp.is_some();
+        if left_held && !left_holds && knot_at_release.is_none() {
+            knot_at_release = Some(knot_now(&world));
+        }
+        left_held |= left_holds;
         if record.cycle % every == 0 {
             sample_instruments(&record, &world, &mut records);
         }
@@ -187,7 +196,17 @@ pub fn record_demonstration(
     let final_scene = scene_shapes(&world);
     let demonstration = Demonstration { metadata, instruments: records };
     let wall_s = started.elapsed().as_secs_f64();
-    Ok(DemoRun { demonstration, evaluation, fault, simulated_s, wall_s, snapshots, events, final_scene })
+    Ok(DemoRun {
+        demonstration,
+        evaluation,
+        knot_at_release: knot_at_release.flatten(),
+        fault,
+        simulated_s,
+        wall_s,
+        snapshots,
+        events,
+        final_scene,
+    })
 }
 
 /// The metadata of a scripted-expert recording.
