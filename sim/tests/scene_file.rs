@@ -45,7 +45,10 @@ fn a_missing_key_is_named() {
 
 #[test]
 fn out_of_range_values_are_all_named() {
-    let text = DEFAULT.replace("dt_s = 0.001", "dt_s = 0.5").replace("segments = 80", "segments = 2");
+    let text = DEFAULT
+        .replace("dt_s = 0.001", "dt_s = 0.5")
+        .replace("segments = 80", "segments = 2")
+        .replace("holding_load_n = 0.3", "holding_load_n = -0.3");
     let text =
         text.replacen("left = [0.0, 0.0, 0.0, 0.0, 0.0, 0.0]", "left = [0.0, 0.0, 0.3, 0.0, 0.0, 0.0]", 1);
     match parse_scene(&text, "bad.toml") {
@@ -54,6 +57,7 @@ fn out_of_range_values_are_all_named() {
             assert!(keys.contains(&"solver.dt_s"), "{keys:?}");
             assert!(keys.contains(&"thread.segments"), "{keys:?}");
             assert!(keys.contains(&"servo.calibration_offset_rad.left[2]"), "{keys:?}");
+            assert!(keys.contains(&"evaluation.holding_load_n"), "{keys:?}");
         }
         other => panic!("expected range errors, got {other:?}"),
     }

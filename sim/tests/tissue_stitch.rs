@@ -128,3 +128,32 @@ fn an_untied_thread_is_no_knot_and_the_wound_stays_open() {
     assert!(w.arm(ArmName::Right).grasp.is_none() && w.arm(ArmName::Assist).grasp.is_none());
     assert!(w.wound_gap_m() > params.max_wound_gap_m, "gap {}", w.wound_gap_m());
 }
+
+/// Where each stitch point sits on the thread (`Stitch::arc_at_m`, from the segments) matches the
+/// centreline the knot's span is measured on: the centreline's point at that arc length lies at the
+/// hole, so the thread between the stitch and a knot is counted on one scale.
+#[test]
+fn the_stitch_points_arc_lengths_lie_at_the_holes_on_the_centreline() {
+    let mut w = world();
+    run(&mut w, 300);
+    let line = w.thread.centreline(&w.physics);
+    let mut arcs = vec![0.0];
+    for pair in line.windows(2) {
+        arcs.push(arcs.last().unwrap() + (pair[1] - pair[0]).norm());
+    }
+    let at = |arc_m: f64| {
+        let k = arcs.iter().position(|&a| a >= arc_m).expect("on the thread").max(1);
+        let t = (arc_m - arcs[k - 1]) / (arcs[k] - arcs[k - 1]);
+        line[k - 1] + (line[k] - line[k - 1]) * t
+    };
+    let mut previous = f64::NEG_INFINITY;
+    for flap in Flap::ALONG_THREAD {
+        let arc_m = w.stitch.arc_at_m(&w.physics, &w.thread, &w.tissue, flap).expect("the thread is through");
+        let hole = w.tissue.hole_m(&w.physics, flap);
+        let off_m = (at(arc_m) - hole).norm();
+        println!("{flap:?}: {:.1} mm along the thread, {:.3} mm from the hole", arc_m * 1e3, off_m * 1e3);
+        assert!(off_m < 5e-4, "{flap:?}: the centreline at that arc length is {off_m} m from the hole");
+        assert!(arc_m > previous, "the needle end meets the exit first");
+        previous = arc_m;
+    }
+}
