@@ -17,9 +17,11 @@
 //! - [`stress`]: the scripted stress sequence behind `knotlab sim` and its figures.
 //! - [`servo`]: how a joint follows its command (lag, limits, play, calibration).
 //! - [`thread`]: the suture as a chain of capsules.
+//! - [`cinch`]: a strand wound twice round another and pulled: how much tension the contacts hold.
 //! - [`tunnelling`]: detecting one capsule passing through another.
 
 pub mod backend;
+pub mod cinch;
 pub mod evaluate;
 pub mod grasp;
 pub mod hooks;

@@ -1,0 +1,216 @@
+//! The thread's contact strength under a cinch: a strand (`B`) wound twice round another (`A`, both
+//! ends held), as in a surgeon's throw, its two ends pulled apart with a tension rising linearly (no
+//! gravity). A knot is made of strands that block each other; pulled harder than its contacts hold,
+//! one strand passes through the other and the throw comes undone. Used by the `thread_cinch`
+//! benchmark (which sweeps the solver's settings) and by a regression test.
+
+use std::f64::consts::TAU;
+
+use knotlab_hw::geometry::segment_distance;
+use nalgebra::Vector3;
+use rapier3d::prelude::*;
+
+use crate::physics::{HealthError, Physics, SolverParams};
+use crate::thread::{Thread, ThreadParams};
+use crate::tunnelling::{Capsule, TunnellingMonitor};
+
+/// The helix B is laid on before the pull tightens it: radius and advance per turn, m.
+const HELIX_RADIUS_M: f64 = 0.0025;
+const HELIX_PITCH_M: f64 = 0.0025;
+/// Straight thread before and after the turns, m.
+const TAIL_M: f64 = 0.02;
+/// Length of the held strand A, m.
+const HELD_LENGTH_M: f64 = 0.06;
+/// Turns of B round A.
+const TURNS: f64 = 2.0;
+
+/// How the pull goes.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CinchParams {
+    /// The tension the pull rises to, N.
+    pub top_tension_n: f64,
+    /// How long it takes to get there, s.
+    pub ramp_s: f64,
+    /// Continuous collision detection on every segment.
+    pub ccd: bool,
+}
+
+/// What a cinch measured.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CinchOutcome {
+    /// The tension when a strand first passed through another, N (`None`: the turns held).
+    pub first_pass_tension_n: Option<f64>,
+    /// Passes counted (a strand passing exactly at a joint counts twice).
+    pub passes: usize,
+    /// The deepest overlap of two segments' axes before the first pass, as a fraction of the touching
+    /// distance (twice the radius).
+    pub deepest_overlap: f64,
+    /// B's winding round A at the start, turns (two turns and nearly a quarter turn for each tail).
+    pub turns_start: f64,
+    /// ... and at the end.
+    pub turns_end: f64,
+    /// Steps taken.
+    pub steps: usize,
+}
+
+/// How many times `b` winds round `a` (a polyline roughly along x): the angle of each point of `b`
+/// about its nearest point on `a`, in the y-z plane, summed along `b`, in turns.
+pub fn winding_turns(a: &[Vector3<f64>], b: &[Vector3<f64>]) -> f64 {
+    let angle = |p: &Vector3<f64>| {
+        let nearest = a
+            .windows(2)
+            .map(|w| {
+                let d = w[1] - w[0];
+                let t = ((p - w[0]).dot(&d) / d.norm_squared()).clamp(0.0, 1.0);
+                w[0] + d * t
+            })
+            .min_by(|x, y| (p - x).norm().total_cmp(&(p - y).norm()))
+            .unwrap_or(*p);
+        let o = p - nearest;
+        o.z.atan2(o.y)
+    };
+    let angles: Vec<f64> = b.iter().map(angle).collect();
+    let total: f64 = angles
+        .windows(2)
+        .map(|w| {
+            let d = w[1] - w[0];
+            d - TAU * (d / TAU).round()
+        })
+        .sum();
+    total / TAU
+}
+
+/// B's path: a tail along -z into two turns round the x axis, a tail along +z out of them.
+fn wound_path() -> Vec<Vector3<f64>> {
+    let advance = HELIX_PITCH_M * TURNS;
+    let start = Vector3::new(-0.5 * advance, HELIX_RADIUS_M, 0.0);
+    let mut points = vec![start - Vector3::z() * TAIL_M, start];
+    let n = 200;
+    for k in 1..=n {
+        let f = k as f64 / n as f64;
+        let theta = TAU * TURNS * f;
+        points.push(Vector3::new(
+            -0.5 * advance + advance * f,
+            HELIX_RADIUS_M * theta.cos(),
+            HELIX_RADIUS_M * theta.sin(),
+        ));
+    }
+    let end = points[points.len() - 1];
+    points.push(end + Vector3::z() * TAIL_M);
+    points
+}
+
+/// Pins one end of `thread` where it lies.
+fn hold_end(physics: &mut Physics, thread: &Thread, first: bool) {
+    let half = 0.5 * thread.segment_length_m;
+    let (segment, local_x) =
+        if first { (thread.segments[0], -half) } else { (thread.segments[thread.segments.len() - 1], half) };
+    let at = physics.bodies[segment].position().transform_point(Vector::new(local_x, 0.0, 0.0));
+    let anchor = physics.bodies.insert(RigidBodyBuilder::fixed().translation(at));
+    physics.impulse_joints.insert(
+        anchor,
+        segment,
+        SphericalJointBuilder::new().local_anchor2(Vector::new(local_x, 0.0, 0.0)),
+        true,
+    );
+}
+
+/// Winds B twice round A with `thread`'s material and segment length, pulls B's ends apart as
+/// `params` says, and watches every pair of A and B, and of B with itself.
+pub fn run_cinch(
+    solver: &SolverParams,
+    thread: &ThreadParams,
+    params: &CinchParams,
+) -> Result<CinchOutcome, HealthError> {
+    let mut physics = Physics::new(solver);
+    physics.gravity = Vector::ZERO;
+    let segment_m = thread.segment_length_m();
+    let a_segments = ((HELD_LENGTH_M / segment_m).round() as usize).max(2);
+    let a_params = ThreadParams { length_m: a_segments as f64 * segment_m, segments: a_segments, ..*thread };
+    let a = Thread::build(
+        &mut physics,
+        &a_params,
+        &Vector3::new(-0.5 * a_params.length_m, 0.0, 0.0),
+        &Vector3::x(),
+    );
+    hold_end(&mut physics, &a, true);
+    hold_end(&mut physics, &a, false);
+    let path = wound_path();
+    let path_m: f64 = path.windows(2).map(|w| (w[1] - w[0]).norm()).sum();
+    let b_segments = ((path_m / segment_m).floor() as usize).max(2);
+    let b_params = ThreadParams { length_m: b_segments as f64 * segment_m, segments: b_segments, ..*thread };
+    let b = Thread::build(&mut physics, &b_params, &path[0], &Vector3::x());
+    b.lay_along(&mut physics, &path);
+    if params.ccd {
+        for h in a.segments.iter().chain(&b.segments) {
+            physics.bodies[*h].enable_ccd(true);
+        }
+    }
+    let (na, nb) = (a.segments.len(), b.segments.len());
+    let pairs: Vec<(usize, usize)> = (0..na)
+        .flat_map(|i| (0..nb).map(move |j| (i, na + j)))
+        .chain((0..nb).flat_map(|i| (i + 2..nb).map(move |j| (na + i, na + j))))
+        .collect();
+    let radius_m = thread.radius_m;
+    let mut monitor = TunnellingMonitor::new(2.0 * radius_m);
+    let ends = [(b.segments[0], -1.0), (b.segments[nb - 1], 1.0)];
+    let dt_s = physics.dt_s();
+    let steps = (params.ramp_s / dt_s).round() as usize;
+    let mut outcome = CinchOutcome {
+        first_pass_tension_n: None,
+        passes: 0,
+        deepest_overlap: 0.0,
+        turns_start: winding_turns(&a.centreline(&physics), &b.centreline(&physics)),
+        turns_end: 0.0,
+        steps,
+    };
+    for step in 0..steps {
+        let tension_n = params.top_tension_n * (step as f64 * dt_s) / params.ramp_s;
+        for (h, sign) in ends {
+            let body = &mut physics.bodies[h];
+            body.reset_forces(true);
+            body.add_force(Vector::new(0.0, 0.0, sign * tension_n), true);
+        }
+        physics.step(&|_| "thread segment".to_owned())?;
+        let mut capsules: Vec<Capsule> = a.capsules(&physics, radius_m);
+        capsules.extend(b.capsules(&physics, radius_m));
+        if monitor.update(&capsules, pairs.iter().copied()) > 0 && outcome.first_pass_tension_n.is_none() {
+            outcome.first_pass_tension_n = Some(tension_n);
+        }
+        if outcome.first_pass_tension_n.is_none() {
+            for &(i, j) in &pairs {
+                let (p, q) = (&capsules[i], &capsules[j]);
+                let distance_m = segment_distance(&p.a_m, &p.b_m, &q.a_m, &q.b_m);
+                outcome.deepest_overlap = outcome.deepest_overlap.max(1.0 - distance_m / (2.0 * radius_m));
+            }
+        }
+    }
+    outcome.passes = monitor.events;
+    outcome.turns_end = winding_turns(&a.centreline(&physics), &b.centreline(&physics));
+    Ok(outcome)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_helix_winds_its_turns_round_its_axis() {
+        let axis = [Vector3::new(-0.1, 0.0, 0.0), Vector3::new(0.1, 0.0, 0.0)];
+        let path = wound_path();
+        // Two turns, and for each tail (from -z into the helix, out of it to +z) the angle its far
+        // end makes with the helix's start: nearly a quarter turn.
+        let expected = TURNS + 2.0 * TAIL_M.atan2(HELIX_RADIUS_M) / TAU;
+        assert!((winding_turns(&axis, &path) - expected).abs() < 0.005, "{}", winding_turns(&axis, &path));
+        // Wound the other way, the turns count negative.
+        let reversed: Vec<_> = path.iter().rev().copied().collect();
+        assert!((winding_turns(&axis, &reversed) + expected).abs() < 0.005);
+        // A strand that goes past and comes back the same side winds none.
+        let past = [
+            Vector3::new(0.0, 0.005, -0.02),
+            Vector3::new(0.0, 0.005, 0.02),
+            Vector3::new(0.0, 0.006, -0.02),
+        ];
+        assert!(winding_turns(&axis, &past).abs() < 0.05, "{}", winding_turns(&axis, &past));
+    }
+}
