@@ -2,8 +2,8 @@
 //! another, the failure that undid the scripted expert's throws when it pulled them tight (issue 6).
 //! A strand is wound twice round another (both ends held), as in a surgeon's throw, and its two ends
 //! are pulled apart with a tension rising from 0 to 10 N over 5 s (`knotlab_sim::cinch`). Printed per
-//! setting (the shipped scene's, then one change at a time): the tension at the first pass (or
-//! "held"), the passes counted, the deepest overlap of two segments' axes before the first pass as a
+//! setting (the shipped scene's, then one change at a time): the tension at the first pass the
+//! tunnelling monitor saw, and at which the winding had lost half a turn (or "held"), the passes counted, the deepest overlap of two segments' axes before the first pass as a
 //! fraction of the touching distance, the winding at the start and the end (a pass takes a turn off),
 //! and milliseconds per step on one core.
 //!
@@ -49,21 +49,24 @@ fn main() {
         "strand wound twice round another, ends pulled apart 0 -> {} N over {} s; one core",
         pull.top_tension_n, pull.ramp_s
     );
-    println!("| setting | first pass at | passes | deepest overlap before | turns start -> end | ms/step |");
-    println!("|---|---|---|---|---|---|");
+    println!(
+        "| setting | first pass at | turn lost at | passes | deepest overlap before | turns start -> end | ms/step |"
+    );
+    println!("|---|---|---|---|---|---|---|");
     for (name, (solver, thread, pull)) in &settings {
         let start = Instant::now();
         match run_cinch(solver, thread, pull) {
             Ok(o) => println!(
-                "| {name} | {} | {} | {:.0} % | {:.2} -> {:.2} | {:.3} |",
+                "| {name} | {} | {} | {} | {:.0} % | {:.2} -> {:.2} | {:.3} |",
                 o.first_pass_tension_n.map_or("held".to_owned(), |t| format!("{t:.2} N")),
+                o.turn_lost_tension_n.map_or("held".to_owned(), |t| format!("{t:.2} N")),
                 o.passes,
                 100.0 * o.deepest_overlap,
                 o.turns_start,
                 o.turns_end,
                 start.elapsed().as_secs_f64() * 1e3 / o.steps as f64
             ),
-            Err(e) => println!("| {name} | unstable: {e} | | | | |"),
+            Err(e) => println!("| {name} | unstable: {e} | | | | | |"),
         }
     }
 }

@@ -40,6 +40,9 @@ pub struct CinchParams {
 pub struct CinchOutcome {
     /// The tension when a strand first passed through another, N (`None`: the turns held).
     pub first_pass_tension_n: Option<f64>,
+    /// The tension when B's winding round A had fallen by half a turn or more, N (`None`: it never
+    /// did). Catches a turn lost however it went, the tunnelling monitor's misses included.
+    pub turn_lost_tension_n: Option<f64>,
     /// Passes counted (a strand passing exactly at a joint counts twice).
     pub passes: usize,
     /// The deepest overlap of two segments' axes before the first pass, as a fraction of the touching
@@ -158,6 +161,7 @@ pub fn run_cinch(
     let steps = (params.ramp_s / dt_s).round() as usize;
     let mut outcome = CinchOutcome {
         first_pass_tension_n: None,
+        turn_lost_tension_n: None,
         passes: 0,
         deepest_overlap: 0.0,
         turns_start: winding_turns(&a.centreline(&physics), &b.centreline(&physics)),
@@ -176,6 +180,12 @@ pub fn run_cinch(
         capsules.extend(b.capsules(&physics, radius_m));
         if monitor.update(&capsules, pairs.iter().copied()) > 0 && outcome.first_pass_tension_n.is_none() {
             outcome.first_pass_tension_n = Some(tension_n);
+        }
+        if outcome.turn_lost_tension_n.is_none()
+            && step % 10 == 0
+            && winding_turns(&a.centreline(&physics), &b.centreline(&physics)) < outcome.turns_start - 0.5
+        {
+            outcome.turn_lost_tension_n = Some(tension_n);
         }
         if outcome.first_pass_tension_n.is_none() {
             for &(i, j) in &pairs {

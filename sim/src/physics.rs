@@ -12,7 +12,8 @@
 //! a 1 mm length unit): a thread segment weighed 0.25 g (40 segments; 0.125 g in today's 80) and
 //! Rapier's contact stiffness scales with mass, so two strands pressed together at 1 N sank through
 //! each other. At 3000 Hz, ratio 1, 0.1 m/s they held with 0.26 mm of the 0.8 mm touching distance
-//! taken up (1000 Hz: 0.38 mm), at no measurable cost (measured with 0.25 g segments).
+//! taken up (1000 Hz: 0.38 mm), at no measurable cost (measured with 0.25 g segments). Tight wraps
+//! need more: see `max_corrective_speed_m_s`.
 
 use rapier3d::prelude::*;
 
@@ -39,7 +40,10 @@ pub struct SolverParams {
     /// Contact damping ratio.
     pub contact_damping_ratio: f64,
     /// Fastest the solver pushes penetrating bodies apart, m/s (Rapier's default, scaled by a 1 mm
-    /// length unit, is 3 mm/s).
+    /// length unit, is 3 mm/s). The joints of a chain pulled tight drag its segments into the strand
+    /// they press on a little every step; corrected too slowly, the overlap grows until one strand is
+    /// through: a strand wound twice round another and pulled apart passed through at 0.7 N with
+    /// 0.1 m/s, at 5.9 N with 1 m/s (`cargo bench -p knotlab-bench --bench thread_cinch`).
     pub max_corrective_speed_m_s: f64,
     /// A body faster than this is reported as exploding, m/s.
     pub max_speed_m_s: f64,
@@ -55,7 +59,7 @@ impl Default for SolverParams {
             prediction_distance_m: 1e-3,
             contact_frequency_hz: 3000.0,
             contact_damping_ratio: 1.0,
-            max_corrective_speed_m_s: 0.1,
+            max_corrective_speed_m_s: 1.0,
             max_speed_m_s: 20.0,
         }
     }
