@@ -40,6 +40,38 @@ fn bad_seed_ranges_are_refused() {
 }
 
 #[test]
+fn snapshots_zoom_to_the_half_width_asked_for() {
+    let dir = std::env::temp_dir().join(format!("knotlab-demo-zoom-{}", std::process::id()));
+    let mut pictures = Vec::new();
+    for width in ["0.08", "0.02"] {
+        let out = dir.join(width);
+        let (code, stdout, err) = knotlab(&[
+            "demo",
+            "--seed",
+            "0",
+            "--until",
+            "0.3",
+            "--snapshots",
+            "0.2",
+            "--snapshot-half-width",
+            width,
+            "--out",
+            out.to_str().unwrap(),
+        ]);
+        assert_eq!(code, 0, "{stdout}{err}");
+        pictures.push(std::fs::read(out.join("snapshot-0.200s.png")).expect("the snapshot was drawn"));
+    }
+    assert_ne!(pictures[0], pictures[1], "a narrower view draws a different picture");
+    for bad in ["0", "-0.1", "2", "wide"] {
+        let (code, out, err) =
+            knotlab(&["demo", "--seed", "0", &format!("--snapshot-half-width={bad}"), "--out", "/tmp/never"]);
+        assert_eq!(code, 2, "{bad}: {out}");
+        assert!(err.contains("--snapshot-half-width"), "{bad}: {err}");
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
 fn the_learner_accepts_the_canonical_demonstration_by_default() {
     let dir = std::env::temp_dir().join(format!("knotlab-canonical-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
