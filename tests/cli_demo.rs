@@ -21,6 +21,12 @@ fn demo_json_reports_each_run_and_writes_loadable_demonstrations() {
     assert_eq!(run["fault"], serde_json::Value::Null, "{run}");
     // The knot where the pulls left it, taken as the left let go of the tail.
     assert!(run["knot_at_release"]["knot"].is_string(), "{run}");
+    // The first self-crossings, listed as many as counted up to ten, each with its time and segments.
+    let listed = run["first_self_crossings"].as_array().expect("a list");
+    assert_eq!(listed.len() as u64, run["thread_self_crossings"].as_u64().unwrap().min(10), "{run}");
+    for c in listed {
+        assert!(c["time_s"].as_f64().is_some_and(|t| t >= 0.0) && c["segments"].is_array(), "{c}");
+    }
     assert!(run["samples"].as_u64().unwrap() > 3000, "three instruments at 100 Hz for 10 s or more: {run}");
     // The learner reads what the expert wrote (and accepts or rejects it with its reason).
     let demo = dir.join("seed-5");

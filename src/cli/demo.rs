@@ -77,6 +77,9 @@ struct RunLine {
     gap_before_m: f64,
     gap_after_m: Option<f64>,
     thread_self_crossings: usize,
+    /// The first few of them: when (s of the scene's simulated time) and which two segments (needle
+    /// end counting from 0), to find the move that forced the thread through itself.
+    first_self_crossings: Vec<knotlab_sim::thread_watch::SelfCrossing>,
     fault: Option<String>,
     simulated_s: f64,
     wall_s: f64,
@@ -95,6 +98,9 @@ struct Report {
     results: Vec<RunLine>,
 }
 
+/// How many of a run's self-crossings its JSON line lists.
+const FIRST_CROSSINGS: usize = 10;
+
 fn line(seed: u64, run: &DemoRun, dir: &Path) -> RunLine {
     let e = &run.evaluation;
     RunLine {
@@ -110,6 +116,7 @@ fn line(seed: u64, run: &DemoRun, dir: &Path) -> RunLine {
         gap_before_m: e.gap_before_m,
         gap_after_m: e.gap_after_m,
         thread_self_crossings: e.thread_self_crossings,
+        first_self_crossings: run.self_crossings.iter().take(FIRST_CROSSINGS).copied().collect(),
         fault: run.fault.clone(),
         simulated_s: run.simulated_s,
         wall_s: run.wall_s,

@@ -17,6 +17,7 @@ use knotlab_sim::evaluate::{KnotEvaluation, KnotNow, evaluate_knot, knot_now};
 use knotlab_sim::knot::{FailureMode, Verdict};
 use knotlab_sim::shapes::{SceneShapes, scene_shapes};
 use knotlab_sim::snapshot::{View, render_png};
+use knotlab_sim::thread_watch::SelfCrossing;
 use knotlab_sim::world::SimWorld;
 use nalgebra::UnitQuaternion;
 
@@ -69,6 +70,8 @@ pub struct DemoRun {
     pub wall_s: f64,
     /// PNG pictures at the asked times.
     pub snapshots: Vec<(f64, Vec<u8>)>,
+    /// Every time the thread passed through itself, in order (the evaluation counts them).
+    pub self_crossings: Vec<SelfCrossing>,
     /// The scene's grasp events (grasped, released, slipped) in order, as text.
     pub events: Vec<String>,
     /// The scene at the end, after the knot's holding test.
@@ -204,6 +207,7 @@ pub fn record_demonstration(
         simulated_s,
         wall_s,
         snapshots,
+        self_crossings: world.thread_watch.crossings.clone(),
         events,
         final_scene,
     })
