@@ -5,8 +5,9 @@
 //! ties at any stitch. The sequence is the canonical task of `scenarios/patterns/knot_tying.toml`:
 //! L1 to the winding point (the right takes up the long end meanwhile), the left's jaws close; R2 winds
 //! the long end twice around them; the assist presents the tail in front of the left's jaws, which
-//! open; L3 to the tail, close; the assist lets go and retreats (A1); L4 and R3 pull the ends up over
-//! the wound until the set force, then let go.
+//! open; L3 to the tail, close; the assist lets go and retreats (A1); L4 and R3 run the knot down onto
+//! the wound (the tail up and out, the right's jaws low over the other flap), then pull the ends apart
+//! until the set force, and let go.
 
 use knotlab_hw::rig::ArmName;
 use knotlab_hw::skill::{ForceAction, ForceEvent, Skill};
@@ -65,11 +66,20 @@ pub struct TieGeometry {
     /// While the right winds, the assist moves the tail this fraction of the way to the entry
     /// point, giving thread.
     pub tail_give_fraction: f64,
-    /// The left pulls the tail towards here: up, over the wound. Pulled up, both strands draw their
-    /// flaps towards the knot; pulled out sideways, each end drags its own flap outward and the wound
-    /// stays open.
+    /// First the knot is run down onto the wound: the left draws the tail up and out over the tail's
+    /// flap to here, while the right takes its jaws, and the knot just under them, down to
+    /// `right_run_down_to_m`. With both ends pulled from above (session 24: left (0, 0.01, 0.045),
+    /// right (0, -0.015, 0.045)) the knot was cinched about 8 mm under the jaws, 28-38 mm up with
+    /// 122-152 mm of thread between it and the stitch; the knot is there because the right's jaws,
+    /// which hold the needle, are only a few centimetres of thread from the coils.
+    pub left_run_down_to_m: [f64; 3],
+    /// Where the right's jaws go meanwhile: low over the long end's flap.
+    pub right_run_down_to_m: [f64; 3],
+    /// How long the run-down takes, s.
+    pub run_down_s: f64,
+    /// Then the left pulls the tail towards here, further up and out over its flap...
     pub left_pull_to_m: [f64; 3],
-    /// The right pulls the long end towards here.
+    /// ... while the right pulls the long end low and out over the other flap, until the set force.
     pub right_pull_to_m: [f64; 3],
     /// Where the assist retreats to.
     pub assist_retreat_m: [f64; 3],
@@ -112,14 +122,17 @@ impl Default for TieGeometry {
             tail_via_m: Vec::new(),
             assist_jaw_direction: None,
             tail_give_fraction: 0.0,
-            left_pull_to_m: [0.0, 0.01, 0.045],
-            right_pull_to_m: [0.0, -0.015, 0.045],
+            left_run_down_to_m: [0.0, 0.04, 0.05],
+            right_run_down_to_m: [0.0, -0.012, 0.012],
+            run_down_s: 2.5,
+            left_pull_to_m: [0.0, 0.05, 0.055],
+            right_pull_to_m: [0.0, -0.035, 0.01],
             assist_retreat_m: [0.04, 0.04, 0.04],
             speed_fraction: 0.3,
             draw_back_m: 0.032,
             right_follows_draw: 0.0,
             draw_relax: 0.4,
-            pull_force_n: 1.9,
+            pull_force_n: 1.5,
         }
     }
 }
@@ -342,8 +355,8 @@ pub fn plan_instrument_tie(world: &SimWorld, geometry: &TieGeometry, variation: 
     assist.go(Path::To(at(geometry.assist_retreat_m)), d(1.2));
 
     // L4 and R3. First the left draws the tail back out of its coils, along its jaws, while the right
-    // follows a little so that the coils stay loose and slide off the jaws onto the tail; then both
-    // pull up over the wound, a little apart, until the set force, and let go.
+    // follows a little so that the coils stay loose and slide off the jaws onto the tail; then both run
+    // the knot down onto the wound and pull the ends apart until the set force, and let go.
     let draw_s = assist.time_s().max(grasped_s + d(0.4));
     left.wait_until(draw_s);
     right.wait_until(draw_s);
@@ -355,7 +368,14 @@ pub fn plan_instrument_tie(world: &SimWorld, geometry: &TieGeometry, variation: 
     let relaxed = left.jaw_direction().lerp(&shaft, geometry.draw_relax);
     left.go_pointing(Path::To(drawn_to), d(1.2), relaxed);
     right.go(Path::To(right.position_m() + draw * geometry.right_follows_draw), left.time_s() - first_s);
-    let pull_s = left.time_s() + pause[4];
+    // The run-down: the knot onto the wound.
+    let run_down_s = left.time_s() + pause[4];
+    for (track, to) in [(&mut left, geometry.left_run_down_to_m), (&mut right, geometry.right_run_down_to_m)]
+    {
+        track.wait_until(run_down_s);
+        track.go(Path::To(at(to)), d(geometry.run_down_s));
+    }
+    let pull_s = left.time_s().max(right.time_s()) + 0.3;
     for (track, to) in [(&mut left, geometry.left_pull_to_m), (&mut right, geometry.right_pull_to_m)] {
         track.wait_until(pull_s);
         let from_s = pull_s;
