@@ -94,6 +94,9 @@ fn the_same_seed_gives_the_same_summary_with_one_or_two_jobs() {
     // Each line counts the thread's passes through itself.
     for l in lines(&a) {
         assert!(l["thread_self_crossings"].as_u64().is_some(), "{l}");
+        // ... and names the first, when there is one.
+        let first = &l["first_self_crossing"];
+        assert_eq!(first.is_null(), l["thread_self_crossings"] == 0, "{l}");
     }
     std::fs::remove_dir_all(&a).ok();
     std::fs::remove_dir_all(&b).ok();

@@ -29,6 +29,7 @@ fn a_short_trial_reports_its_verdict_for_every_method() {
         // At the nominal stitch nothing has touched the thread 1.5 s in: no pass is counted (a drawn
         // Monte Carlo scene has shown one this early, so this holds for the nominal scene only).
         assert_eq!(r["thread_self_crossings"].as_u64(), Some(0), "{r}");
+        assert_eq!(r["first_self_crossings"].as_array().map(Vec::len), Some(0), "{r}");
         assert_eq!(r["execution"]["status"], "simulated");
         assert_eq!(r["preview"]["passed"], false);
     }

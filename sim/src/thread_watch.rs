@@ -12,7 +12,7 @@ use crate::thread::Thread;
 use crate::tunnelling::TunnellingMonitor;
 
 /// One strand passing through another.
-#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct SelfCrossing {
     /// When, s of simulated time.
     pub time_s: f64,

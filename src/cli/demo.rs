@@ -98,9 +98,6 @@ struct Report {
     results: Vec<RunLine>,
 }
 
-/// How many of a run's self-crossings its JSON line lists.
-const FIRST_CROSSINGS: usize = 10;
-
 fn line(seed: u64, run: &DemoRun, dir: &Path) -> RunLine {
     let e = &run.evaluation;
     RunLine {
@@ -116,7 +113,7 @@ fn line(seed: u64, run: &DemoRun, dir: &Path) -> RunLine {
         gap_before_m: e.gap_before_m,
         gap_after_m: e.gap_after_m,
         thread_self_crossings: e.thread_self_crossings,
-        first_self_crossings: run.self_crossings.iter().take(FIRST_CROSSINGS).copied().collect(),
+        first_self_crossings: run.first_self_crossings().to_vec(),
         fault: run.fault.clone(),
         simulated_s: run.simulated_s,
         wall_s: run.wall_s,

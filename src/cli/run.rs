@@ -88,6 +88,8 @@ struct Report {
     /// How often the thread passed through itself during the trial (a solver failure: a knot tied
     /// with any is not a real thread's); not part of the verdict.
     thread_self_crossings: usize,
+    /// The first ten of them: when (s of the scene's simulated time) and which two segments.
+    first_self_crossings: Vec<knotlab_sim::thread_watch::SelfCrossing>,
     method: &'static str,
     seed: u64,
     scene: String,
@@ -247,6 +249,7 @@ pub fn run(args: RunArgs, out: &mut Output) -> anyhow::Result<ExitCode> {
         knot_stitch_distance_m: e.stitch_distance_m,
         knot_loop_outside_m: e.loop_outside_m,
         thread_self_crossings: e.thread_self_crossings,
+        first_self_crossings: trial.run.first_self_crossings().to_vec(),
         method: args.method.as_str(),
         seed: args.seed,
         scene: scene_name,

@@ -107,6 +107,10 @@ pub struct TrialLine {
     /// when the trial could not be set up, or in lines written before it was counted.
     #[serde(default)]
     pub thread_self_crossings: Option<usize>,
+    /// The first of them (when, s of simulated time, and which two segments), to find the move that
+    /// forced it; none when there was none, or in lines written before it was recorded.
+    #[serde(default)]
+    pub first_self_crossing: Option<knotlab_sim::thread_watch::SelfCrossing>,
     /// Simulated time, s.
     pub sim_seconds: f64,
     /// Wall time, s (not in the summary).
@@ -180,6 +184,7 @@ fn run_one(options: &McOptions, trial: u64, method: Method, runner: &TrialRunner
                 knot: e.knot_before.map(|k| k.name().to_owned()),
                 wound_gap_m: Some(e.gap_after_m.unwrap_or(e.gap_before_m)),
                 thread_self_crossings: Some(e.thread_self_crossings),
+                first_self_crossing: t.run.self_crossings.first().copied(),
                 sim_seconds: t.run.simulated_s,
                 wall_seconds: t.run.wall_s,
                 error: t.run.fault.clone(),
@@ -194,6 +199,7 @@ fn run_one(options: &McOptions, trial: u64, method: Method, runner: &TrialRunner
             knot: None,
             wound_gap_m: None,
             thread_self_crossings: None,
+            first_self_crossing: None,
             sim_seconds: 0.0,
             wall_seconds: 0.0,
             error: Some(format!("{error:#}")),
@@ -328,7 +334,21 @@ mod tests {
         let lines = read_results(&out).expect("an old line reads");
         assert_eq!(lines.len(), 1);
         assert_eq!(lines[0].thread_self_crossings, None);
+        assert_eq!(lines[0].first_self_crossing, None);
         assert_eq!(lines[0].verdict, "no_knot");
         std::fs::remove_dir_all(&out).ok();
+    }
+
+    #[test]
+    fn a_lines_first_self_crossing_reads_back_as_written() {
+        let crossing = knotlab_sim::thread_watch::SelfCrossing { time_s: 21.25, segments: (16, 35) };
+        let line = TrialLine {
+            thread_self_crossings: Some(2),
+            first_self_crossing: Some(crossing),
+            ..crate::report::test_line("fluid", serde_json::Value::Null, "knot_slipped")
+        };
+        let text = serde_json::to_string(&line).unwrap();
+        assert!(text.contains(r#""first_self_crossing":{"time_s":21.25,"segments":[16,35]}"#), "{text}");
+        assert_eq!(serde_json::from_str::<TrialLine>(&text).unwrap(), line);
     }
 }

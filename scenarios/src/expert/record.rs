@@ -53,6 +53,9 @@ fn view(world: &SimWorld, options: &RecordOptions) -> View {
     view
 }
 
+/// How many of a run's self-crossings its reports list ([`DemoRun::first_self_crossings`]).
+pub const LISTED_SELF_CROSSINGS: usize = 10;
+
 /// One recorded run.
 pub struct DemoRun {
     /// What the devices read.
@@ -76,6 +79,14 @@ pub struct DemoRun {
     pub events: Vec<String>,
     /// The scene at the end, after the knot's holding test.
     pub final_scene: SceneShapes,
+}
+
+impl DemoRun {
+    /// The first [`LISTED_SELF_CROSSINGS`] times the thread passed through itself: when and which two
+    /// segments, to find the move that forced them.
+    pub fn first_self_crossings(&self) -> &[SelfCrossing] {
+        &self.self_crossings[..self.self_crossings.len().min(LISTED_SELF_CROSSINGS)]
+    }
 }
 
 fn grasp_state(world: &SimWorld, arm: ArmName) -> GraspState {
