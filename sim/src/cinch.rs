@@ -52,6 +52,12 @@ pub struct CinchOutcome {
     pub turns_start: f64,
     /// ... and at the end.
     pub turns_end: f64,
+    /// How tight the turns lie round A at the end: the median distance of B's joints within 3 mm of
+    /// A's axis from it, m (the touching distance is twice the radius; `None`: no joint that close).
+    pub wrap_radius_m: Option<f64>,
+    /// The length of B within 3 mm of A's axis at the end, m (two tight turns: about 4 pi times the
+    /// touching distance).
+    pub wrap_length_m: f64,
     /// Steps taken.
     pub steps: usize,
 }
@@ -81,6 +87,27 @@ pub fn winding_turns(a: &[Vector3<f64>], b: &[Vector3<f64>]) -> f64 {
         })
         .sum();
     total / TAU
+}
+
+/// How close to A a joint of B must be to count as part of the turns, m.
+const WRAP_ZONE_M: f64 = 0.003;
+
+/// The median distance from `a` of `b`'s points within `zone_m` of it, and the length of `b` between
+/// such points.
+fn wrap_tightness(a: &[Vector3<f64>], b: &[Vector3<f64>], zone_m: f64) -> (Option<f64>, f64) {
+    let distance = |p: &Vector3<f64>| {
+        a.windows(2).map(|w| segment_distance(&w[0], &w[1], p, p)).fold(f64::INFINITY, f64::min)
+    };
+    let d: Vec<f64> = b.iter().map(distance).collect();
+    let length_m = b
+        .windows(2)
+        .zip(d.windows(2))
+        .filter(|(_, dd)| dd[0] < zone_m && dd[1] < zone_m)
+        .map(|(w, _)| (w[1] - w[0]).norm())
+        .sum();
+    let mut near: Vec<f64> = d.into_iter().filter(|&x| x < zone_m).collect();
+    near.sort_by(f64::total_cmp);
+    (near.get(near.len() / 2).copied(), length_m)
 }
 
 /// B's path: a tail along -z into two turns round the x axis, a tail along +z out of them.
@@ -166,6 +193,8 @@ pub fn run_cinch(
         deepest_overlap: 0.0,
         turns_start: winding_turns(&a.centreline(&physics), &b.centreline(&physics)),
         turns_end: 0.0,
+        wrap_radius_m: None,
+        wrap_length_m: 0.0,
         steps,
     };
     for step in 0..steps {
@@ -196,13 +225,34 @@ pub fn run_cinch(
         }
     }
     outcome.passes = monitor.events;
-    outcome.turns_end = winding_turns(&a.centreline(&physics), &b.centreline(&physics));
+    let (a_line, b_line) = (a.centreline(&physics), b.centreline(&physics));
+    outcome.turns_end = winding_turns(&a_line, &b_line);
+    (outcome.wrap_radius_m, outcome.wrap_length_m) = wrap_tightness(&a_line, &b_line, WRAP_ZONE_M);
     Ok(outcome)
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_tight_helix_lies_at_its_radius_with_its_length_in_the_zone() {
+        let axis = [Vector3::new(-0.1, 0.0, 0.0), Vector3::new(0.1, 0.0, 0.0)];
+        let r = 0.001;
+        let helix: Vec<_> = (0..=400)
+            .map(|k| {
+                let t = TAU * 2.0 * k as f64 / 400.0;
+                Vector3::new(0.001 * t, r * t.cos(), r * t.sin())
+            })
+            .collect();
+        let (radius, length) = wrap_tightness(&axis, &helix, WRAP_ZONE_M);
+        assert!((radius.unwrap() - r).abs() < 1e-9);
+        let expected: f64 = helix.windows(2).map(|w| (w[1] - w[0]).norm()).sum();
+        assert!((length - expected).abs() < 1e-9, "{length} {expected}");
+        // Far away: nothing in the zone.
+        let far: Vec<_> = helix.iter().map(|p| p + Vector3::new(0.0, 0.01, 0.0)).collect();
+        assert_eq!(wrap_tightness(&axis, &far, WRAP_ZONE_M), (None, 0.0));
+    }
 
     #[test]
     fn a_helix_winds_its_turns_round_its_axis() {
