@@ -3,10 +3,11 @@
 //! A strand is wound twice round another (both ends held), as in a surgeon's throw, and its two ends
 //! are pulled apart with a tension rising from 0 to 10 N over 5 s (`knotlab_sim::cinch`). Printed per
 //! setting (the shipped scene's, then one change at a time): the tension at the first pass the
-//! tunnelling monitor saw, and at which the winding had lost half a turn (or "held"), the passes counted, the deepest overlap of two segments' axes before the first pass as a
-//! fraction of the touching distance, the winding at the start and the end (a pass takes a turn off),
-//! and milliseconds per step on one core. A second table pulls the same strand to 2 N and prints how
-//! tight its turns lie, by segment length: at the shipped 3.1 mm the turns' joints lie 1.65 mm from the
+//! tunnelling monitor saw, and at which the winding had lost half a turn (or "held"), the passes
+//! counted, the deepest overlap of two segments' axes before the first pass as a fraction of the
+//! touching distance, the winding at the start and the end (a pass takes a turn off), and
+//! milliseconds per step on one core. A second table pulls the same strand to 2 N and prints how tight
+//! its turns lie, by segment length: at the shipped 3.1 mm the turns' joints lie 1.65 mm from the
 //! other strand's axis (touching: 0.8 mm), at 1.56 mm 1.05 mm, at 0.78 mm 0.82 mm, at 4 and 18 times
 //! the cost of a step.
 //!
