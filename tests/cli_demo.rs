@@ -78,6 +78,51 @@ fn snapshots_zoom_to_the_half_width_asked_for() {
 }
 
 #[test]
+fn the_experts_geometry_comes_from_a_file_and_a_bad_one_is_refused_naming_its_key() {
+    let dir = std::env::temp_dir().join(format!("knotlab-demo-expert-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    // A winding point moved 1 cm towards the tail's flap: the left goes elsewhere in the first second.
+    let moved = dir.join("moved.toml");
+    std::fs::write(&moved, "winding_point_m = [0.0, -0.01, 0.045]\n").unwrap();
+    let left_at_1s = |expert: Option<&std::path::Path>| {
+        let out = dir.join(if expert.is_some() { "moved" } else { "shipped" });
+        let mut args =
+            vec!["demo", "--seed", "0", "--until", "1.0", "--json", "--out", out.to_str().unwrap()];
+        if let Some(e) = expert {
+            args.extend(["--expert", e.to_str().unwrap()]);
+        }
+        let (code, v) = json(&args);
+        assert_eq!(code, 0, "{v}");
+        assert_eq!(v["expert"].is_null(), expert.is_none(), "{v}");
+        let left = std::fs::read_to_string(out.join("left.csv")).unwrap();
+        left.lines().nth(101).expect("a sample at 1 s").to_owned()
+    };
+    assert_ne!(left_at_1s(None), left_at_1s(Some(&moved)), "the file moved the plan");
+    // The shipped file is the shipped plan: the same recording as no file.
+    let shipped = std::path::Path::new("scenarios/experts/instrument-tie.toml");
+    let (code, v) = json(&[
+        "demo",
+        "--seed",
+        "0",
+        "--until",
+        "0.2",
+        "--json",
+        "--expert",
+        shipped.to_str().unwrap(),
+        "--out",
+        dir.join("s").to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{v}");
+    let bad = dir.join("bad.toml");
+    std::fs::write(&bad, "winding_turns = 2.0\npull_force = 1.0\n").unwrap();
+    let (code, out, err) =
+        knotlab(&["demo", "--seed", "0", "--expert", bad.to_str().unwrap(), "--out", "/tmp/never"]);
+    assert_eq!(code, 1, "{out}");
+    assert!(err.contains("bad.toml:2: pull_force"), "{err}");
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
 fn the_learner_accepts_the_canonical_demonstration_by_default() {
     let dir = std::env::temp_dir().join(format!("knotlab-canonical-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();

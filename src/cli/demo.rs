@@ -10,7 +10,7 @@ use clap::Args;
 use serde::Serialize;
 
 use knotlab_learner::demonstration::write_demonstration;
-use knotlab_scenarios::expert::{DemoRun, RecordOptions, demonstrate};
+use knotlab_scenarios::expert::{DemoRun, RecordOptions, TieGeometry, demonstrate_with, load_tie_geometry};
 use knotlab_sim::scene::load_scene;
 
 use super::numbers::{Numbers, parse_list};
@@ -34,6 +34,10 @@ pub struct DemoArgs {
     /// Perform like a machine: nominal speed, fixed pauses, no tremor.
     #[arg(long)]
     no_variation: bool,
+    /// Where the expert puts things, from this TOML file (keys left out keep the shipped plan's; see
+    /// scenarios/experts/instrument-tie.toml).
+    #[arg(long, value_name = "FILE")]
+    expert: Option<PathBuf>,
     /// Draw the scene into PNG files OUT/snapshot-T.png at these skill times, s (comma-separated).
     #[arg(long, value_parser = parse_list)]
     snapshots: Option<Numbers>,
@@ -91,6 +95,8 @@ struct RunLine {
 #[derive(Serialize)]
 struct Report {
     scene: String,
+    /// The expert's geometry file, if one was given.
+    expert: Option<String>,
     human_variation: bool,
     runs: usize,
     successes: usize,
@@ -147,12 +153,26 @@ pub fn run(args: DemoArgs, out: &mut Output) -> anyhow::Result<ExitCode> {
         snapshot_half_width_m: args.snapshot_half_width,
         stop_after_s: args.until,
     };
+    let geometry = match &args.expert {
+        Some(path) => load_tie_geometry(path)?,
+        None => TieGeometry::default(),
+    };
     let mut results = Vec::new();
     for seed in first..end {
         let dir = if several { args.out.join(format!("seed-{seed}")) } else { args.out.clone() };
         let run = rerun_log::record_trial(
             recording.as_ref(),
-            |observer| demonstrate(scene.clone(), &scene_name, seed, !args.no_variation, &options, observer),
+            |observer| {
+                demonstrate_with(
+                    scene.clone(),
+                    &scene_name,
+                    seed,
+                    !args.no_variation,
+                    &geometry,
+                    &options,
+                    observer,
+                )
+            },
             |run| run,
         )?;
         write_demonstration(&dir, &run.demonstration)
@@ -181,6 +201,7 @@ pub fn run(args: DemoArgs, out: &mut Output) -> anyhow::Result<ExitCode> {
     let successes = results.iter().filter(|r| r.success).count();
     let report = Report {
         scene: scene_name,
+        expert: args.expert.as_ref().map(|p| p.display().to_string()),
         human_variation: !args.no_variation,
         runs: results.len(),
         successes,

@@ -4,9 +4,11 @@
 //! did to the thread.
 
 pub mod diagnose;
+pub mod geometry_file;
 pub mod motion;
 pub mod plan;
 pub mod record;
 
+pub use geometry_file::{GeometryFileError, load_tie_geometry, parse_tie_geometry};
 pub use plan::{TieGeometry, Variation, plan_instrument_tie};
-pub use record::{DemoRun, ExpertError, RecordOptions, demonstrate, record_demonstration};
+pub use record::{DemoRun, ExpertError, RecordOptions, demonstrate, demonstrate_with, record_demonstration};

@@ -20,7 +20,8 @@ use rand_chacha::ChaCha8Rng;
 use super::motion::{Follow, Path, TrackBuilder, Tremor};
 
 /// Where the expert puts things, in the stitch frame (m), and how hard it pulls.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, serde::Deserialize, serde::Serialize)]
+#[serde(default, deny_unknown_fields)]
 pub struct TieGeometry {
     /// The left's jaw centre while the long end is wound around its jaws.
     pub winding_point_m: [f64; 3],
@@ -138,7 +139,8 @@ impl Default for TieGeometry {
 }
 
 /// How the left goes to the tail with the coils on its jaws.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, serde::Deserialize, serde::Serialize)]
+#[serde(deny_unknown_fields)]
 pub struct LeftFetch {
     /// Where on the tail the left closes: this fraction of the way from the entry point to the
     /// assist's jaws.

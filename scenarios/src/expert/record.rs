@@ -270,6 +270,19 @@ pub fn demonstrate(
     options: &RecordOptions,
     observer: Option<&mut CycleObserver<'_>>,
 ) -> Result<DemoRun, ExpertError> {
+    demonstrate_with(scene, scene_name, seed, human, &super::TieGeometry::default(), options, observer)
+}
+
+/// [`demonstrate`] with the expert placing things by `geometry` instead of the shipped plan's.
+pub fn demonstrate_with(
+    scene: knotlab_sim::scene::SceneConfig,
+    scene_name: &str,
+    seed: u64,
+    human: bool,
+    geometry: &super::TieGeometry,
+    options: &RecordOptions,
+    observer: Option<&mut CycleObserver<'_>>,
+) -> Result<DemoRun, ExpertError> {
     let rig = Rig::shipped().map_err(|e| ExpertError::Rig(e.to_string()))?;
     let config = knotlab_hw::rig_config::parse_rig_config(SIM_RIG_TOML, "scenarios/rigs/sim.toml")
         .map_err(|e| ExpertError::Rig(e.to_string()))?;
@@ -277,7 +290,7 @@ pub fn demonstrate(
         .map_err(|reason| ExpertError::World { scene: scene_name.to_owned(), reason })?;
     world.reseed(seed);
     let variation = if human { super::Variation::human(seed) } else { super::Variation::none() };
-    let skill = super::plan_instrument_tie(&world, &super::TieGeometry::default(), &variation);
+    let skill = super::plan_instrument_tie(&world, geometry, &variation);
     let rate_hz = 1.0 / (world.config.solver.dt_s * options.cycles_per_sample.max(1) as f64);
     let metadata = expert_metadata(&world, scene_name, Some(seed), rate_hz);
     Ok(record_demonstration(world, &rig, &config, skill, metadata, options, observer)?)

@@ -1,0 +1,202 @@
+//! The scripted expert's tie geometry from a TOML file (`knotlab demo --expert FILE`), so that a
+//! researcher can move the winding point or the pulls without touching code. Only the keys given
+//! change the shipped plan ([`TieGeometry::default`]); an unknown key, a wrong type or a value out of
+//! range is refused, naming the file, the key (and line) and why. `scenarios/experts/instrument-tie.toml`
+//! lists every key with its shipped value.
+
+use std::path::Path;
+
+use super::plan::TieGeometry;
+
+/// Why a tie geometry file was refused.
+#[derive(Debug, thiserror::Error)]
+pub enum GeometryFileError {
+    /// The file could not be read.
+    #[error("{file}: cannot read: {error}")]
+    Read {
+        /// The file.
+        file: String,
+        /// The I/O error.
+        error: std::io::Error,
+    },
+    /// Not valid TOML, a key that does not belong, or a value of the wrong type.
+    #[error("{file}:{line}: {key}: {reason}")]
+    Schema {
+        /// The file.
+        file: String,
+        /// 1-based line of the offending text (0 when unknown).
+        line: usize,
+        /// The key's path, e.g. `left_fetches.along_tail`.
+        key: String,
+        /// What is wrong.
+        reason: String,
+    },
+    /// Values out of range; every one is listed.
+    #[error("{file}: {}", problems.iter().map(|(k, r)| format!("{k}: {r}")).collect::<Vec<_>>().join("; "))]
+    Range {
+        /// The file.
+        file: String,
+        /// (key, reason) for every value out of range.
+        problems: Vec<(String, String)>,
+    },
+}
+
+/// Parses a tie geometry; `file` names it in errors.
+pub fn parse_tie_geometry(text: &str, file: &str) -> Result<TieGeometry, GeometryFileError> {
+    let geometry: TieGeometry = knotlab_hw::toml_file::deserialize(text).map_err(|p| {
+        GeometryFileError::Schema { file: file.to_owned(), line: p.line, key: p.key, reason: p.reason }
+    })?;
+    let problems = range_problems(&geometry);
+    if problems.is_empty() {
+        Ok(geometry)
+    } else {
+        Err(GeometryFileError::Range { file: file.to_owned(), problems })
+    }
+}
+
+/// Reads and parses a tie geometry file.
+pub fn load_tie_geometry(path: &Path) -> Result<TieGeometry, GeometryFileError> {
+    let file = path.display().to_string();
+    let text = std::fs::read_to_string(path)
+        .map_err(|error| GeometryFileError::Read { file: file.clone(), error })?;
+    parse_tie_geometry(&text, &file)
+}
+
+/// Collects every value out of its range.
+struct Check(Vec<(String, String)>);
+
+impl Check {
+    fn range(&mut self, key: &str, value: f64, lo: f64, hi: f64) {
+        if !(value.is_finite() && value >= lo && value <= hi) {
+            self.0.push((key.to_owned(), format!("must be within {lo}..{hi}, got {value}")));
+        }
+    }
+
+    /// A point of the stitch frame, within 0.2 m of the stitch.
+    fn point(&mut self, key: &str, p: &[f64; 3]) {
+        for (axis, v) in ["x", "y", "z"].iter().zip(p) {
+            self.range(&format!("{key}.{axis}"), *v, -0.2, 0.2);
+        }
+    }
+
+    /// A direction: finite, not zero.
+    fn direction(&mut self, key: &str, d: &[f64; 3]) {
+        let norm = d.iter().map(|v| v * v).sum::<f64>().sqrt();
+        if !(norm.is_finite() && norm > 1e-9) {
+            self.0.push((key.to_owned(), format!("must be a direction (finite, not zero), got {d:?}")));
+        }
+    }
+}
+
+fn range_problems(g: &TieGeometry) -> Vec<(String, String)> {
+    let mut c = Check(Vec::new());
+    for (key, p) in [
+        ("winding_point_m", &g.winding_point_m),
+        ("left_run_down_to_m", &g.left_run_down_to_m),
+        ("right_run_down_to_m", &g.right_run_down_to_m),
+        ("left_pull_to_m", &g.left_pull_to_m),
+        ("right_pull_to_m", &g.right_pull_to_m),
+        ("assist_retreat_m", &g.assist_retreat_m),
+    ] {
+        c.point(key, p);
+    }
+    for (k, p) in g.tail_via_m.iter().enumerate() {
+        c.point(&format!("tail_via_m[{k}]"), p);
+    }
+    c.direction("winding_towards", &g.winding_towards);
+    if let Some(d) = &g.left_jaw_direction {
+        c.direction("left_jaw_direction", d);
+    }
+    if let Some(d) = &g.assist_jaw_direction {
+        c.direction("assist_jaw_direction", d);
+    }
+    for (key, v) in [
+        ("winding_behind_m", g.winding_behind_m),
+        ("tail_ahead_m", g.tail_ahead_m),
+        ("loosen_m", g.loosen_m),
+        ("coils_back_m", g.coils_back_m),
+        ("tail_tension_m", g.tail_tension_m),
+        ("tail_beyond_m", g.tail_beyond_m),
+        ("draw_back_m", g.draw_back_m),
+    ] {
+        c.range(key, v, -0.1, 0.1);
+    }
+    c.range("winding_radius_m", g.winding_radius_m, 1e-3, 0.1);
+    c.range("winding_lead_rad", g.winding_lead_rad, -std::f64::consts::TAU, std::f64::consts::TAU);
+    c.range("winding_s", g.winding_s, 0.1, 60.0);
+    c.range("run_down_s", g.run_down_s, 0.1, 60.0);
+    c.range("winding_turns", g.winding_turns, 0.0, 5.0);
+    c.range("take_tail_jaw_rad", g.take_tail_jaw_rad, 0.0, 1.6);
+    c.range("speed_fraction", g.speed_fraction, 0.01, 1.0);
+    c.range("pull_force_n", g.pull_force_n, 0.01, 10.0);
+    for (key, v) in [
+        ("tail_give_fraction", g.tail_give_fraction),
+        ("right_follows_draw", g.right_follows_draw),
+        ("draw_relax", g.draw_relax),
+    ] {
+        c.range(key, v, 0.0, 1.0);
+    }
+    c.range("tail_swing_lean.x", g.tail_swing_lean[0], -10.0, 10.0);
+    c.range("tail_swing_lean.y", g.tail_swing_lean[1], -10.0, 10.0);
+    c.range("tail_swing_lean.z", g.tail_swing_lean[2], -10.0, 10.0);
+    if let Some(f) = &g.left_fetches {
+        c.range("left_fetches.along_tail", f.along_tail, 0.0, 1.0);
+        c.direction("left_fetches.jaw_direction", &f.jaw_direction);
+        c.range("left_fetches.approach_m", f.approach_m, 0.0, 0.1);
+        c.range("left_fetches.stop_short_m", f.stop_short_m, -0.05, 0.05);
+    }
+    c.0
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_shipped_file_is_the_shipped_plan() {
+        let g = parse_tie_geometry(include_str!("../../experts/instrument-tie.toml"), "instrument-tie.toml")
+            .expect("the shipped file parses");
+        assert_eq!(g, TieGeometry::default());
+    }
+
+    #[test]
+    fn only_the_keys_given_change() {
+        let g = parse_tie_geometry("pull_force_n = 2.5\n[left_fetches]\nalong_tail = 0.4\njaw_direction = [0.0, 0.0, -1.0]\napproach_m = 0.01\nstop_short_m = 0.0\n", "x.toml").unwrap();
+        let shipped = TieGeometry::default();
+        assert_eq!(g.pull_force_n, 2.5);
+        assert_eq!(g.left_fetches.as_ref().map(|f| f.along_tail), Some(0.4));
+        assert_eq!(
+            TieGeometry {
+                pull_force_n: shipped.pull_force_n,
+                left_fetches: shipped.left_fetches.clone(),
+                ..g
+            },
+            shipped
+        );
+    }
+
+    #[test]
+    fn bad_files_name_the_key_and_why() {
+        let schema = |text: &str| match parse_tie_geometry(text, "bad.toml") {
+            Err(GeometryFileError::Schema { file, line, key, .. }) => (file, line, key),
+            other => panic!("{text}: {other:?}"),
+        };
+        assert_eq!(schema("pull_force = 2.0\n"), ("bad.toml".to_owned(), 1, "pull_force".to_owned()));
+        assert_eq!(schema("\nwinding_turns = \"two\"\n").2, "winding_turns");
+        assert_eq!(schema("[left_fetches]\nalong_tail = 0.4\n").2, "left_fetches");
+        assert!(matches!(
+            parse_tie_geometry("winding_s = ", "bad.toml"),
+            Err(GeometryFileError::Schema { .. })
+        ));
+        let Err(GeometryFileError::Range { problems, .. }) = parse_tie_geometry(
+            "pull_force_n = -1.0\nwinding_towards = [0.0, 0.0, 0.0]\nleft_pull_to_m = [0.0, 0.5, 0.0]\n",
+            "bad.toml",
+        ) else {
+            panic!("out of range accepted");
+        };
+        let keys: Vec<&str> = problems.iter().map(|(k, _)| k.as_str()).collect();
+        assert_eq!(keys, ["left_pull_to_m.y", "winding_towards", "pull_force_n"], "{problems:?}");
+        let missing = load_tie_geometry(Path::new("/nonexistent/expert.toml")).unwrap_err().to_string();
+        assert!(missing.starts_with("/nonexistent/expert.toml: cannot read"), "{missing}");
+    }
+}
