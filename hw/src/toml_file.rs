@@ -1,5 +1,6 @@
 //! Reading TOML files into typed values with errors that name the line and the key's path, the way
-//! every file knotlab reads (scenes, rig configs, task patterns, demonstration metadata) reports them.
+//! every file knotlab reads (scenes, rig configs, task patterns, demonstration metadata, the expert's
+//! geometry) reports them; [`parse_checked`] and [`load_checked`] add the range checks and the file's name.
 
 use serde::de::DeserializeOwned;
 
@@ -46,6 +47,72 @@ pub fn deserialize<T: DeserializeOwned>(text: &str) -> Result<T, TomlProblem> {
             reason: inner.message().to_owned(),
         }
     })
+}
+
+/// Why a checked TOML file (a scene, a rig config, the expert's geometry) was refused: it could not
+/// be read, its text does not fit the schema, or values are out of range. Each names the file.
+#[derive(Debug, thiserror::Error)]
+pub enum TomlFileError {
+    /// The file could not be read.
+    #[error("{file}: cannot read: {error}")]
+    Read {
+        /// The file.
+        file: String,
+        /// The I/O error.
+        error: std::io::Error,
+    },
+    /// Not valid TOML, a key that does not belong, or a value of the wrong type.
+    #[error("{file}:{line}: {key}: {reason}")]
+    Schema {
+        /// The file.
+        file: String,
+        /// 1-based line of the offending text (0 when unknown).
+        line: usize,
+        /// The key's path, e.g. `thread.segments`.
+        key: String,
+        /// What is wrong.
+        reason: String,
+    },
+    /// Values out of range or combinations that cannot work; every one is listed.
+    #[error("{file}: {}", problems.iter().map(|(k, r)| format!("{k}: {r}")).collect::<Vec<_>>().join("; "))]
+    Invalid {
+        /// The file.
+        file: String,
+        /// (key, reason) for each problem.
+        problems: Vec<(String, String)>,
+    },
+}
+
+/// Parses `text` into `T` ([`deserialize`]), then lists what `problems` finds wrong with it; `file`
+/// names it in errors.
+pub fn parse_checked<T: DeserializeOwned>(
+    text: &str,
+    file: &str,
+    problems: impl FnOnce(&T) -> Vec<(String, String)>,
+) -> Result<T, TomlFileError> {
+    let value: T = deserialize(text).map_err(|p| TomlFileError::Schema {
+        file: file.to_owned(),
+        line: p.line,
+        key: p.key,
+        reason: p.reason,
+    })?;
+    let problems = problems(&value);
+    if problems.is_empty() {
+        Ok(value)
+    } else {
+        Err(TomlFileError::Invalid { file: file.to_owned(), problems })
+    }
+}
+
+/// Reads `path` and [`parse_checked`]s it.
+pub fn load_checked<T: DeserializeOwned>(
+    path: &std::path::Path,
+    problems: impl FnOnce(&T) -> Vec<(String, String)>,
+) -> Result<T, TomlFileError> {
+    let file = path.display().to_string();
+    let text =
+        std::fs::read_to_string(path).map_err(|error| TomlFileError::Read { file: file.clone(), error })?;
+    parse_checked(&text, &file, problems)
 }
 
 #[cfg(test)]

@@ -52,7 +52,7 @@ fn out_of_range_values_are_all_named() {
     let text =
         text.replacen("left = [0.0, 0.0, 0.0, 0.0, 0.0, 0.0]", "left = [0.0, 0.0, 0.3, 0.0, 0.0, 0.0]", 1);
     match parse_scene(&text, "bad.toml") {
-        Err(SceneError::Range { problems, .. }) => {
+        Err(SceneError::Invalid { problems, .. }) => {
             let keys: Vec<&str> = problems.iter().map(|(k, _)| k.as_str()).collect();
             assert!(keys.contains(&"solver.dt_s"), "{keys:?}");
             assert!(keys.contains(&"thread.segments"), "{keys:?}");
@@ -69,7 +69,7 @@ fn bad_randomization_bounds_are_named() {
         .replace("thread_friction = [0.12, 0.18]", "thread_friction = [0.18, 0.12]")
         .replace("play_rad = [0.0, 0.0005]", "play_rad = [0.0, 0.5]");
     match parse_scene(&text, "bad.toml") {
-        Err(SceneError::Range { problems, .. }) => {
+        Err(SceneError::Invalid { problems, .. }) => {
             let keys: Vec<&str> = problems.iter().map(|(k, _)| k.as_str()).collect();
             assert!(keys.contains(&"randomization.thread_friction"), "{keys:?}");
             assert!(keys.contains(&"randomization.play_rad[1]"), "{keys:?}");
@@ -89,7 +89,7 @@ fn presets_are_checked_applied_and_named() {
     // A preset's bounds are checked as applied, under the preset's name.
     let text = DEFAULT.replace("play_rad = [0.0005, 0.002]", "play_rad = [0.002, 0.0005]");
     match parse_scene(&text, "bad.toml") {
-        Err(SceneError::Range { problems, .. }) => {
+        Err(SceneError::Invalid { problems, .. }) => {
             let keys: Vec<&str> = problems.iter().map(|(k, _)| k.as_str()).collect();
             assert_eq!(keys, vec!["presets.endopar.play_rad"], "{problems:?}");
         }

@@ -8,58 +8,17 @@ use std::path::Path;
 
 use super::plan::TieGeometry;
 
-/// Why a tie geometry file was refused.
-#[derive(Debug, thiserror::Error)]
-pub enum GeometryFileError {
-    /// The file could not be read.
-    #[error("{file}: cannot read: {error}")]
-    Read {
-        /// The file.
-        file: String,
-        /// The I/O error.
-        error: std::io::Error,
-    },
-    /// Not valid TOML, a key that does not belong, or a value of the wrong type.
-    #[error("{file}:{line}: {key}: {reason}")]
-    Schema {
-        /// The file.
-        file: String,
-        /// 1-based line of the offending text (0 when unknown).
-        line: usize,
-        /// The key's path, e.g. `left_fetches.along_tail`.
-        key: String,
-        /// What is wrong.
-        reason: String,
-    },
-    /// Values out of range; every one is listed.
-    #[error("{file}: {}", problems.iter().map(|(k, r)| format!("{k}: {r}")).collect::<Vec<_>>().join("; "))]
-    Range {
-        /// The file.
-        file: String,
-        /// (key, reason) for every value out of range.
-        problems: Vec<(String, String)>,
-    },
-}
+/// Why a tie geometry file was refused (`Invalid`: every value out of range, with its key).
+pub type GeometryFileError = knotlab_hw::toml_file::TomlFileError;
 
 /// Parses a tie geometry; `file` names it in errors.
 pub fn parse_tie_geometry(text: &str, file: &str) -> Result<TieGeometry, GeometryFileError> {
-    let geometry: TieGeometry = knotlab_hw::toml_file::deserialize(text).map_err(|p| {
-        GeometryFileError::Schema { file: file.to_owned(), line: p.line, key: p.key, reason: p.reason }
-    })?;
-    let problems = range_problems(&geometry);
-    if problems.is_empty() {
-        Ok(geometry)
-    } else {
-        Err(GeometryFileError::Range { file: file.to_owned(), problems })
-    }
+    knotlab_hw::toml_file::parse_checked(text, file, range_problems)
 }
 
 /// Reads and parses a tie geometry file.
 pub fn load_tie_geometry(path: &Path) -> Result<TieGeometry, GeometryFileError> {
-    let file = path.display().to_string();
-    let text = std::fs::read_to_string(path)
-        .map_err(|error| GeometryFileError::Read { file: file.clone(), error })?;
-    parse_tie_geometry(&text, &file)
+    knotlab_hw::toml_file::load_checked(path, range_problems)
 }
 
 /// Collects every value out of its range.
@@ -188,7 +147,7 @@ mod tests {
             parse_tie_geometry("winding_s = ", "bad.toml"),
             Err(GeometryFileError::Schema { .. })
         ));
-        let Err(GeometryFileError::Range { problems, .. }) = parse_tie_geometry(
+        let Err(GeometryFileError::Invalid { problems, .. }) = parse_tie_geometry(
             "pull_force_n = -1.0\nwinding_towards = [0.0, 0.0, 0.0]\nleft_pull_to_m = [0.0, 0.5, 0.0]\n",
             "bad.toml",
         ) else {
