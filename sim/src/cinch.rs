@@ -130,28 +130,28 @@ fn wound_path() -> Vec<Vector3<f64>> {
     points
 }
 
-/// Pins one end of `thread` where it lies.
-fn hold_end(physics: &mut Physics, thread: &Thread, first: bool) {
+/// Pins one end of `thread` where it lies: free to turn, or (`clamped`) held as jaws hold it.
+fn hold_end(physics: &mut Physics, thread: &Thread, first: bool, clamped: bool) {
     let half = 0.5 * thread.segment_length_m;
     let (segment, local_x) =
         if first { (thread.segments[0], -half) } else { (thread.segments[thread.segments.len() - 1], half) };
-    let at = physics.bodies[segment].position().transform_point(Vector::new(local_x, 0.0, 0.0));
+    let pose = *physics.bodies[segment].position();
+    let at = pose.transform_point(Vector::new(local_x, 0.0, 0.0));
     let anchor = physics.bodies.insert(RigidBodyBuilder::fixed().translation(at));
-    physics.impulse_joints.insert(
-        anchor,
-        segment,
-        SphericalJointBuilder::new().local_anchor2(Vector::new(local_x, 0.0, 0.0)),
-        true,
-    );
+    let joint: GenericJoint = if clamped {
+        FixedJointBuilder::new()
+            .local_frame1(Pose::from_parts(Vector::ZERO, pose.rotation))
+            .local_anchor2(Vector::new(local_x, 0.0, 0.0))
+            .into()
+    } else {
+        SphericalJointBuilder::new().local_anchor2(Vector::new(local_x, 0.0, 0.0)).into()
+    };
+    physics.impulse_joints.insert(anchor, segment, joint, true);
 }
 
-/// Winds B twice round A with `thread`'s material and segment length, pulls B's ends apart as
-/// `params` says, and watches every pair of A and B, and of B with itself.
-pub fn run_cinch(
-    solver: &SolverParams,
-    thread: &ThreadParams,
-    params: &CinchParams,
-) -> Result<CinchOutcome, HealthError> {
+/// A world without gravity holding A (both ends pinned) and B wound twice round it, with `thread`'s
+/// material and segment length.
+fn wound_pair(solver: &SolverParams, thread: &ThreadParams, clamped: bool) -> (Physics, Thread, Thread) {
     let mut physics = Physics::new(solver);
     physics.gravity = Vector::ZERO;
     let segment_m = thread.segment_length_m();
@@ -163,14 +163,25 @@ pub fn run_cinch(
         &Vector3::new(-0.5 * a_params.length_m, 0.0, 0.0),
         &Vector3::x(),
     );
-    hold_end(&mut physics, &a, true);
-    hold_end(&mut physics, &a, false);
+    hold_end(&mut physics, &a, true, clamped);
+    hold_end(&mut physics, &a, false, clamped);
     let path = wound_path();
     let path_m: f64 = path.windows(2).map(|w| (w[1] - w[0]).norm()).sum();
     let b_segments = ((path_m / segment_m).floor() as usize).max(2);
     let b_params = ThreadParams { length_m: b_segments as f64 * segment_m, segments: b_segments, ..*thread };
     let b = Thread::build(&mut physics, &b_params, &path[0], &Vector3::x());
     b.lay_along(&mut physics, &path);
+    (physics, a, b)
+}
+
+/// Winds B twice round A with `thread`'s material and segment length, pulls B's ends apart as
+/// `params` says, and watches every pair of A and B, and of B with itself.
+pub fn run_cinch(
+    solver: &SolverParams,
+    thread: &ThreadParams,
+    params: &CinchParams,
+) -> Result<CinchOutcome, HealthError> {
+    let (mut physics, a, b) = wound_pair(solver, thread, false);
     if params.ccd {
         for h in a.segments.iter().chain(&b.segments) {
             physics.bodies[*h].enable_ccd(true);
@@ -229,6 +240,109 @@ pub fn run_cinch(
     outcome.turns_end = winding_turns(&a_line, &b_line);
     (outcome.wrap_radius_m, outcome.wrap_length_m) = wrap_tightness(&a_line, &b_line, WRAP_ZONE_M);
     Ok(outcome)
+}
+
+/// The capstan trial: B's turns first snugged round A with both ends pulled alike, then one end pulled
+/// harder than the other.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CapstanParams {
+    /// Both ends pulled with this tension first, N ...
+    pub snug_n: f64,
+    /// ... for this long, s.
+    pub snug_s: f64,
+    /// Then B's first end is pulled with this tension, N ...
+    pub high_n: f64,
+    /// ... and its last end with this one, N ...
+    pub low_n: f64,
+    /// ... for this long, s.
+    pub hold_s: f64,
+    /// Every end held as jaws hold a thread, so that no strand can spin about its axis: A's ends
+    /// clamped, B's end segments kept from turning (`false`: A's ends pinned, free to turn, and B's
+    /// ends free).
+    pub held_as_jaws: bool,
+}
+
+/// What the capstan trial measured.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CapstanOutcome {
+    /// How far B slid round A towards its harder-pulled end while the tensions differed, m.
+    pub slip_m: f64,
+    /// ... in the last half of that time, m (near zero when friction holds; a slide goes on).
+    pub late_slip_m: f64,
+    /// B's winding round A at the end, turns.
+    pub turns_end: f64,
+    /// Whether B slid until its other end was drawn up to A (held, that end then jams there: the
+    /// slide stopped for that reason, not by friction).
+    pub slid_to_end: bool,
+    /// Steps taken.
+    pub steps: usize,
+}
+
+/// B's end segment this close to A's axis has slid to its end, m.
+const END_NEAR_M: f64 = 0.005;
+
+/// The capstan equation's bound for B's turns round A: friction holds while `high / low` stays below
+/// `exp(friction * angle)`; the angle B's two turns wrap is 4 pi.
+pub fn capstan_ratio(friction: f64) -> f64 {
+    (friction * 2.0 * TAU).exp()
+}
+
+/// Winds B twice round A, snugs the turns and then pulls B's ends with different tensions, as `params`
+/// says: friction between the strands holds B while the ratio of the tensions stays below
+/// [`capstan_ratio`], and B slides round A beyond it.
+pub fn run_capstan(
+    solver: &SolverParams,
+    thread: &ThreadParams,
+    params: &CapstanParams,
+) -> Result<CapstanOutcome, HealthError> {
+    let (mut physics, a, b) = wound_pair(solver, thread, params.held_as_jaws);
+    let nb = b.segments.len();
+    let (first, last) = (b.segments[0], b.segments[nb - 1]);
+    if params.held_as_jaws {
+        for h in [first, last] {
+            physics.bodies[h].lock_rotations(true, true);
+        }
+    }
+    let dt_s = physics.dt_s();
+    let snug_steps = (params.snug_s / dt_s).round() as usize;
+    let hold_steps = (params.hold_s / dt_s).round() as usize;
+    let z_of = |physics: &Physics| physics.bodies[first].translation().z;
+    let (mut z_start, mut z_half) = (0.0, 0.0);
+    for step in 0..snug_steps + hold_steps {
+        if step == snug_steps {
+            z_start = z_of(&physics);
+        }
+        if step == snug_steps + hold_steps / 2 {
+            z_half = z_of(&physics);
+        }
+        let (first_n, last_n) = if step < snug_steps {
+            let ramp = (2.0 * step as f64 / snug_steps as f64).min(1.0);
+            (params.snug_n * ramp, params.snug_n * ramp)
+        } else {
+            (params.high_n, params.low_n)
+        };
+        for (h, force_n) in [(first, -first_n), (last, last_n)] {
+            let body = &mut physics.bodies[h];
+            body.reset_forces(true);
+            body.add_force(Vector::new(0.0, 0.0, force_n), true);
+        }
+        physics.step(&|_| "thread segment".to_owned())?;
+    }
+    let z_end = z_of(&physics);
+    let a_line = a.centreline(&physics);
+    let end_m = physics.bodies[last].translation();
+    let end_m = Vector3::new(end_m.x, end_m.y, end_m.z);
+    let end_from_a_m = a_line
+        .windows(2)
+        .map(|w| segment_distance(&w[0], &w[1], &end_m, &end_m))
+        .fold(f64::INFINITY, f64::min);
+    Ok(CapstanOutcome {
+        slid_to_end: end_from_a_m < END_NEAR_M,
+        slip_m: z_start - z_end,
+        late_slip_m: z_half - z_end,
+        turns_end: winding_turns(&a_line, &b.centreline(&physics)),
+        steps: snug_steps + hold_steps,
+    })
 }
 
 #[cfg(test)]

@@ -23,8 +23,15 @@ pub struct View {
 impl View {
     /// Centred above the wound, 16 cm across, 480 pixels per view.
     pub fn around_wound(world: &SimWorld) -> Self {
-        let centre = world.tissue.world_from_tissue * Point3::new(0.0, 0.0, 0.03);
-        Self { centre_m: centre.coords, half_width_m: 0.08, pixels: 480 }
+        Self::around_wound_of_width(world, 0.08)
+    }
+
+    /// `half_width_m` either side, centred 3 cm above the wound or, for a narrower view, 0.6 of the
+    /// half width above it, so that the wound stays in the picture.
+    pub fn around_wound_of_width(world: &SimWorld, half_width_m: f64) -> Self {
+        let up_m = 0.03f64.min(0.6 * half_width_m);
+        let centre = world.tissue.world_from_tissue * Point3::new(0.0, 0.0, up_m);
+        Self { centre_m: centre.coords, half_width_m, pixels: 480 }
     }
 }
 

@@ -46,6 +46,17 @@ pub struct ThreadParams {
     pub friction: f64,
     /// Linear velocity damping of each segment, 1/s (air and tissue drag).
     pub linear_damping_per_s: f64,
+    /// Whether neighbouring segments may turn about the thread's axis relative to each other (`false`:
+    /// twist locked, a torsion-stiff thread). A capsule 0.4 mm round spins at the slightest torque (its
+    /// inertia about its axis is 1e-11 kg m^2, so no twist spring the solver can hold resists it), and
+    /// strands that spin roll over each other instead of sliding: friction then holds almost nothing
+    /// (`cargo bench -p knotlab-bench --bench thread_capstan`).
+    #[serde(default = "twist_free")]
+    pub twist_free: bool,
+}
+
+fn twist_free() -> bool {
+    true
 }
 
 impl Default for ThreadParams {
@@ -59,6 +70,7 @@ impl Default for ThreadParams {
             bend_damping_n_m_s_per_rad: 2e-7,
             friction: 0.3,
             linear_damping_per_s: 1.0,
+            twist_free: true,
         }
     }
 }
@@ -121,12 +133,19 @@ impl Thread {
         let k = params.bend_stiffness_n_m_per_rad;
         let c = params.bend_damping_n_m_s_per_rad;
         for pair in segments.windows(2) {
-            let mut joint = SphericalJointBuilder::new()
+            // Both anchors on the segments' axes: the joint's x is the thread's axis (twist), y and z
+            // bend it.
+            let (free, bent) = if params.twist_free {
+                (JointAxesMask::LIN_AXES, &[JointAxis::AngX, JointAxis::AngY, JointAxis::AngZ][..])
+            } else {
+                (JointAxesMask::LIN_AXES | JointAxesMask::ANG_X, &[JointAxis::AngY, JointAxis::AngZ][..])
+            };
+            let mut joint = GenericJointBuilder::new(free)
                 .local_anchor1(Vector::new(half, 0.0, 0.0))
                 .local_anchor2(Vector::new(-half, 0.0, 0.0))
                 .contacts_enabled(false);
-            for axis in [JointAxis::AngX, JointAxis::AngY, JointAxis::AngZ] {
-                joint = joint.motor_position(axis, 0.0, k, c);
+            for axis in bent {
+                joint = joint.motor_position(*axis, 0.0, k, c);
             }
             links.push(physics.impulse_joints.insert(pair[0], pair[1], joint, true));
         }

@@ -1,0 +1,94 @@
+//! Benchmark: does friction between simulated strands obey the capstan equation? A strand (B) wound
+//! twice round another (A, both ends held), no gravity, is snugged with 1 N on both ends for 0.5 s;
+//! then one end is pulled with 0.3 N (the holding test's load on a flap) and the other with less, for
+//! 2 s (`knotlab_sim::cinch::run_capstan`). Friction should hold B while the ratio of the two tensions
+//! stays below `exp(friction * 4 pi)` (6.6 at the scene's friction of 0.15, 43 at 0.3) and let it slide
+//! beyond. Printed per thread model, friction and tension ratio: how far B slid in the 2 s, "to its
+//! end" where it slid until its held end jammed against A, "off" where it slid off A altogether.
+//!
+//! Found with it (issue 6): with the twist between segments free (the thread until now) B slides off
+//! at a ratio of 2 whatever the friction, even at 1.0 (bound 290,000): a capsule 0.4 mm round spins at
+//! the slightest torque, so strands roll over each other instead of sliding. Locking the twist holds
+//! once every end is held as jaws hold it (no strand can spin as a whole): ratio 2 at friction 0.15,
+//! 3 at 1.0 (a few mm of settling), as the equation says, if short of its bound.
+//!
+//! `cargo bench -p knotlab-bench --bench thread_capstan`
+
+use knotlab_sim::cinch::{CapstanParams, capstan_ratio, run_capstan};
+use knotlab_sim::physics::SolverParams;
+use knotlab_sim::scene::parse_scene;
+use knotlab_sim::thread::ThreadParams;
+
+const SCENE: &str = include_str!("../../scenarios/default.toml");
+
+/// B's loaded end, N; the other end gets this divided by each ratio.
+const HIGH_N: f64 = 0.3;
+const RATIOS: [f64; 5] = [1.2, 1.5, 2.0, 3.0, 5.0];
+
+fn main() {
+    let scene = match parse_scene(SCENE, "scenarios/default.toml") {
+        Ok(scene) => scene,
+        Err(e) => {
+            eprintln!("{e}");
+            std::process::exit(1);
+        }
+    };
+    let (solver, thread) = (scene.solver, scene.thread);
+    println!(
+        "strand wound twice round another, snugged at 1 N, then {HIGH_N} N on one end and {HIGH_N} N / ratio on the other for 2 s: how far it slid; one core"
+    );
+    let header: Vec<String> = RATIOS.iter().map(|r| format!("ratio {r}")).collect();
+    println!("| twist | ends | friction (capstan bound) | {} |", header.join(" | "));
+    println!("|---|---|---|{}", "---|".repeat(RATIOS.len()));
+    let fine = ThreadParams {
+        segments: 2 * thread.segments,
+        bend_stiffness_n_m_per_rad: 2.0 * thread.bend_stiffness_n_m_per_rad,
+        bend_damping_n_m_s_per_rad: 2.0 * thread.bend_damping_n_m_s_per_rad,
+        ..thread
+    };
+    let fine_solver = SolverParams { solver_iterations: 2 * solver.solver_iterations, ..solver };
+    let mut rows: Vec<(String, SolverParams, ThreadParams, bool)> = Vec::new();
+    for twist_free in [true, false] {
+        for held_as_jaws in [false, true] {
+            rows.push((String::new(), solver, ThreadParams { twist_free, ..thread }, held_as_jaws));
+        }
+    }
+    rows.push((
+        " (1.56 mm segments)".to_owned(),
+        fine_solver,
+        ThreadParams { twist_free: false, ..fine },
+        true,
+    ));
+    for (note, solver, strand, held_as_jaws) in rows {
+        for friction in [thread.friction, 0.3, 1.0] {
+            let strand = ThreadParams { friction, ..strand };
+            let cells: Vec<String> = RATIOS
+                .iter()
+                .map(|ratio| {
+                    let params = CapstanParams {
+                        snug_n: 1.0,
+                        snug_s: 0.5,
+                        high_n: HIGH_N,
+                        low_n: HIGH_N / ratio,
+                        hold_s: 2.0,
+                        held_as_jaws,
+                    };
+                    match run_capstan(&solver, &strand, &params) {
+                        Ok(o) if o.turns_end < 1.0 => "off".to_owned(),
+                        Ok(o) if o.slid_to_end => "to its end".to_owned(),
+                        Ok(o) => format!("{:.1} mm", 1e3 * o.slip_m),
+                        // A strand that slid off and flew away trips the speed check.
+                        Err(_) => "off".to_owned(),
+                    }
+                })
+                .collect();
+            println!(
+                "| {}{note} | {} | {friction} ({:.0}) | {} |",
+                if strand.twist_free { "free" } else { "locked" },
+                if held_as_jaws { "held as jaws" } else { "A pinned, B free" },
+                capstan_ratio(friction),
+                cells.join(" | ")
+            );
+        }
+    }
+}
