@@ -41,8 +41,8 @@ pub struct DemoArgs {
     /// Draw the scene into PNG files OUT/snapshot-T.png at these skill times, s (comma-separated).
     #[arg(long, value_parser = parse_list)]
     snapshots: Option<Numbers>,
-    /// Half the width of each snapshot view, m (the views are centred 3 cm above the wound; 0.02 shows
-    /// the knot).
+    /// Half the width of each snapshot view, m (the views are centred 3 cm above the wound, or 0.6 of
+    /// the half width for narrower views; 0.015 shows the knot).
     #[arg(long, value_name = "M", default_value_t = 0.08, value_parser = parse_half_width)]
     snapshot_half_width: f64,
     /// Stop the skill at this skill time, s, and evaluate what is there (a short trial, to debug).

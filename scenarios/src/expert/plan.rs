@@ -94,6 +94,9 @@ pub struct TieGeometry {
     pub draw_relax: f64,
     /// Both pulls let go at this force, N.
     pub pull_force_n: f64,
+    /// Whether a pull that reaches the set force stops and holds the thread there (both let go
+    /// together at the end, the knot cinched between two tensions) rather than letting go at once.
+    pub hold_at_force: bool,
 }
 
 impl Default for TieGeometry {
@@ -134,6 +137,7 @@ impl Default for TieGeometry {
             right_follows_draw: 0.0,
             draw_relax: 0.4,
             pull_force_n: 1.5,
+            hold_at_force: false,
         }
     }
 }
@@ -389,7 +393,11 @@ pub fn plan_instrument_tie(world: &SimWorld, geometry: &TieGeometry, variation: 
             from_s: from_s + d(0.5),
             until_s: track.time_s() + 1.0,
             threshold_n: geometry.pull_force_n,
-            action: ForceAction::OpenJaw { jaw_rad: open },
+            action: if geometry.hold_at_force {
+                ForceAction::Hold
+            } else {
+                ForceAction::OpenJaw { jaw_rad: open }
+            },
         });
         track.wait_until(track.time_s() + 1.0);
         // Both let go at the end, whether or not the set force was reached.

@@ -46,11 +46,11 @@ pub struct RecordOptions {
 }
 
 fn view(world: &SimWorld, options: &RecordOptions) -> View {
-    let mut view = View::around_wound(world);
     if options.snapshot_half_width_m > 0.0 {
-        view.half_width_m = options.snapshot_half_width_m;
+        View::around_wound_of_width(world, options.snapshot_half_width_m)
+    } else {
+        View::around_wound(world)
     }
-    view
 }
 
 /// How many of a run's self-crossings its reports list ([`DemoRun::first_self_crossings`]).
