@@ -38,7 +38,8 @@ pub struct DemoArgs {
     /// scenarios/experts/instrument-tie.toml).
     #[arg(long, value_name = "FILE")]
     expert: Option<PathBuf>,
-    /// Draw the scene into PNG files OUT/snapshot-T.png at these skill times, s (comma-separated).
+    /// Draw the scene into PNG files OUT/snapshot-T.png at these skill times, s (comma-separated), and
+    /// write the thread's centreline beside each (OUT/centreline-T.csv, x_m,y_m,z_m from the needle end).
     #[arg(long, value_parser = parse_list)]
     snapshots: Option<Numbers>,
     /// Half the width of each snapshot view, m (the views are centred 3 cm above the wound, or 0.6 of
@@ -177,9 +178,17 @@ pub fn run(args: DemoArgs, out: &mut Output) -> anyhow::Result<ExitCode> {
         )?;
         write_demonstration(&dir, &run.demonstration)
             .with_context(|| format!("writing the demonstration to {}", dir.display()))?;
-        for (t, png) in &run.snapshots {
+        for snapshot in &run.snapshots {
+            let t = snapshot.time_s;
             let path = dir.join(format!("snapshot-{t:.3}s.png"));
-            std::fs::write(&path, png).with_context(|| path.display().to_string())?;
+            std::fs::write(&path, &snapshot.png).with_context(|| path.display().to_string())?;
+            // The thread as `knotlab knot` reads it.
+            let path = dir.join(format!("centreline-{t:.3}s.csv"));
+            let mut csv = String::from("x_m,y_m,z_m\n");
+            for p in &snapshot.centreline_m {
+                csv.push_str(&format!("{},{},{}\n", p.x, p.y, p.z));
+            }
+            std::fs::write(&path, csv).with_context(|| path.display().to_string())?;
         }
         let l = line(seed, &run, &dir);
         if !args.json {

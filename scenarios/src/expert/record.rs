@@ -53,6 +53,21 @@ fn view(world: &SimWorld, options: &RecordOptions) -> View {
     }
 }
 
+/// The scene at one asked time.
+pub struct Snapshot {
+    /// Skill time, s.
+    pub time_s: f64,
+    /// Top, front and side views as a PNG picture.
+    pub png: Vec<u8>,
+    /// The thread's centreline, needle end first, world frame, m.
+    pub centreline_m: Vec<nalgebra::Vector3<f64>>,
+}
+
+fn snapshot(world: &SimWorld, options: &RecordOptions, time_s: f64) -> Option<Snapshot> {
+    let png = render_png(world, &view(world, options)).ok()?;
+    Some(Snapshot { time_s, png, centreline_m: world.thread.centreline(&world.physics) })
+}
+
 /// How many of a run's self-crossings its reports list ([`DemoRun::first_self_crossings`]).
 pub const LISTED_SELF_CROSSINGS: usize = 10;
 
@@ -71,8 +86,8 @@ pub struct DemoRun {
     pub simulated_s: f64,
     /// Wall-clock time, s.
     pub wall_s: f64,
-    /// PNG pictures at the asked times.
-    pub snapshots: Vec<(f64, Vec<u8>)>,
+    /// The scene at the asked times.
+    pub snapshots: Vec<Snapshot>,
     /// Every time the thread passed through itself, in order (the evaluation counts them).
     pub self_crossings: Vec<SelfCrossing>,
     /// The scene's grasp events (grasped, released, slipped) in order, as text.
@@ -171,9 +186,7 @@ pub fn record_demonstration(
         }
         while snapshot_times.first().is_some_and(|t| *t <= record.skill_time_s) {
             let t = snapshot_times.remove(0);
-            if let Ok(png) = render_png(&world, &view(&world, options)) {
-                snapshots.push((t, png));
-            }
+            snapshots.extend(snapshot(&world, options, t));
         }
         drop(world);
         if matches!(record.status, Status::Finished)
@@ -202,9 +215,7 @@ pub fn record_demonstration(
         evaluate_knot(&mut world, &params)
     };
     for t in snapshot_times {
-        if let Ok(png) = render_png(&world, &view(&world, options)) {
-            snapshots.push((t, png));
-        }
+        snapshots.extend(snapshot(&world, options, t));
     }
     let events = world.events.iter().map(|e| format!("{e:?}")).collect();
     let final_scene = scene_shapes(&world);
