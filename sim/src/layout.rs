@@ -1,7 +1,7 @@
 //! Where the thread lies at the start of the knot-tying task: from the needle in the right jaws down to
-//! the pad, along the pad to the exit point, through the stitch to the entry point, and up to the
-//! assist's jaws holding the tail. The point where the long end meets the pad is placed so that the
-//! path is exactly as long as the thread.
+//! the pad, along the pad to the exit point, down through the stitch under the wound and up to the
+//! entry point, and up to the assist's jaws holding the tail. The point where the long end meets the
+//! pad is placed so that the path is exactly as long as the thread.
 
 use nalgebra::{Point3, Vector3};
 
@@ -21,14 +21,15 @@ pub fn start_layout(config: &SceneConfig, tissue: &Tissue, physics: &Physics) ->
     let tail = to_world(Vector3::from(config.start.tail_m));
     let exit = tissue.hole_m(physics, Flap::B);
     let entry = tissue.hole_m(physics, Flap::A);
+    let (deep_exit, deep_entry) = (tissue.deep_m(physics, Flap::B), tissue.deep_m(physics, Flap::A));
     // On the pad, outward from the exit point (towards -y), lifted by the thread's radius.
     let pad_z = -config.tissue.flap_size_m[2] + config.thread.radius_m;
     let on_pad =
         |reach: f64| to_world(Vector3::new(config.start.needle_m[0], -config.stitch.bite_m - reach, pad_z));
-    let path = |reach: f64| vec![needle, on_pad(reach), exit, entry, tail];
+    let path = |reach: f64| vec![needle, on_pad(reach), exit, deep_exit, deep_entry, entry, tail];
     let total = config.thread.length_m;
     if length(&path(0.0)) >= total {
-        return vec![needle, exit, entry, tail];
+        return vec![needle, exit, deep_exit, deep_entry, entry, tail];
     }
     // The path's length grows with the reach on the pad: bisect for the thread's length.
     let (mut lo, mut hi) = (0.0, 1.0);

@@ -1,9 +1,14 @@
 //! The stitch: where the suture passes through the two flaps. At each entry or exit point a joint ties
 //! the flap's point to the axis of the thread segment passing through it: the two translations across
 //! the segment are locked, the thread slides along its length against a friction force, and turns
-//! freely. After each step the joint moves on to the neighbouring segment when the point has slid past
-//! the segment's end, so the whole thread can be pulled through. Between the two points the thread
-//! runs inside the tissue, so contacts between those segments and the flaps are filtered out.
+//! freely. Two more points, one deep in each flap by the wound (at the stitch's depth), guide the
+//! thread the same way (each flap's friction is shared between its two points): the suture runs down through flap B, under the wound and up
+//! through flap A, so that nothing on the surface reaches round the part under the wound (laid
+//! straight from point to point on the surface, that part was where the expert's coils slid down to
+//! and cinched: a knot in the wound's gap). After each step the joints move on to the neighbouring
+//! segment when a point has slid past the segment's end, so the whole thread can be pulled through.
+//! Between the two surface points the thread runs inside the tissue, so contacts between those
+//! segments and the flaps are filtered out.
 
 use nalgebra::Vector3;
 use rapier3d::prelude::*;
@@ -21,6 +26,24 @@ pub struct StitchHole {
     pub segment: Option<usize>,
     /// The joint holding it.
     pub joint: Option<ImpulseJointHandle>,
+    /// A deep point (a frictionless guide under the surface) rather than the entry or exit point.
+    pub deep: bool,
+}
+
+impl StitchHole {
+    /// Where the point is, world frame, m.
+    fn at_m(&self, physics: &Physics, tissue: &Tissue) -> Vector3<f64> {
+        if self.deep { tissue.deep_m(physics, self.flap) } else { tissue.hole_m(physics, self.flap) }
+    }
+
+    /// Where the point is in its flap's frame, m.
+    fn in_flap_m(&self, tissue: &Tissue) -> Vector3<f64> {
+        if self.deep {
+            tissue.flap_from_deep_m[self.flap.index()]
+        } else {
+            tissue.flap_from_hole_m(self.flap)
+        }
+    }
 }
 
 /// Something the stitch noticed.
@@ -40,6 +63,8 @@ pub enum StitchEvent {
 pub struct Stitch {
     /// [B, A].
     pub holes: [StitchHole; 2],
+    /// The deep points, [B, A].
+    pub guides: [StitchHole; 2],
     /// Friction force against sliding, N.
     pub slide_friction_n: f64,
 }
@@ -69,9 +94,15 @@ impl Stitch {
         tissue: &mut Tissue,
         slide_friction_n: f64,
     ) -> Self {
-        let mut holes = [Flap::B, Flap::A].map(|flap| StitchHole { flap, segment: None, joint: None });
-        for hole in &mut holes {
-            let at = tissue.hole_m(physics, hole.flap);
+        let point = |flap: Flap, deep: bool| StitchHole { flap, segment: None, joint: None, deep };
+        let mut stitch = Self {
+            holes: [point(Flap::B, false), point(Flap::A, false)],
+            guides: [point(Flap::B, true), point(Flap::A, true)],
+            slide_friction_n,
+        };
+        let friction = stitch.slide_friction_n;
+        for hole in stitch.holes.iter_mut().chain(stitch.guides.iter_mut()) {
+            let at = hole.at_m(physics, tissue);
             let nearest = thread
                 .capsules(physics, 0.0)
                 .iter()
@@ -85,33 +116,39 @@ impl Stitch {
                 .min_by(|a, b| a.1.total_cmp(&b.1));
             if let Some((i, _, on_axis)) = nearest {
                 let flap_from_world = physics.bodies[tissue.flap(hole.flap)].position().inverse();
-                tissue.flap_from_hole_m[hole.flap.index()] =
-                    to_na(flap_from_world.transform_point(to_vec(&on_axis)));
-                hole.joint = Some(Self::tie(physics, thread, tissue, hole.flap, i, slide_friction_n));
+                let local = to_na(flap_from_world.transform_point(to_vec(&on_axis)));
+                if hole.deep {
+                    tissue.flap_from_deep_m[hole.flap.index()] = local;
+                } else {
+                    tissue.flap_from_hole_m[hole.flap.index()] = local;
+                }
+                hole.joint = Some(Self::tie(physics, thread, tissue, hole, i, friction));
                 hole.segment = Some(i);
             }
         }
-        Self { holes, slide_friction_n }
+        stitch
     }
 
     fn tie(
         physics: &mut Physics,
         thread: &Thread,
         tissue: &Tissue,
-        flap: Flap,
+        hole: &StitchHole,
         segment: usize,
         slide_friction_n: f64,
     ) -> ImpulseJointHandle {
         // Frame 1 on the segment (x along its axis), frame 2 at the flap's point: the point must stay
-        // on the segment's axis (y, z locked), sliding along x against friction.
+        // on the segment's axis (y, z locked), sliding along x against friction: each flap's two
+        // points share its friction.
+        let friction_n = 0.5 * slide_friction_n;
         let joint = GenericJointBuilder::new(JointAxesMask::LIN_Y | JointAxesMask::LIN_Z)
             .local_frame1(Pose::IDENTITY)
-            .local_frame2(Pose::from_translation(to_vec(&tissue.flap_from_hole_m(flap))))
+            .local_frame2(Pose::from_translation(to_vec(&hole.in_flap_m(tissue))))
             .motor_model(JointAxis::LinX, MotorModel::ForceBased)
             .motor_velocity(JointAxis::LinX, 0.0, 1e3)
-            .motor_max_force(JointAxis::LinX, slide_friction_n)
+            .motor_max_force(JointAxis::LinX, friction_n)
             .contacts_enabled(false);
-        physics.impulse_joints.insert(thread.segments[segment], tissue.flap(flap), joint, true)
+        physics.impulse_joints.insert(thread.segments[segment], tissue.flap(hole.flap), joint, true)
     }
 
     /// After a step: moves each joint to the neighbouring segment where the point has slid past the
@@ -125,9 +162,10 @@ impl Stitch {
     ) -> Vec<StitchEvent> {
         let half = 0.5 * thread.segment_length_m;
         let mut events = Vec::new();
-        for hole in &mut self.holes {
+        let friction = self.slide_friction_n;
+        for hole in self.holes.iter_mut().chain(self.guides.iter_mut()) {
             let Some(mut i) = hole.segment else { continue };
-            let at = tissue.hole_m(physics, hole.flap);
+            let at = hole.at_m(physics, tissue);
             let start = i;
             let mut out = false;
             // Walk towards the point; a point in the gap outside a bent joint lies beyond both
@@ -157,22 +195,24 @@ impl Stitch {
                     physics.impulse_joints.remove(j, true);
                 }
                 hole.segment = None;
-                events.push(StitchEvent::PulledOut { flap: hole.flap, time_s });
+                if !hole.deep {
+                    events.push(StitchEvent::PulledOut { flap: hole.flap, time_s });
+                }
             } else if i != start {
                 if let Some(j) = hole.joint.take() {
                     physics.impulse_joints.remove(j, true);
                 }
-                hole.joint = Some(Self::tie(physics, thread, tissue, hole.flap, i, self.slide_friction_n));
+                hole.joint = Some(Self::tie(physics, thread, tissue, hole, i, friction));
                 hole.segment = Some(i);
             }
         }
         events
     }
 
-    /// The segments inside the tissue (between the two points, one more on either side): they pass
-    /// through the flaps and must not collide with them.
+    /// The segments inside the tissue (between the two surface points, one more on either side): they
+    /// pass through the flaps and must not collide with them.
     pub fn segments_inside(&self) -> Option<std::ops::RangeInclusive<usize>> {
-        let indices: Vec<usize> = self.holes.iter().filter_map(|h| h.segment).collect();
+        let indices: Vec<usize> = self.holes.iter().chain(&self.guides).filter_map(|h| h.segment).collect();
         let lo = *indices.iter().min()?;
         let hi = *indices.iter().max()?;
         Some(lo.saturating_sub(1)..=hi + 1)
@@ -189,7 +229,7 @@ impl Stitch {
     pub fn arc_at_m(&self, physics: &Physics, thread: &Thread, tissue: &Tissue, flap: Flap) -> Option<f64> {
         let hole = self.holes.iter().find(|h| h.flap == flap)?;
         let i = hole.segment?;
-        let x = along_segment(physics, thread, i, &tissue.hole_m(physics, hole.flap));
+        let x = along_segment(physics, thread, i, &hole.at_m(physics, tissue));
         Some(thread.segment_length_m * (i as f64 + 0.5) + x)
     }
 }

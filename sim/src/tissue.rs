@@ -74,7 +74,14 @@ pub struct Tissue {
     pub flap_size_m: [f64; 3],
     /// Where the stitch's entry (A) and exit (B) points sit in each flap's frame, [B, A].
     pub flap_from_hole_m: [Vector3<f64>; 2],
+    /// Where the stitch runs deepest in each flap, in its frame, [B, A]: the suture goes down from
+    /// the exit point through flap B, under the wound at the stitch's depth and up through flap A to
+    /// the entry point, so that nothing on the surface can reach round the part under the wound.
+    pub flap_from_deep_m: [Vector3<f64>; 2],
 }
+
+/// The stitch's deep points lie this far in from each flap's inner face, m.
+const DEEP_INSET_M: f64 = 0.001;
 
 fn to_vec(v: &Vector3<f64>) -> Vector {
     Vector::new(v.x, v.y, v.z)
@@ -118,6 +125,7 @@ impl Tissue {
         let mut flap_colliders = Vec::with_capacity(2);
         let mut joints = Vec::with_capacity(2);
         let mut holes = Vec::with_capacity(2);
+        let mut deep = Vec::with_capacity(2);
         for flap in Flap::ALONG_THREAD {
             let s = flap.side();
             let tissue_from_flap =
@@ -158,6 +166,10 @@ impl Tissue {
             // The entry/exit point on the surface, bite away from the wound's centre line.
             let tissue_hole = Vector3::new(stitch.along_m, s * stitch.bite_m, 0.0);
             holes.push(tissue_hole - tissue_from_flap);
+            // Under the surface at the stitch's depth, just in from the inner face (never beyond the
+            // entry or exit point).
+            let inset = (0.5 * params.rest_gap_m + DEEP_INSET_M).min(stitch.bite_m);
+            deep.push(Vector3::new(stitch.along_m, s * inset, -stitch.depth_m) - tissue_from_flap);
             flaps.push(body);
             flap_colliders.push(collider);
         }
@@ -170,6 +182,7 @@ impl Tissue {
             joints: [joints[0], joints[1]],
             flap_size_m: params.flap_size_m,
             flap_from_hole_m: [holes[0], holes[1]],
+            flap_from_deep_m: [deep[0], deep[1]],
         }
     }
 
@@ -181,6 +194,13 @@ impl Tissue {
     /// Where the stitch passes through `flap`, world frame, m.
     pub fn hole_m(&self, physics: &Physics, flap: Flap) -> Vector3<f64> {
         let local = self.flap_from_hole_m[flap.index()];
+        let p = physics.bodies[self.flap(flap)].position().transform_point(to_vec(&local));
+        Vector3::new(p.x, p.y, p.z)
+    }
+
+    /// Where the stitch runs deepest in `flap`, world frame, m.
+    pub fn deep_m(&self, physics: &Physics, flap: Flap) -> Vector3<f64> {
+        let local = self.flap_from_deep_m[flap.index()];
         let p = physics.bodies[self.flap(flap)].position().transform_point(to_vec(&local));
         Vector3::new(p.x, p.y, p.z)
     }

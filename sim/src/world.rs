@@ -345,7 +345,7 @@ impl SimWorld {
                 self.arms[a].command.tool.jaw_rad = Self::JAW_OPEN_RAD;
             }
         }
-        for hole in &mut self.stitch.holes {
+        for hole in self.stitch.holes.iter_mut().chain(self.stitch.guides.iter_mut()) {
             if let Some(j) = hole.joint.take() {
                 self.physics.impulse_joints.remove(j, true);
             }

@@ -33,8 +33,11 @@ fn the_start_condition_holds_needle_and_tail_through_the_stitch() {
     let [exit, entry] = w.stitch.holes.map(|h| h.segment.expect("the thread is in both flaps"));
     assert!(exit < entry, "the needle end meets the exit first: {exit} {entry}");
     assert!(w.thread.max_stretch_ratio(&w.physics) < 0.02);
-    let gap = w.wound_gap_m();
-    assert!((gap - w.config.tissue.rest_gap_m).abs() < 5e-4, "gap {gap}");
+    // The suture runs under the wound in a U: the thread's weight (0.01 kg, far heavier than a real
+    // suture, for the solver) hanging from the jaws pulls the U, and with it the wound, a little
+    // closed; never open.
+    let closed_by = w.config.tissue.rest_gap_m - w.wound_gap_m();
+    assert!((-5e-4..1.2e-3).contains(&closed_by), "closed by {closed_by} m");
 }
 
 #[test]
