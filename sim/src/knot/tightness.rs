@@ -126,6 +126,9 @@ pub struct KnotPlacement {
     pub centre_stitch_distance_m: f64,
 }
 
+/// A knot's crossing point this far under the tissue's surface is the suture inside the tissue, m.
+pub const INSIDE_TISSUE_M: f64 = 0.001;
+
 /// How close "down" is.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct DownLimits {
@@ -144,13 +147,18 @@ impl Default for DownLimits {
 }
 
 impl KnotPlacement {
-    /// Measures a knot's span against the tissue surface and the stitch point.
+    /// Measures a knot's span against the tissue surface and the stitch point. Crossing points more
+    /// than [`INSIDE_TISSUE_M`] under the surface are left out (unless every point is): they are the
+    /// suture running under the wound, crossed by the knot above it in the picture, not the knot.
     pub fn measure(span: &KnotSpan, surface: &TissueSurface, stitch_m: &Vector3<f64>) -> Self {
-        let heights = span.points_m.iter().map(|p| surface.height_m(p));
+        let above: Vec<&Vector3<f64>> =
+            span.points_m.iter().filter(|p| surface.height_m(p) >= -INSIDE_TISSUE_M).collect();
+        let points: Vec<&Vector3<f64>> =
+            if above.is_empty() { span.points_m.iter().collect() } else { above };
+        let heights = points.iter().map(|p| surface.height_m(p));
         let height_m = heights.clone().fold(f64::INFINITY, f64::min);
         let top_height_m = heights.fold(f64::NEG_INFINITY, f64::max);
-        let stitch_distance_m =
-            span.points_m.iter().map(|p| (p - stitch_m).norm()).fold(f64::INFINITY, f64::min);
+        let stitch_distance_m = points.iter().map(|p| (*p - stitch_m).norm()).fold(f64::INFINITY, f64::min);
         Self {
             height_m,
             top_height_m,
@@ -181,6 +189,28 @@ mod tests {
             radius_m: 0.0,
             passages_m: vec![0.1, 0.12],
         }
+    }
+
+    #[test]
+    fn crossings_with_the_suture_under_the_wound_are_not_the_knot() {
+        let surface = TissueSurface::new(Vector3::zeros(), Vector3::z()).expect("a surface");
+        let stitch = Vector3::zeros();
+        // Coils 5 and 7 mm up, crossing the suture's U 3 mm under the wound in the picture.
+        let span = span_at(&[
+            Vector3::new(0.0, 0.001, 0.005),
+            Vector3::new(0.0, 0.0, -0.003),
+            Vector3::new(0.0, -0.001, 0.007),
+        ]);
+        let placement = KnotPlacement::measure(&span, &surface, &stitch);
+        assert!((placement.height_m - 0.005).abs() < 1e-12, "{placement:?}");
+        assert!((placement.top_height_m - 0.007).abs() < 1e-12);
+        assert!((placement.stitch_distance_m - (0.005f64.powi(2) + 0.001f64.powi(2)).sqrt()).abs() < 1e-12);
+        // Just under the surface (a thread lying on it, within its radius) still counts.
+        let low = span_at(&[Vector3::new(0.0, 0.0, -0.0003), Vector3::new(0.0, 0.0, 0.004)]);
+        assert!((KnotPlacement::measure(&low, &surface, &stitch).height_m + 0.0003).abs() < 1e-12);
+        // All under the surface: measured as it is.
+        let under = span_at(&[Vector3::new(0.0, 0.0, -0.003)]);
+        assert!((KnotPlacement::measure(&under, &surface, &stitch).height_m + 0.003).abs() < 1e-12);
     }
 
     #[test]
