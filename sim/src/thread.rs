@@ -1,5 +1,6 @@
-//! The suture: a chain of capsules joined by spherical joints, with bending stiffness and damping,
-//! friction, and collisions between all non-adjacent segments.
+//! The suture: a chain of capsules joined at their ends, with bending stiffness and damping, the twist
+//! between segments free or locked ([`ThreadParams::twist_free`]), friction, and collisions between all
+//! non-adjacent segments.
 //!
 //! Discretisation chosen by measurement (`cargo bench -p knotlab-bench --bench thread` prints the full
 //! curve). Rapier's impulse joints are solved by projected Gauss-Seidel, whose error along a chain grows
@@ -135,16 +136,16 @@ impl Thread {
         for pair in segments.windows(2) {
             // Both anchors on the segments' axes: the joint's x is the thread's axis (twist), y and z
             // bend it.
-            let (free, bent) = if params.twist_free {
+            let (locked, sprung) = if params.twist_free {
                 (JointAxesMask::LIN_AXES, &[JointAxis::AngX, JointAxis::AngY, JointAxis::AngZ][..])
             } else {
                 (JointAxesMask::LIN_AXES | JointAxesMask::ANG_X, &[JointAxis::AngY, JointAxis::AngZ][..])
             };
-            let mut joint = GenericJointBuilder::new(free)
+            let mut joint = GenericJointBuilder::new(locked)
                 .local_anchor1(Vector::new(half, 0.0, 0.0))
                 .local_anchor2(Vector::new(-half, 0.0, 0.0))
                 .contacts_enabled(false);
-            for axis in bent {
+            for axis in sprung {
                 joint = joint.motor_position(*axis, 0.0, k, c);
             }
             links.push(physics.impulse_joints.insert(pair[0], pair[1], joint, true));
