@@ -7,11 +7,9 @@
 //! `cargo bench -p knotlab-bench --bench scene`
 
 use knotlab_hw::rig::Rig;
-use knotlab_sim::scene::parse_scene;
 use knotlab_sim::stress::run_stress;
 use knotlab_sim::world::SimWorld;
 
-const SCENE: &str = include_str!("../../scenarios/default.toml");
 const SECONDS: f64 = 6.0;
 
 fn main() {
@@ -39,13 +37,7 @@ fn main() {
         (60, 1.0, 16, 4),
     ];
     for (segments, dt_ms, iterations, sweeps) in points {
-        let mut scene = match parse_scene(SCENE, "scenarios/default.toml") {
-            Ok(scene) => scene,
-            Err(e) => {
-                eprintln!("{e}");
-                std::process::exit(1);
-            }
-        };
+        let mut scene = knotlab_bench::shipped_scene();
         scene.thread.segments = segments;
         scene.solver.dt_s = dt_ms * 1e-3;
         scene.solver.solver_iterations = iterations;

@@ -16,23 +16,14 @@
 
 use knotlab_sim::cinch::{CapstanParams, capstan_ratio, run_capstan};
 use knotlab_sim::physics::SolverParams;
-use knotlab_sim::scene::parse_scene;
 use knotlab_sim::thread::ThreadParams;
-
-const SCENE: &str = include_str!("../../scenarios/default.toml");
 
 /// B's loaded end, N; the other end gets this divided by each ratio.
 const HIGH_N: f64 = 0.3;
 const RATIOS: [f64; 5] = [1.2, 1.5, 2.0, 3.0, 5.0];
 
 fn main() {
-    let scene = match parse_scene(SCENE, "scenarios/default.toml") {
-        Ok(scene) => scene,
-        Err(e) => {
-            eprintln!("{e}");
-            std::process::exit(1);
-        }
-    };
+    let scene = knotlab_bench::shipped_scene();
     let (solver, thread) = (scene.solver, scene.thread);
     println!(
         "strand wound twice round another, snugged at 1 N, then {HIGH_N} N on one end and {HIGH_N} N / ratio on the other for 2 s: how far it slid; one core"

@@ -3,3 +3,18 @@
 
 pub mod mc;
 pub mod report;
+
+/// The shipped nominal scene (`scenarios/default.toml`, compiled in) for a benchmark; exits with the
+/// scene's error if it does not parse.
+pub fn shipped_scene() -> knotlab_sim::scene::SceneConfig {
+    match knotlab_sim::scene::parse_scene(
+        include_str!("../../scenarios/default.toml"),
+        "scenarios/default.toml",
+    ) {
+        Ok(scene) => scene,
+        Err(e) => {
+            eprintln!("{e}");
+            std::process::exit(1);
+        }
+    }
+}
