@@ -66,6 +66,13 @@ fn snapshots_zoom_to_the_half_width_asked_for() {
         ]);
         assert_eq!(code, 0, "{stdout}{err}");
         pictures.push(std::fs::read(out.join("snapshot-0.200s.png")).expect("the snapshot was drawn"));
+        // The thread's centreline beside it, one point per segment end, as `knotlab knot` reads it.
+        let csv = out.join("centreline-0.200s.csv");
+        let text = std::fs::read_to_string(&csv).expect("the centreline was written");
+        assert_eq!(text.lines().count(), 1 + 81, "header and the 80 segments' 81 ends");
+        let (code, stdout, err) = knotlab(&["knot", "classify", csv.to_str().unwrap()]);
+        assert_eq!(code, 0, "{stdout}{err}");
+        assert!(stdout.contains("unknot"), "no knot yet at 0.2 s: {stdout}");
     }
     assert_ne!(pictures[0], pictures[1], "a narrower view draws a different picture");
     for bad in ["0", "-0.1", "2", "wide"] {

@@ -89,3 +89,26 @@ fn a_recorded_run_is_a_valid_100_hz_demonstration_that_round_trips() {
     assert_eq!(&loaded, demo, "record, save, load gives identical data");
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn the_pulls_let_go_at_the_set_force_or_hold_it_as_the_geometry_says() {
+    use knotlab_hw::skill::ForceAction;
+    let world = SimWorld::new(scene(), Rig::shipped().expect("the shipped rig")).expect("the scene builds");
+    let actions = |hold_at_force: bool| {
+        let geometry = TieGeometry { hold_at_force, ..TieGeometry::default() };
+        let skill = plan_instrument_tie(&world, &geometry, &Variation::none());
+        [ArmName::Left, ArmName::Right].map(|arm| {
+            let events = &skill.track(arm).expect("the arm pulls").events;
+            let set: Vec<_> = events.iter().filter(|e| e.name == "set force").collect();
+            assert_eq!(set.len(), 1, "{arm}: one set-force event");
+            assert_eq!(set[0].threshold_n, geometry.pull_force_n);
+            set[0].action
+        })
+    };
+    for action in actions(false) {
+        assert!(matches!(action, ForceAction::OpenJaw { .. }), "{action:?}");
+    }
+    for action in actions(true) {
+        assert_eq!(action, ForceAction::Hold);
+    }
+}

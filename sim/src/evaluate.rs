@@ -35,8 +35,8 @@ pub struct EvaluationParams {
     pub holding_load_n: f64,
 }
 
-/// Six times a stitch point's default friction (0.05 N): an untied stitch opens under it, and it is a
-/// sixth of the force the scripted expert cinches with (1.9 N).
+/// Six times the default friction of the stitch in a flap (0.05 N): an untied stitch opens under it,
+/// and it is a fifth of the force the scripted expert cinches with (1.5 N).
 fn default_holding_load_n() -> f64 {
     0.3
 }

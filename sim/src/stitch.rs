@@ -1,14 +1,15 @@
-//! The stitch: where the suture passes through the two flaps. At each entry or exit point a joint ties
-//! the flap's point to the axis of the thread segment passing through it: the two translations across
-//! the segment are locked, the thread slides along its length against a friction force, and turns
-//! freely. Two more points, one deep in each flap by the wound (at the stitch's depth), guide the
-//! thread the same way (each flap's friction is shared between its two points): the suture runs down through flap B, under the wound and up
-//! through flap A, so that nothing on the surface reaches round the part under the wound (laid
-//! straight from point to point on the surface, that part was where the expert's coils slid down to
-//! and cinched: a knot in the wound's gap). After each step the joints move on to the neighbouring
-//! segment when a point has slid past the segment's end, so the whole thread can be pulled through.
-//! Between the two surface points the thread runs inside the tissue, so contacts between those
-//! segments and the flaps are filtered out.
+//! The stitch: where the suture passes through the two flaps. At each entry or exit point a joint
+//! ties the flap's point to the axis of the thread segment passing through it: the two translations
+//! across the segment are locked, the thread slides along its length against a friction force, and
+//! turns freely. Two more points, one deep in each flap by the wound (at the stitch's depth), guide
+//! the thread the same way (each flap's friction is shared between its two points): the suture runs
+//! down through flap B, under the wound and up through flap A, so that nothing on the surface
+//! reaches round the part under the wound (laid straight from point to point on the surface, that
+//! part was where the expert's coils slid down to and cinched: a knot in the wound's gap). After
+//! each step the joints move on to the neighbouring segment when a point has slid past the
+//! segment's end, so the whole thread can be pulled through. Between the two surface points the
+//! thread runs inside the tissue, so contacts between those segments and the flaps are filtered
+//! out.
 
 use nalgebra::Vector3;
 use rapier3d::prelude::*;
@@ -26,7 +27,7 @@ pub struct StitchHole {
     pub segment: Option<usize>,
     /// The joint holding it.
     pub joint: Option<ImpulseJointHandle>,
-    /// A deep point (a frictionless guide under the surface) rather than the entry or exit point.
+    /// A deep point (a guide under the surface, by the wound) rather than the entry or exit point.
     pub deep: bool,
 }
 
