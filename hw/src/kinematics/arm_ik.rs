@@ -77,7 +77,7 @@ pub fn visit_branches(
     let sq = |q: f64, k: usize| (q - current_rad[k]) * (q - current_rad[k]);
 
     let l3 = g.forearm_m();
-    let gamma = g.a3_m.atan2(g.d4_m);
+    let gamma = g.elbow_offset_rad();
     let (sg, cg) = (g.a3_m / l3, g.d4_m / l3);
     let (reach_min, reach_max) = g.reach_m();
 

@@ -7,6 +7,10 @@ use std::fmt;
 /// limit. Far below any tolerance the kinematics promises (1e-6), far above round-off (1e-15).
 pub const LIMIT_SLACK_RAD: f64 = 1e-12;
 
+/// 1 / (2 pi): turn counts by a multiplication (a division is several times slower; the count is
+/// rounded, so the last bit of the quotient only matters exactly half way between two turns).
+const INV_TAU: f64 = 1.0 / TAU;
+
 /// Names one joint of an arm and its tool.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum JointId {
@@ -66,7 +70,7 @@ impl JointLimit {
     #[inline]
     pub fn nearest_equivalent(&self, q_rad: f64, near_rad: f64) -> Option<f64> {
         // The equivalent nearest `near` is the answer whenever it is inside the limit.
-        let base = q_rad + TAU * round_small((near_rad - q_rad) / TAU);
+        let base = q_rad + TAU * round_small((near_rad - q_rad) * INV_TAU);
         if self.contains(base) {
             return Some(base.clamp(self.lower_rad, self.upper_rad));
         }
@@ -91,7 +95,7 @@ pub fn round_small(x: f64) -> f64 {
 /// Wraps an angle into (-pi, pi].
 #[inline]
 pub fn wrap_angle(q_rad: f64) -> f64 {
-    let w = q_rad - TAU * round_small(q_rad / TAU);
+    let w = q_rad - TAU * round_small(q_rad * INV_TAU);
     if w <= -std::f64::consts::PI { w + TAU } else { w }
 }
 

@@ -58,6 +58,9 @@ pub struct Rv6slGeometry {
     pub d6_m: f64,
 }
 
+/// `atan2(0.100, 0.425)`, the RV-6SL's [`Rv6slGeometry::elbow_offset_rad`] (a test checks it bit for bit).
+const RV6SL_ELBOW_OFFSET_RAD: f64 = 0.2310906671958971;
+
 /// Degrees to radians, usable in constants.
 const fn deg(x: f64) -> f64 {
     x * (std::f64::consts::PI / 180.0)
@@ -91,6 +94,14 @@ impl Rv6slGeometry {
         ]
     }
 
+    /// The angle at the elbow between the upper arm's line and the elbow-to-wrist-centre line at q3 = 0,
+    /// `atan2(a3, d4)`, rad. The RV-6SL's value is a constant (the inverse kinematics needs it at every
+    /// solve, and `atan2` is a library call); any other geometry computes it.
+    #[inline]
+    pub fn elbow_offset_rad(&self) -> f64 {
+        if *self == Self::RV6SL { RV6SL_ELBOW_OFFSET_RAD } else { self.a3_m.atan2(self.d4_m) }
+    }
+
     /// Elbow-to-wrist-centre distance, m.
     pub fn forearm_m(&self) -> f64 {
         (self.a3_m * self.a3_m + self.d4_m * self.d4_m).sqrt()
@@ -117,5 +128,18 @@ impl Rv6slGeometry {
     /// The flange in the base frame.
     pub fn base_from_flange(&self, q_rad: &[f64; 6]) -> IsometryMatrix3<f64> {
         self.base_from_frames(q_rad)[5]
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn rv6sl_elbow_offset_constant_is_atan2_bit_for_bit() {
+        let g = Rv6slGeometry::RV6SL;
+        assert_eq!(g.elbow_offset_rad().to_bits(), g.a3_m.atan2(g.d4_m).to_bits());
+        let other = Rv6slGeometry { a3_m: 0.12, ..g };
+        assert_eq!(other.elbow_offset_rad(), 0.12f64.atan2(g.d4_m));
     }
 }

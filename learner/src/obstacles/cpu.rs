@@ -111,7 +111,7 @@ fn evaluate_cell(
         }
     }
     let view = Posed { joints: &scratch.joints, anchors: &scratch.anchors };
-    let motions: [(f64, f64); ANCHORS] = std::array::from_fn(|anchor| anchor_motion(view, anchor, k0));
+    let motions = anchor_motions(view, k0);
     // Each box's centre at `k0` and how far the centre strays from it over the cell.
     let mut centre = [Vector3::zeros(); MAX_MOVING_BOXES];
     let mut stray_m = [0.0; MAX_MOVING_BOXES];
@@ -321,19 +321,21 @@ fn verdict_of(unreachable: bool, collides: bool) -> CellVerdict {
 /// it apart too.
 const PRUNE_MARGIN_M: f64 = 1e-3;
 
-/// How far an anchor moves over the cell from subcell `k0`: the largest `|t_k - t_0|` and the largest
-/// `|R_k - R_0|_F` over the reachable subcells.
-fn anchor_motion(view: Posed<'_>, anchor: usize, k0: usize) -> (f64, f64) {
-    let (t0, r0) = (view.anchors[k0][anchor].translation.vector, view.anchors[k0][anchor].rotation.matrix());
-    let (mut dt, mut dr): (f64, f64) = (0.0, 0.0);
-    for (k, j) in view.joints.iter().enumerate() {
-        if j.is_some() {
-            let pose = &view.anchors[k][anchor];
-            dt = dt.max((pose.translation.vector - t0).norm_squared());
-            dr = dr.max((pose.rotation.matrix() - r0).norm_squared());
+/// How far each anchor moves over the cell from subcell `k0`: the largest `|t_k - t_0|` and the
+/// largest `|R_k - R_0|_F` over the reachable subcells (one pass over the subcells).
+fn anchor_motions(view: Posed<'_>, k0: usize) -> [(f64, f64); ANCHORS] {
+    let at_k0 = &view.anchors[k0];
+    let mut sq = [(0.0f64, 0.0f64); ANCHORS];
+    for (anchors, j) in view.anchors.iter().zip(view.joints) {
+        if j.is_none() {
+            continue;
+        }
+        for ((dt, dr), (pose, pose0)) in sq.iter_mut().zip(anchors.iter().zip(at_k0)) {
+            *dt = dt.max((pose.translation.vector - pose0.translation.vector).norm_squared());
+            *dr = dr.max((pose.rotation.matrix() - pose0.rotation.matrix()).norm_squared());
         }
     }
-    (dt.sqrt(), dr.sqrt())
+    sq.map(|(dt, dr)| (dt.sqrt(), dr.sqrt()))
 }
 
 /// Moving box `b` as posed at subcell `k0`, grown to hold the box as posed at every reachable subcell.
