@@ -4,9 +4,9 @@
 //! fails here.
 //!
 //! The knot does not hold yet (issue 6): the expert runs it down onto the wound and cinches it there
-//! (as the left lets go: 0.4 mm above the tissue, 12 mm of thread between the stitch and the knot, the
-//! wound closed to 1.05 mm), but once both let go the throw slides under the holding load and the wound
-//! opens. Once it holds, assert the success here again.
+//! (as the left lets go: at the tissue, the wound closed to 1.17 mm), but the long end's leg from the
+//! exit to the knot is slack, and once both let go the holding load opens the wound. Once it holds,
+//! assert the success here again.
 
 use knotlab_scenarios::expert::{RecordOptions, demonstrate};
 use knotlab_sim::knot::KnotType;

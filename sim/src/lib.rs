@@ -23,6 +23,7 @@
 pub mod backend;
 pub mod cinch;
 pub mod evaluate;
+pub mod gauge;
 pub mod grasp;
 pub mod hooks;
 pub mod knot;

@@ -76,8 +76,11 @@ pub struct SimArm {
     /// Jaws that closed on nothing stay empty until they reopen: what later touches closed jaws is
     /// not grasped (and collides with them).
     pub closed_empty: bool,
-    /// Force on the instrument from contacts and grasps in the last step, world frame, N.
+    /// Force on the instrument from contacts and grasps, as the strain gauges read it (filtered,
+    /// with noise), world frame, N.
     pub force_n: Vector3<f64>,
+    /// The physical force through the gauges' filter (before the noise), world frame, N.
+    pub filtered_force_n: Vector3<f64>,
     /// The bodies of the instrument (the flange and every link below it): what the gauge feels.
     pub instrument_bodies: Vec<RigidBodyHandle>,
     /// The colliders of the jaws and the clevis carrying them.
@@ -210,6 +213,7 @@ impl SimWorld {
                     slipped: false,
                     closed_empty: false,
                     force_n: Vector3::zeros(),
+                    filtered_force_n: Vector3::zeros(),
                     instrument_bodies: Vec::new(),
                     jaw_colliders: Vec::new(),
                 })
@@ -568,6 +572,10 @@ impl SimWorld {
             if let Some(grasp) = &self.arms[a].grasp {
                 total += grasp.force_vector_n(&self.physics);
             }
+            let arm = &mut self.arms[a];
+            arm.filtered_force_n =
+                crate::gauge::low_pass(&arm.filtered_force_n, &total, dt, self.config.sensor.force_filter_s);
+            let mut total = arm.filtered_force_n;
             if let Ok(noise) = Normal::new(0.0, self.config.sensor.force_noise_n) {
                 for k in 0..3 {
                     total[k] += noise.sample(&mut self.noise);

@@ -81,9 +81,9 @@ pub struct TieGeometry {
     /// Then the left pulls the tail towards here, out over its flap at the tissue's level...
     pub left_pull_to_m: [f64; 3],
     /// ... while the right pulls the long end out over the other flap, until the set force. Pulled
-    /// level with the tissue, the ends draw the knot down onto it and the loop tight (session 27,
-    /// seeds 0-7 with no holding load: the wound 0.9-1.6 mm as both let go); pulled up and out (the
-    /// left to (0, 0.05, 0.055)), the knot stayed 2-7 mm up and the wound 2.5-3.3 mm open.
+    /// level with the tissue, the ends draw the knot down onto it and the wound closed (session 27,
+    /// seeds 0-7: the wound 1.1-1.8 mm as both let go); pulled up and out (the left to (0, 0.05,
+    /// 0.055)), the knot stayed 2-7 mm up and the wound 2.5-3.3 mm open.
     pub right_pull_to_m: [f64; 3],
     /// Where the assist retreats to.
     pub assist_retreat_m: [f64; 3],
@@ -95,8 +95,10 @@ pub struct TieGeometry {
     pub right_follows_draw: f64,
     /// While drawing back, the jaws turn this fraction of the way towards the shaft.
     pub draw_relax: f64,
-    /// The pulls' set force, N. At 1.5 N and 0.8 N the knot, snapping tight, passed through itself in
-    /// some runs (a coil lost: a trefoil at release); at 0.6 N in none of seeds 0-7.
+    /// The pulls' set force, N (as the gauges read it, through their low-pass). With the gauges
+    /// unfiltered the pulls stopped at one-step contact spikes (0.6 N read in a pull holding 0.1 N);
+    /// filtered, a pull held at 0.6 N, and even at 0.3 N, snaps the knot tight enough for the thread
+    /// to pass through itself in some runs (a coil lost: a trefoil at release).
     pub pull_force_n: f64,
     /// Whether a pull that reaches the set force stops and holds the thread there (both let go
     /// together at the end, the knot cinched between two tensions) rather than letting go at once.
@@ -140,7 +142,7 @@ impl Default for TieGeometry {
             draw_back_m: 0.032,
             right_follows_draw: 0.0,
             draw_relax: 0.4,
-            pull_force_n: 0.6,
+            pull_force_n: 0.3,
             hold_at_force: true,
         }
     }

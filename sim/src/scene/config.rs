@@ -211,6 +211,12 @@ pub struct StitchParams {
 pub struct SensorParams {
     /// Standard deviation of the noise on each axis of a force reading, N.
     pub force_noise_n: f64,
+    /// Time constant of the gauges' first-order low-pass filter, s (0: none). The physical force
+    /// is filtered, then the noise added: a thread's contact impulses, computed every step, otherwise
+    /// reach the controller as one-step spikes (0.6 N in a pull that holds 0.1 N) and fire its force
+    /// events.
+    #[serde(default)]
+    pub force_filter_s: f64,
     /// Grasped thread slips out of the jaws above this pull, N.
     pub grip_force_n: f64,
     /// A needle held in a needle driver's jaws slips above this pull, N.
@@ -410,6 +416,7 @@ impl SceneConfig {
         c.range("stitch.along_m", st.along_m, -0.5 * ti.flap_size_m[0], 0.5 * ti.flap_size_m[0]);
         c.range("stitch.slide_friction_n", st.slide_friction_n, 0.0, 10.0);
         c.range("sensor.force_noise_n", self.sensor.force_noise_n, 0.0, 10.0);
+        c.range("sensor.force_filter_s", self.sensor.force_filter_s, 0.0, 1.0);
         c.range("sensor.grip_force_n", self.sensor.grip_force_n, 0.01, 100.0);
         c.range("sensor.needle_grip_force_n", self.sensor.needle_grip_force_n, 0.01, 100.0);
         for (axis, v) in ["x", "y", "z"].iter().zip(&self.start.needle_m) {
