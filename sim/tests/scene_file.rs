@@ -48,7 +48,8 @@ fn out_of_range_values_are_all_named() {
     let text = DEFAULT
         .replace("dt_s = 0.001", "dt_s = 0.5")
         .replace("segments = 80", "segments = 2")
-        .replace("holding_load_n = 0.3", "holding_load_n = -0.3");
+        .replace("holding_load_n = 0.3", "holding_load_n = -0.3")
+        .replace("force_filter_s = 0.02", "force_filter_s = -0.02");
     let text =
         text.replacen("left = [0.0, 0.0, 0.0, 0.0, 0.0, 0.0]", "left = [0.0, 0.0, 0.3, 0.0, 0.0, 0.0]", 1);
     match parse_scene(&text, "bad.toml") {
@@ -58,6 +59,7 @@ fn out_of_range_values_are_all_named() {
             assert!(keys.contains(&"thread.segments"), "{keys:?}");
             assert!(keys.contains(&"servo.calibration_offset_rad.left[2]"), "{keys:?}");
             assert!(keys.contains(&"evaluation.holding_load_n"), "{keys:?}");
+            assert!(keys.contains(&"sensor.force_filter_s"), "{keys:?}");
         }
         other => panic!("expected range errors, got {other:?}"),
     }
