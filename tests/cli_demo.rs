@@ -21,6 +21,14 @@ fn demo_json_reports_each_run_and_writes_loadable_demonstrations() {
     assert_eq!(run["fault"], serde_json::Value::Null, "{run}");
     // The knot where the pulls left it, taken as the left let go of the tail.
     assert!(run["knot_at_release"]["knot"].is_string(), "{run}");
+    // Its legs, where the long end and the tail touch: a leg's thread spans at most its own length.
+    for leg in ["exit_leg", "entry_leg"] {
+        let l = &run["knot_at_release"][leg];
+        if !l.is_null() {
+            let (thread, span) = (l["thread_m"].as_f64().unwrap(), l["span_m"].as_f64().unwrap());
+            assert!(span >= 0.0 && span <= thread + 1e-9, "{leg}: {l}");
+        }
+    }
     // The first self-crossings, listed as many as counted up to ten, each with its time and segments.
     let listed = run["first_self_crossings"].as_array().expect("a list");
     assert_eq!(listed.len() as u64, run["thread_self_crossings"].as_u64().unwrap().min(10), "{run}");

@@ -6,6 +6,7 @@
 use nalgebra::{Point3, Vector3};
 use serde::{Deserialize, Serialize};
 
+use crate::knot::legs::{Leg, legs};
 use crate::knot::{
     Classification, DownLimits, FailureMode, KnotPlacement, KnotSpan, KnotType, StitchSite, TissueSurface,
     Verdict, classify, judge,
@@ -108,7 +109,16 @@ pub struct KnotNow {
     /// The thread outside the tissue between the stitch and the knot, m
     /// ([`KnotEvaluation::loop_outside_m`]).
     pub loop_outside_m: Option<f64>,
+    /// The loop's leg from the exit point (the needle's side) to where the long end first touches
+    /// the tail: its thread and the distance it spans ([`crate::knot::legs`]); none if they do not
+    /// touch.
+    pub exit_leg: Option<Leg>,
+    /// ... and from the entry point (the tail's side) to where the tail first touches the long end.
+    pub entry_leg: Option<Leg>,
 }
+
+/// Strands closer than this many thread radii, axis to axis, touch (two radii and a quarter more).
+const TOUCH_RADII: f64 = 2.5;
 
 /// The knot as the thread lies now (`None` when the centreline or the tissue is degenerate): cheap
 /// enough to take at a moment of interest, such as the cycle the instruments let go.
@@ -122,7 +132,15 @@ pub fn knot_now(world: &SimWorld) -> Option<KnotNow> {
         }
         None => (None, None),
     };
-    Some(KnotNow { knot: c.knot, height_m, loop_outside_m })
+    let arc_at = |flap| world.stitch.arc_at_m(&world.physics, &world.thread, &world.tissue, flap);
+    let (exit_leg, entry_leg) = match (arc_at(Flap::B), arc_at(Flap::A)) {
+        (Some(exit_m), Some(entry_m)) => {
+            let line = world.thread.centreline(&world.physics);
+            legs(&line, exit_m, entry_m, TOUCH_RADII * world.config.thread.radius_m)
+        }
+        _ => (None, None),
+    };
+    Some(KnotNow { knot: c.knot, height_m, loop_outside_m, exit_leg, entry_leg })
 }
 
 fn loop_outside(world: &SimWorld, span: &KnotSpan) -> Option<f64> {

@@ -5,8 +5,8 @@
 //! ([`closure`]), look at it from [`projection::DIRECTIONS`] directions ([`projection`]), find the
 //! crossings ([`crossings`]), write the signed Gauss code ([`gauss_code`]), simplify it ([`reduce`]),
 //! compute the determinant and writhe ([`invariants`]), name the knot and vote ([`classify`]). Then
-//! where the knot sits ([`tightness`]) and the trial's outcome ([`verdict`]). Centrelines come from
-//! the simulator or from a CSV file ([`csv`]).
+//! where the knot sits ([`tightness`]), how slack the loop's legs lie ([`legs`]) and the trial's
+//! outcome ([`verdict`]). Centrelines come from the simulator or from a CSV file ([`csv`]).
 //!
 //! ```
 //! use knotlab_sim::knot::{KnotType, classify};
@@ -33,6 +33,7 @@ pub mod csv;
 pub mod error;
 pub mod gauss_code;
 pub mod invariants;
+pub mod legs;
 pub mod projection;
 pub mod reduce;
 pub mod tightness;
