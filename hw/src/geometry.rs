@@ -43,9 +43,29 @@ pub fn segment_distance(p0: &Vector3<f64>, p1: &Vector3<f64>, q0: &Vector3<f64>,
     ((p0 + d1 * s) - (q0 + d2 * t)).norm()
 }
 
+/// Cumulative arc length at each point of a polyline, m (0 at the first point).
+pub fn arc_lengths(points: &[Vector3<f64>]) -> Vec<f64> {
+    let mut arc = Vec::with_capacity(points.len());
+    let mut s = 0.0;
+    for (k, p) in points.iter().enumerate() {
+        if k > 0 {
+            s += (p - points[k - 1]).norm();
+        }
+        arc.push(s);
+    }
+    arc
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn arc_lengths_accumulate_the_pieces() {
+        let points = [Vector3::zeros(), Vector3::new(3.0, 4.0, 0.0), Vector3::new(3.0, 4.0, 2.0)];
+        assert_eq!(arc_lengths(&points), vec![0.0, 5.0, 7.0]);
+        assert!(arc_lengths(&[]).is_empty());
+    }
 
     #[test]
     fn distances_of_crossing_parallel_and_degenerate_segments() {

@@ -40,14 +40,8 @@ pub struct ArcPath {
 /// Resamples `points` (at `times_s`) every `step_m` of arc length and smooths them with a Gaussian of
 /// `smoothing_m` along the arc. `None` when the path is shorter than four steps.
 pub fn arc_path(times_s: &[f64], points: &[Vector3<f64>], step_m: f64, smoothing_m: f64) -> Option<ArcPath> {
-    let mut arc = Vec::with_capacity(points.len());
-    let mut s = 0.0;
-    for (k, p) in points.iter().enumerate() {
-        if k > 0 {
-            s += (p - points[k - 1]).norm();
-        }
-        arc.push(s);
-    }
+    let arc = knotlab_hw::geometry::arc_lengths(points);
+    let s = arc.last().copied().unwrap_or(0.0);
     let count = (s / step_m).floor() as usize;
     if count < 4 {
         return None;

@@ -2,6 +2,7 @@
 //! carried into the stitch frame: positions from the smoothed path (tremor removed), orientations and
 //! jaw angles from the recorded samples, forces smoothed as the force detector smooths them.
 
+use knotlab_hw::geometry::arc_lengths;
 use nalgebra::{Isometry3, Matrix3, SymmetricEigen, UnitQuaternion, Vector3};
 use thiserror::Error;
 
@@ -90,19 +91,6 @@ impl Source<'_> {
             .collect();
         Ok((points, self.analysis.speed_mps[k0..=k1].to_vec()))
     }
-}
-
-/// Cumulative arc length of a polyline.
-fn arc_lengths(points: &[Vector3<f64>]) -> Vec<f64> {
-    let mut arc = Vec::with_capacity(points.len());
-    let mut s = 0.0;
-    for (k, p) in points.iter().enumerate() {
-        if k > 0 {
-            s += (p - points[k - 1]).norm();
-        }
-        arc.push(s);
-    }
-    arc
 }
 
 /// Linear interpolation of `values` (at arc lengths `arc`) at arc length `s`.

@@ -41,14 +41,7 @@ pub struct Polyline {
 impl Polyline {
     /// A polyline through `points` (at least one).
     pub fn new(points: Vec<Vector3<f64>>) -> Self {
-        let mut arc_m = Vec::with_capacity(points.len());
-        let mut s = 0.0;
-        for (k, p) in points.iter().enumerate() {
-            if k > 0 {
-                s += (p - points[k - 1]).norm();
-            }
-            arc_m.push(s);
-        }
+        let arc_m = knotlab_hw::geometry::arc_lengths(&points);
         Self { points, arc_m }
     }
 

@@ -7,7 +7,7 @@
 use nalgebra::Vector3;
 use serde::Serialize;
 
-use knotlab_hw::geometry::segment_closest_parameters;
+use knotlab_hw::geometry::{arc_lengths, segment_closest_parameters};
 
 /// One leg of the loop outside the tissue.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
@@ -23,19 +23,6 @@ impl Leg {
     pub fn slack_m(&self) -> f64 {
         self.thread_m - self.span_m
     }
-}
-
-/// Arc length at each point of a polyline, m.
-fn arcs(points: &[Vector3<f64>]) -> Vec<f64> {
-    let mut out = Vec::with_capacity(points.len());
-    let mut total = 0.0;
-    for (k, p) in points.iter().enumerate() {
-        if k > 0 {
-            total += (p - points[k - 1]).norm();
-        }
-        out.push(total);
-    }
-    out
 }
 
 /// The point at arc length `arc_m` along the polyline.
@@ -54,6 +41,27 @@ fn closest(points: &[Vector3<f64>], i: usize, j: usize) -> (f64, f64, f64) {
     (s, t, ((p0 + d1 * s) - (q0 + d2 * t)).norm())
 }
 
+/// The arc length of the first contact met walking `walk`'s segments in order against `others`:
+/// on the first segment within `touch_m` of any of them, the contact nearest the walk's start (the
+/// smallest parameter along the segment if `forward`, else the largest).
+fn first_contact_arc(
+    points: &[Vector3<f64>],
+    arcs: &[f64],
+    walk: impl Iterator<Item = usize>,
+    others: &[usize],
+    touch_m: f64,
+    forward: bool,
+) -> Option<f64> {
+    let mut walk = walk;
+    walk.find_map(|i| {
+        let mut touching =
+            others.iter().map(|&j| closest(points, i, j)).filter(|c| c.2 < touch_m).map(|c| c.0);
+        let first = touching.next()?;
+        let u = touching.fold(first, |b, u| if forward { b.min(u) } else { b.max(u) });
+        Some(arcs[i] + u * (arcs[i + 1] - arcs[i]))
+    })
+}
+
 /// The two legs of a centreline (needle end first) whose stitch leaves the tissue at arc length
 /// `exit_m` and enters it again at `entry_m` (`exit_m < entry_m`): `(exit leg, entry leg)`, each `None`
 /// when its end touches nothing of the other within `touch_m` (segment to segment). Each leg ends at
@@ -63,44 +71,26 @@ pub fn legs(points: &[Vector3<f64>], exit_m: f64, entry_m: f64, touch_m: f64) ->
     if points.len() < 2 || exit_m.partial_cmp(&entry_m) != Some(std::cmp::Ordering::Less) {
         return (None, None);
     }
-    let arcs = arcs(points);
+    let arcs = arc_lengths(points);
     let n = points.len() - 1;
     // Segments wholly before the exit (the long end) and wholly after the entry (the tail).
     let long_end: Vec<usize> = (0..n).filter(|&i| arcs[i + 1] <= exit_m).collect();
     let tail: Vec<usize> = (0..n).filter(|&j| arcs[j] >= entry_m).collect();
-    let arc_at = |k: usize, u: f64| arcs[k] + u * (arcs[k + 1] - arcs[k]);
     let exit_point = point_at(points, &arcs, exit_m);
     let entry_point = point_at(points, &arcs, entry_m);
     // Walking back from the exit: the first long-end segment touching the tail, at its contact
-    // nearest the exit.
-    let exit_leg = long_end.iter().rev().find_map(|&i| {
-        let s = tail
-            .iter()
-            .map(|&j| closest(points, i, j))
-            .filter(|c| c.2 < touch_m)
-            .map(|c| c.0)
-            .fold(None, |best: Option<f64>, s| Some(best.map_or(s, |b| b.max(s))))?;
-        let contact = arc_at(i, s);
-        Some(Leg {
+    // nearest the exit; walking on from the entry: the first tail segment touching the long end, at
+    // its contact nearest the entry.
+    let exit_leg = first_contact_arc(points, &arcs, long_end.iter().rev().copied(), &tail, touch_m, false)
+        .map(|contact| Leg {
             thread_m: exit_m - contact,
             span_m: (exit_point - point_at(points, &arcs, contact)).norm(),
-        })
-    });
-    // Walking on from the entry: the first tail segment touching the long end, at its contact
-    // nearest the entry.
-    let entry_leg = tail.iter().find_map(|&j| {
-        let t = long_end
-            .iter()
-            .map(|&i| closest(points, i, j))
-            .filter(|c| c.2 < touch_m)
-            .map(|c| c.1)
-            .fold(None, |best: Option<f64>, t| Some(best.map_or(t, |b| b.min(t))))?;
-        let contact = arc_at(j, t);
-        Some(Leg {
+        });
+    let entry_leg =
+        first_contact_arc(points, &arcs, tail.iter().copied(), &long_end, touch_m, true).map(|contact| Leg {
             thread_m: contact - entry_m,
             span_m: (point_at(points, &arcs, contact) - entry_point).norm(),
-        })
-    });
+        });
     (exit_leg, entry_leg)
 }
 
@@ -121,11 +111,11 @@ mod tests {
         // The slack leg: to (30, 5, 1) mm, back to the exit at (10, 0, 0).
         p.push(Vector3::new(0.03, 0.005, 0.001));
         p.push(Vector3::new(0.01, 0.0, 0.0));
-        let exit_m = arcs(&p)[p.len() - 1];
+        let exit_m = arc_lengths(&p)[p.len() - 1];
         // Under the tissue to the entry at the origin, then the tail up.
         p.push(Vector3::new(0.005, 0.0, -0.003));
         p.push(Vector3::new(0.0, 0.0, 0.0));
-        let entry_m = arcs(&p)[p.len() - 1];
+        let entry_m = arc_lengths(&p)[p.len() - 1];
         for k in 1..=10 {
             p.push(Vector3::new(0.0, 0.0, 0.002 * k as f64));
         }
