@@ -2,7 +2,9 @@
 //! ends held), as in a surgeon's throw, its two ends pulled apart with a tension rising linearly (no
 //! gravity). A knot is made of strands that block each other; pulled harder than its contacts hold,
 //! one strand passes through the other and the throw comes undone. Used by the `thread_cinch`
-//! benchmark (which sweeps the solver's settings) and by a regression test.
+//! benchmark (which sweeps the solver's settings) and by a regression test; the capstan trial (one
+//! end pulled harder than the other) by `thread_capstan`; the holding trial (the throw's free ends let
+//! go, the loop pulling) by `thread_holding`.
 
 use std::f64::consts::TAU;
 
@@ -131,7 +133,7 @@ fn wound_path() -> Vec<Vector3<f64>> {
 }
 
 /// Pins one end of `thread` where it lies: free to turn, or (`clamped`) held as jaws hold it.
-fn hold_end(physics: &mut Physics, thread: &Thread, first: bool, clamped: bool) {
+fn hold_end(physics: &mut Physics, thread: &Thread, first: bool, clamped: bool) -> ImpulseJointHandle {
     let half = 0.5 * thread.segment_length_m;
     let (segment, local_x) =
         if first { (thread.segments[0], -half) } else { (thread.segments[thread.segments.len() - 1], half) };
@@ -146,12 +148,16 @@ fn hold_end(physics: &mut Physics, thread: &Thread, first: bool, clamped: bool) 
     } else {
         SphericalJointBuilder::new().local_anchor2(Vector::new(local_x, 0.0, 0.0)).into()
     };
-    physics.impulse_joints.insert(anchor, segment, joint, true);
+    physics.impulse_joints.insert(anchor, segment, joint, true)
 }
 
 /// A world without gravity holding A (both ends pinned) and B wound twice round it, with `thread`'s
-/// material and segment length.
-fn wound_pair(solver: &SolverParams, thread: &ThreadParams, clamped: bool) -> (Physics, Thread, Thread) {
+/// material and segment length, and the joints that hold A's first and last ends.
+fn wound_pair(
+    solver: &SolverParams,
+    thread: &ThreadParams,
+    clamped: bool,
+) -> (Physics, Thread, Thread, [ImpulseJointHandle; 2]) {
     let mut physics = Physics::new(solver);
     physics.gravity = Vector::ZERO;
     let segment_m = thread.segment_length_m();
@@ -163,15 +169,14 @@ fn wound_pair(solver: &SolverParams, thread: &ThreadParams, clamped: bool) -> (P
         &Vector3::new(-0.5 * a_params.length_m, 0.0, 0.0),
         &Vector3::x(),
     );
-    hold_end(&mut physics, &a, true, clamped);
-    hold_end(&mut physics, &a, false, clamped);
+    let a_joints = [hold_end(&mut physics, &a, true, clamped), hold_end(&mut physics, &a, false, clamped)];
     let path = wound_path();
     let path_m: f64 = path.windows(2).map(|w| (w[1] - w[0]).norm()).sum();
     let b_segments = ((path_m / segment_m).floor() as usize).max(2);
     let b_params = ThreadParams { length_m: b_segments as f64 * segment_m, segments: b_segments, ..*thread };
     let b = Thread::build(&mut physics, &b_params, &path[0], &Vector3::x());
     b.lay_along(&mut physics, &path);
-    (physics, a, b)
+    (physics, a, b, a_joints)
 }
 
 /// Winds B twice round A with `thread`'s material and segment length, pulls B's ends apart as
@@ -181,7 +186,7 @@ pub fn run_cinch(
     thread: &ThreadParams,
     params: &CinchParams,
 ) -> Result<CinchOutcome, HealthError> {
-    let (mut physics, a, b) = wound_pair(solver, thread, false);
+    let (mut physics, a, b, _) = wound_pair(solver, thread, false);
     if params.ccd {
         for h in a.segments.iter().chain(&b.segments) {
             physics.bodies[*h].enable_ccd(true);
@@ -295,7 +300,7 @@ pub fn run_capstan(
     thread: &ThreadParams,
     params: &CapstanParams,
 ) -> Result<CapstanOutcome, HealthError> {
-    let (mut physics, a, b) = wound_pair(solver, thread, params.held_as_jaws);
+    let (mut physics, a, b, _) = wound_pair(solver, thread, params.held_as_jaws);
     let nb = b.segments.len();
     let (first, last) = (b.segments[0], b.segments[nb - 1]);
     if params.held_as_jaws {
@@ -341,6 +346,103 @@ pub fn run_capstan(
         slip_m: z_start - z_end,
         late_slip_m: z_half - z_end,
         turns_end: winding_turns(&a_line, &b.centreline(&physics)),
+        steps: snug_steps + hold_steps,
+    })
+}
+
+/// The holding trial: a throw as the knot leaves it when the instruments let go. B's turns are first
+/// snugged round A (A's ends held as jaws hold them, B's ends pulled alike); then the loop pulls on
+/// the throw: A's first end stays held (the loop's anchor), B's last end is pulled along its tail with
+/// the loop's tension, as the wound pulls on a tied stitch, and the free ends (A's last, B's first)
+/// are let go or kept as `params` says.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct HoldingParams {
+    /// Both of B's ends pulled with this tension first, N ...
+    pub snug_n: f64,
+    /// ... for this long, s.
+    pub snug_s: f64,
+    /// Then the loop's tension on B's loaded end, N ...
+    pub loop_n: f64,
+    /// ... for this long, s.
+    pub hold_s: f64,
+    /// A's free end let go (else it stays held).
+    pub release_a: bool,
+    /// B's free end let go (else it is held where the snug left it, as jaws hold it).
+    pub release_b: bool,
+}
+
+/// What the holding trial measured.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct HoldingOutcome {
+    /// How far B's loaded end moved along the loop's pull while it pulled, m (a throw that holds
+    /// settles by a few mm and stops; one that slips goes on).
+    pub slip_m: f64,
+    /// ... in the last half of that time, m.
+    pub late_slip_m: f64,
+    /// B's winding round A at the end of the snug, turns ...
+    pub turns_snug: f64,
+    /// ... and at the end, turns (a throw that came undone: under one).
+    pub turns_end: f64,
+    /// Steps taken.
+    pub steps: usize,
+}
+
+/// Winds B twice round A, snugs the turns, then pulls the loop's ends with the free ends let go or
+/// kept, as `params` says: does a snug throw hold the loop's tension once its free ends are free?
+pub fn run_holding(
+    solver: &SolverParams,
+    thread: &ThreadParams,
+    params: &HoldingParams,
+) -> Result<HoldingOutcome, HealthError> {
+    let (mut physics, a, b, a_joints) = wound_pair(solver, thread, true);
+    let nb = b.segments.len();
+    // B's first end lies along -z (its free end), its last along +z (pulled by the loop).
+    let (free, loaded) = (b.segments[0], b.segments[nb - 1]);
+    for h in [free, loaded] {
+        physics.bodies[h].lock_rotations(true, true);
+    }
+    let dt_s = physics.dt_s();
+    let snug_steps = (params.snug_s / dt_s).round() as usize;
+    let hold_steps = (params.hold_s / dt_s).round() as usize;
+    let along = |physics: &Physics| physics.bodies[loaded].translation().z;
+    let (mut at_start, mut at_half, mut turns_snug) = (0.0, 0.0, 0.0);
+    for step in 0..snug_steps + hold_steps {
+        if step == snug_steps {
+            at_start = along(&physics);
+            turns_snug = winding_turns(&a.centreline(&physics), &b.centreline(&physics));
+            if params.release_a {
+                physics.impulse_joints.remove(a_joints[1], true);
+            }
+            if params.release_b {
+                physics.bodies[free].lock_rotations(false, true);
+            } else {
+                let pose = *physics.bodies[free].position();
+                let anchor = physics.bodies.insert(RigidBodyBuilder::fixed().pose(pose));
+                physics.impulse_joints.insert(anchor, free, FixedJointBuilder::new(), true);
+            }
+        }
+        if step == snug_steps + hold_steps / 2 {
+            at_half = along(&physics);
+        }
+        let ramp = (2.0 * step as f64 / snug_steps as f64).min(1.0);
+        let (free_n, loaded_n) = if step < snug_steps {
+            (params.snug_n * ramp, params.snug_n * ramp)
+        } else {
+            (0.0, params.loop_n)
+        };
+        for (h, force_n) in [(free, -free_n), (loaded, loaded_n)] {
+            let body = &mut physics.bodies[h];
+            body.reset_forces(true);
+            body.add_force(Vector::new(0.0, 0.0, force_n), true);
+        }
+        physics.step(&|_| "thread segment".to_owned())?;
+    }
+    let at_end = along(&physics);
+    Ok(HoldingOutcome {
+        slip_m: at_end - at_start,
+        late_slip_m: at_end - at_half,
+        turns_snug,
+        turns_end: winding_turns(&a.centreline(&physics), &b.centreline(&physics)),
         steps: snug_steps + hold_steps,
     })
 }
