@@ -29,6 +29,15 @@ fn demo_json_reports_each_run_and_writes_loadable_demonstrations() {
             assert!(span >= 0.0 && span <= thread + 1e-9, "{leg}: {l}");
         }
     }
+    // What the knot let through under the holding load: each end drawn in by at most the thread's
+    // length (0.25 m), reported only when the holding test ran.
+    if !run["slid"].is_null() {
+        assert!(run["gap_after_m"].is_f64(), "{run}");
+        for end in ["long_end_m", "tail_m"] {
+            let slid = run["slid"][end].as_f64().expect("a number");
+            assert!(slid.abs() <= 0.25, "{end}: {run}");
+        }
+    }
     // The first self-crossings, listed as many as counted up to ten, each with its time and segments.
     let listed = run["first_self_crossings"].as_array().expect("a list");
     assert_eq!(listed.len() as u64, run["thread_self_crossings"].as_u64().unwrap().min(10), "{run}");

@@ -6,7 +6,7 @@
 use nalgebra::{Point3, Vector3};
 use serde::{Deserialize, Serialize};
 
-use crate::knot::legs::{Leg, legs};
+use crate::knot::legs::{Leg, free_ends, legs};
 use crate::knot::{
     Classification, DownLimits, FailureMode, KnotPlacement, KnotSpan, KnotType, StitchSite, TissueSurface,
     Verdict, classify, judge,
@@ -83,6 +83,19 @@ pub struct KnotEvaluation {
     /// How often the thread passed through itself during the run (a solver failure; the knot of a
     /// run with any is not a real thread's).
     pub thread_self_crossings: usize,
+    /// How much of each free end the knot drew in during the holding test, if it ran and the two ends
+    /// touched before and after: a knot that slips draws in the end it lets through.
+    pub slid: Option<Slid>,
+}
+
+/// How much of each free end a knot drew in while it was loaded: the free end's length before less
+/// its length after, by contact ([`crate::knot::legs::free_ends`]).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct Slid {
+    /// The long end (the needle's), m.
+    pub long_end_m: f64,
+    /// The tail, m.
+    pub tail_m: f64,
 }
 
 /// The tissue surface and stitch point of a scene.
@@ -148,10 +161,26 @@ fn loop_outside(world: &SimWorld, span: &KnotSpan) -> Option<f64> {
     span.loop_outside_m(arc_at(Flap::B)?, arc_at(Flap::A)?)
 }
 
+/// The free ends as the thread lies now: `(long end, tail)`, m ([`crate::knot::legs::free_ends`]).
+pub fn free_ends_now(world: &SimWorld) -> Option<(f64, f64)> {
+    let arc_at = |flap| world.stitch.arc_at_m(&world.physics, &world.thread, &world.tissue, flap);
+    let line = world.thread.centreline(&world.physics);
+    free_ends(&line, arc_at(Flap::B)?, arc_at(Flap::A)?, TOUCH_RADII * world.config.thread.radius_m)
+}
+
 /// The holding test's load: every jaw opens and, for the settle time, the tissue's elastic load and
 /// `holding_load_n` on each flap pull the wound open. Returns the wound gap at the end, m; `None` when
 /// the thread went unstable.
 pub fn hold(world: &mut SimWorld, params: &EvaluationParams) -> Option<f64> {
+    hold_watched(world, params, &mut |_, _| {})
+}
+
+/// [`hold`], showing `observe` the world before each step with the time since the load came on, s.
+pub fn hold_watched(
+    world: &mut SimWorld,
+    params: &EvaluationParams,
+    observe: &mut dyn FnMut(&SimWorld, f64),
+) -> Option<f64> {
     world.release_all();
     let load = |world: &mut SimWorld, scale: f64| {
         for flap in Flap::ALONG_THREAD {
@@ -164,7 +193,8 @@ pub fn hold(world: &mut SimWorld, params: &EvaluationParams) -> Option<f64> {
     load(world, 1.0);
     let steps = (params.settle_s / world.config.solver.dt_s).round() as usize;
     let mut stable = true;
-    for _ in 0..steps {
+    for step in 0..steps {
+        observe(world, step as f64 * world.config.solver.dt_s);
         if world.step().is_err() {
             stable = false;
             break;
@@ -177,6 +207,15 @@ pub fn hold(world: &mut SimWorld, params: &EvaluationParams) -> Option<f64> {
 /// Judges the thread as it lies, then (if the knot is right and down) lets go of everything and runs
 /// the holding test. Advances the world by the settle time when the holding test runs.
 pub fn evaluate_knot(world: &mut SimWorld, params: &EvaluationParams) -> KnotEvaluation {
+    evaluate_knot_watched(world, params, &mut |_, _| {})
+}
+
+/// [`evaluate_knot`], showing `observe` the world through the holding test ([`hold_watched`]).
+pub fn evaluate_knot_watched(
+    world: &mut SimWorld,
+    params: &EvaluationParams,
+    observe: &mut dyn FnMut(&SimWorld, f64),
+) -> KnotEvaluation {
     let gap_before_m = world.wound_gap_m();
     let mut result = KnotEvaluation {
         verdict: Verdict::Failure(FailureMode::NoKnot),
@@ -188,6 +227,7 @@ pub fn evaluate_knot(world: &mut SimWorld, params: &EvaluationParams) -> KnotEva
         gap_before_m,
         gap_after_m: None,
         thread_self_crossings: world.thread_watch.crossings.len(),
+        slid: None,
     };
     let Some(site) = stitch_site(world) else {
         result.verdict = Verdict::Failure(FailureMode::ThreadUnstable);
@@ -213,13 +253,17 @@ pub fn evaluate_knot(world: &mut SimWorld, params: &EvaluationParams) -> KnotEva
         return result;
     }
     // The holding test: every jaw opens, the load pulls the wound open for the settle time.
-    if hold(world, params).is_none() {
+    let free_before = free_ends_now(world);
+    if hold_watched(world, params, observe).is_none() {
         result.verdict = Verdict::Failure(FailureMode::ThreadUnstable);
         return result;
     }
     result.thread_self_crossings = world.thread_watch.crossings.len();
     let gap_after = world.wound_gap_m();
     result.gap_after_m = Some(gap_after);
+    if let (Some(before), Some(after)) = (free_before, free_ends_now(world)) {
+        result.slid = Some(Slid { long_end_m: before.0 - after.0, tail_m: before.1 - after.1 });
+    }
     let after = classify_thread(world);
     result.knot_after = after.as_ref().map(|c| c.knot);
     let persists = after.is_some_and(|c| c.knot == before.knot);

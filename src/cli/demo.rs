@@ -38,8 +38,9 @@ pub struct DemoArgs {
     /// scenarios/experts/instrument-tie.toml).
     #[arg(long, value_name = "FILE")]
     expert: Option<PathBuf>,
-    /// Draw the scene into PNG files OUT/snapshot-T.png at these skill times, s (comma-separated), and
-    /// write the thread's centreline beside each (OUT/centreline-T.csv, x_m,y_m,z_m from the needle end).
+    /// Draw the scene into PNG files OUT/snapshot-T.png at these skill times, s (comma-separated; times
+    /// past the skill's end fall in the holding test, on the same clock), and write the thread's
+    /// centreline beside each (OUT/centreline-T.csv, x_m,y_m,z_m from the needle end).
     #[arg(long, value_parser = parse_list)]
     snapshots: Option<Numbers>,
     /// Half the width of each snapshot view, m (the views are centred 3 cm above the wound, or 0.6 of
@@ -81,6 +82,9 @@ struct RunLine {
     knot_at_release: Option<knotlab_sim::evaluate::KnotNow>,
     gap_before_m: f64,
     gap_after_m: Option<f64>,
+    /// How much of each free end the knot drew in during the holding test (a knot that slips lets
+    /// one through).
+    slid: Option<knotlab_sim::evaluate::Slid>,
     thread_self_crossings: usize,
     /// The first few of them: when (s of the scene's simulated time) and which two segments (needle
     /// end counting from 0), to find the move that forced the thread through itself.
@@ -119,6 +123,7 @@ fn line(seed: u64, run: &DemoRun, dir: &Path) -> RunLine {
         knot_at_release: run.knot_at_release.clone(),
         gap_before_m: e.gap_before_m,
         gap_after_m: e.gap_after_m,
+        slid: e.slid,
         thread_self_crossings: e.thread_self_crossings,
         first_self_crossings: run.first_self_crossings().to_vec(),
         fault: run.fault.clone(),

@@ -85,6 +85,9 @@ struct Report {
     /// The thread outside the tissue between the stitch and the knot, both sides (about the two bites
     /// for a knot cinched down on the wound); not part of the verdict.
     knot_loop_outside_m: Option<f64>,
+    /// How much of each free end the knot drew in during the holding test (a knot that slips lets
+    /// one through).
+    knot_slid: Option<knotlab_sim::evaluate::Slid>,
     /// How often the thread passed through itself during the trial (a solver failure: a knot tied
     /// with any is not a real thread's); not part of the verdict.
     thread_self_crossings: usize,
@@ -248,6 +251,7 @@ pub fn run(args: RunArgs, out: &mut Output) -> anyhow::Result<ExitCode> {
         knot_height_m: e.height_m,
         knot_stitch_distance_m: e.stitch_distance_m,
         knot_loop_outside_m: e.loop_outside_m,
+        knot_slid: e.slid,
         thread_self_crossings: e.thread_self_crossings,
         first_self_crossings: trial.run.first_self_crossings().to_vec(),
         method: args.method.as_str(),

@@ -13,7 +13,7 @@ use knotlab_learner::demonstration::{
     Demonstration, FORMAT_VERSION, GraspState, InstrumentRecord, Metadata, Sample, StitchPose,
 };
 use knotlab_sim::backend::SimBackend;
-use knotlab_sim::evaluate::{KnotEvaluation, KnotNow, evaluate_knot, knot_now};
+use knotlab_sim::evaluate::{KnotEvaluation, KnotNow, evaluate_knot_watched, knot_now};
 use knotlab_sim::knot::{FailureMode, Verdict};
 use knotlab_sim::shapes::{SceneShapes, scene_shapes};
 use knotlab_sim::snapshot::{View, render_png};
@@ -209,10 +209,17 @@ pub fn record_demonstration(
             gap_before_m: world.wound_gap_m(),
             gap_after_m: None,
             thread_self_crossings: world.thread_watch.crossings.len(),
+            slid: None,
         }
     } else {
         let params = world.config.evaluation.clone();
-        evaluate_knot(&mut world, &params)
+        // Snapshots past the skill's end show the holding test, on the same clock.
+        evaluate_knot_watched(&mut world, &params, &mut |world, held_s| {
+            while snapshot_times.first().is_some_and(|t| *t <= simulated_s + held_s) {
+                let t = snapshot_times.remove(0);
+                snapshots.extend(snapshot(world, options, t));
+            }
+        })
     };
     for t in snapshot_times {
         snapshots.extend(snapshot(&world, options, t));

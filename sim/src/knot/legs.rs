@@ -94,6 +94,24 @@ pub fn legs(points: &[Vector3<f64>], exit_m: f64, entry_m: f64, touch_m: f64) ->
     (exit_leg, entry_leg)
 }
 
+/// The two free ends of a centreline (needle end first) whose stitch leaves the tissue at `exit_m`
+/// and enters it again at `entry_m`: `(long end, tail)`, the thread from the needle end to the long
+/// end's first contact with the tail and from the tail's last contact with the long end to its end,
+/// m; `None` when the two ends do not touch within `touch_m`.
+pub fn free_ends(points: &[Vector3<f64>], exit_m: f64, entry_m: f64, touch_m: f64) -> Option<(f64, f64)> {
+    if points.len() < 2 || exit_m.partial_cmp(&entry_m) != Some(std::cmp::Ordering::Less) {
+        return None;
+    }
+    let arcs = arc_lengths(points);
+    let n = points.len() - 1;
+    let long_end: Vec<usize> = (0..n).filter(|&i| arcs[i + 1] <= exit_m).collect();
+    let tail: Vec<usize> = (0..n).filter(|&j| arcs[j] >= entry_m).collect();
+    let long_end_m = first_contact_arc(points, &arcs, long_end.iter().copied(), &tail, touch_m, true)?;
+    let tail_from_m =
+        first_contact_arc(points, &arcs, tail.iter().rev().copied(), &long_end, touch_m, false)?;
+    Some((long_end_m, arcs[n] - tail_from_m))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -141,6 +159,21 @@ mod tests {
         let entry_leg = entry_leg.expect("the tail touches the wrap");
         assert!((entry_leg.thread_m - 0.005).abs() < 0.0012, "{entry_leg:?}");
         assert!(entry_leg.slack_m().abs() < 1e-9, "{entry_leg:?}");
+    }
+
+    #[test]
+    fn the_free_ends_run_to_the_wrap() {
+        let (p, exit_m, entry_m) = line();
+        let (long_end_m, tail_m) = free_ends(&p, exit_m, entry_m, 0.0012).expect("the ends touch");
+        // The long end runs 49 mm along -x to the wrap at (-1, 0, 5) mm, where it passes 1 mm from
+        // the tail (the z axis): its first contact.
+        assert!((long_end_m - 0.049).abs() < 0.0005, "{long_end_m}");
+        // The tail runs from the origin up to 20 mm, through the wrap at 5 mm; the leg leaving the
+        // wrap passes 1.15 mm from the tail's point at 6 mm, which is where it last touches: 14 mm free.
+        assert!((tail_m - 0.014).abs() < 0.0005, "{tail_m}");
+        // Touching nothing, no free ends.
+        assert_eq!(free_ends(&p, exit_m, entry_m, 1e-6), None);
+        assert_eq!(free_ends(&p, entry_m, exit_m, 0.0012), None);
     }
 
     #[test]
