@@ -14,7 +14,9 @@
 //!
 //! `cargo bench -p knotlab-bench --bench thread_capstan`
 
-use knotlab_sim::cinch::{CapstanParams, capstan_ratio, run_capstan};
+use knotlab_sim::cinch::{
+    BallCapstanParams, CapstanParams, capstan_ratio, run_capstan, run_capstan_over_ball,
+};
 use knotlab_sim::physics::SolverParams;
 use knotlab_sim::thread::ThreadParams;
 
@@ -81,5 +83,41 @@ fn main() {
                 cells.join(" | ")
             );
         }
+    }
+    // The same law against a rigid body: the strand over a fixed ball, half a turn. Where this holds
+    // close to the bound and the strand-on-strand wrap above does not, the solver's friction is not
+    // what lets the wrap go.
+    println!();
+    println!(
+        "the shipped strand over a fixed 5 mm ball (half a turn), snugged at {HIGH_N} N for 1 s, then {HIGH_N} N and {HIGH_N} N / ratio for 3 s: how far it slid (in the last 1.5 s); the capstan bound is exp(friction * pi)"
+    );
+    let fractions = [0.5, 0.8, 0.95, 1.2];
+    let header: Vec<String> = fractions.iter().map(|f| format!("ratio {f} x bound")).collect();
+    println!("| friction (bound) | {} |", header.join(" | "));
+    println!("|---|{}", "---|".repeat(fractions.len()));
+    for friction in [thread.friction, 0.3, 1.0] {
+        let strand = ThreadParams { friction, ..thread };
+        let bound = (friction * std::f64::consts::PI).exp();
+        let cells: Vec<String> = fractions
+            .iter()
+            .map(|f| {
+                let ratio = (f * bound).max(1.0);
+                let params = BallCapstanParams {
+                    ball_radius_m: 0.005,
+                    high_n: HIGH_N,
+                    snug_s: 1.0,
+                    ratio,
+                    hold_s: 3.0,
+                };
+                match run_capstan_over_ball(&solver, &strand, &params) {
+                    Ok((_, _, true)) => format!("{ratio:.2}: to its end"),
+                    Ok((slip, late, false)) => {
+                        format!("{ratio:.2}: {:.1} mm ({:.2})", 1e3 * slip, 1e3 * late)
+                    }
+                    Err(_) => format!("{ratio:.2}: off"),
+                }
+            })
+            .collect();
+        println!("| {friction} ({bound:.2}) | {} |", cells.join(" | "));
     }
 }

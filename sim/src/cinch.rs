@@ -447,6 +447,85 @@ pub fn run_holding(
     })
 }
 
+/// The strand over a ball: the capstan trial against a rigid body instead of another strand. The
+/// strand is laid over the top of a fixed ball (half a turn), snugged with both ends pulled down
+/// alike, then its first end pulled with `high_n` and its last with `high_n / ratio` for `hold_s`.
+/// Friction holds while `ratio` stays below `exp(friction * pi)`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct BallCapstanParams {
+    /// The ball's radius, m.
+    pub ball_radius_m: f64,
+    /// The harder pull, N (both ends pulled with it during the snug).
+    pub high_n: f64,
+    /// The snug's length, s.
+    pub snug_s: f64,
+    /// The ratio of the two pulls after the snug.
+    pub ratio: f64,
+    /// How long the two pulls differ, s.
+    pub hold_s: f64,
+}
+
+/// Straight strand hanging down either side of the ball, m.
+const BALL_TAIL_M: f64 = 0.05;
+
+/// The strand over a ball: how far the strand slid towards its harder-pulled end after the snug, and
+/// in the last half of that time, m, and whether its other end was drawn up to the ball (the slide
+/// then stops there, not by friction); a strand that slid off and flew trips the speed check.
+pub fn run_capstan_over_ball(
+    solver: &SolverParams,
+    thread: &ThreadParams,
+    params: &BallCapstanParams,
+) -> Result<(f64, f64, bool), HealthError> {
+    let mut physics = Physics::new(solver);
+    physics.gravity = Vector::ZERO;
+    let ball = physics.bodies.insert(RigidBodyBuilder::fixed());
+    let collider = ColliderBuilder::ball(params.ball_radius_m).friction(thread.friction).build();
+    physics.colliders.insert_with_parent(collider, ball, &mut physics.bodies);
+    // Down the -x side, over the top, down the +x side, just clear of the ball.
+    let r = params.ball_radius_m + 1.05 * thread.radius_m;
+    let mut path = vec![Vector3::new(-r, 0.0, -BALL_TAIL_M)];
+    path.extend((0..=60).map(|k| {
+        let a = std::f64::consts::PI * (1.0 - k as f64 / 60.0);
+        Vector3::new(r * a.cos(), 0.0, r * a.sin())
+    }));
+    path.push(Vector3::new(r, 0.0, -BALL_TAIL_M));
+    let path_m: f64 = path.windows(2).map(|w| (w[1] - w[0]).norm()).sum();
+    let segment_m = thread.segment_length_m();
+    let segments = ((path_m / segment_m).floor() as usize).max(2);
+    let strand_params = ThreadParams { length_m: segments as f64 * segment_m, segments, ..*thread };
+    let strand = Thread::build(&mut physics, &strand_params, &path[0], &Vector3::x());
+    strand.lay_along(&mut physics, &path);
+    let (first, last) = (strand.segments[0], strand.segments[segments - 1]);
+    for h in [first, last] {
+        physics.bodies[h].lock_rotations(true, true);
+    }
+    let dt_s = physics.dt_s();
+    let snug_steps = (params.snug_s / dt_s).round() as usize;
+    let hold_steps = (params.hold_s / dt_s).round() as usize;
+    let z_of = |physics: &Physics| physics.bodies[first].translation().z;
+    let (mut z_start, mut z_half) = (0.0, 0.0);
+    for step in 0..snug_steps + hold_steps {
+        if step == snug_steps {
+            z_start = z_of(&physics);
+        }
+        if step == snug_steps + hold_steps / 2 {
+            z_half = z_of(&physics);
+        }
+        let ramp = (2.0 * step as f64 / snug_steps as f64).min(1.0);
+        let high_n = params.high_n * ramp;
+        let low_n = if step < snug_steps { high_n } else { params.high_n / params.ratio };
+        for (h, force_n) in [(first, high_n), (last, low_n)] {
+            let body = &mut physics.bodies[h];
+            body.reset_forces(true);
+            body.add_force(Vector::new(0.0, 0.0, -force_n), true);
+        }
+        physics.step(&|_| "thread segment".to_owned())?;
+    }
+    let z_end = z_of(&physics);
+    let to_end = physics.bodies[last].translation().z > -(params.ball_radius_m + END_NEAR_M);
+    Ok((z_start - z_end, z_half - z_end, to_end))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
