@@ -12,6 +12,12 @@
 //! once every end is held as jaws hold it (no strand can spin as a whole): ratio 2 at friction 0.15,
 //! 3 at 1.0 (a few mm of settling), as the equation says, if short of its bound.
 //!
+//! A second table lays the strand over a fixed 5 mm ball instead (half a turn, bound exp(friction *
+//! pi)): at friction 0.15 and 0.3 it holds 0.8 of the bound and lets go at 0.95, at 1.0 it lets go
+//! at half the bound. Against a rigid body the solver's friction is close to Coulomb's at the
+//! scene's friction, so what the strand-on-strand wrap falls short by is the wrap's geometry: 3.1 mm
+//! segments cannot lie round a strand 0.8 mm thick.
+//!
 //! `cargo bench -p knotlab-bench --bench thread_capstan`
 
 use knotlab_sim::cinch::{
