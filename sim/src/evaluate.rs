@@ -90,7 +90,7 @@ pub struct KnotEvaluation {
 
 /// How much of each free end a knot drew in while it was loaded: the free end's length before less
 /// its length after, by contact ([`crate::knot::legs::free_ends`]).
-#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Slid {
     /// The long end (the needle's), m.
     pub long_end_m: f64,

@@ -111,6 +111,10 @@ pub struct TrialLine {
     /// forced it; none when there was none, or in lines written before it was recorded.
     #[serde(default)]
     pub first_self_crossing: Option<knotlab_sim::thread_watch::SelfCrossing>,
+    /// How much of each free end the knot drew in during the holding test (a knot that slips lets
+    /// one through); none when the test did not run, or in lines written before it was measured.
+    #[serde(default)]
+    pub slid: Option<knotlab_sim::evaluate::Slid>,
     /// Simulated time, s.
     pub sim_seconds: f64,
     /// Wall time, s (not in the summary).
@@ -185,6 +189,7 @@ fn run_one(options: &McOptions, trial: u64, method: Method, runner: &TrialRunner
                 wound_gap_m: Some(e.gap_after_m.unwrap_or(e.gap_before_m)),
                 thread_self_crossings: Some(e.thread_self_crossings),
                 first_self_crossing: t.run.self_crossings.first().copied(),
+                slid: e.slid,
                 sim_seconds: t.run.simulated_s,
                 wall_seconds: t.run.wall_s,
                 error: t.run.fault.clone(),
@@ -200,6 +205,7 @@ fn run_one(options: &McOptions, trial: u64, method: Method, runner: &TrialRunner
             wound_gap_m: None,
             thread_self_crossings: None,
             first_self_crossing: None,
+            slid: None,
             sim_seconds: 0.0,
             wall_seconds: 0.0,
             error: Some(format!("{error:#}")),
@@ -335,6 +341,7 @@ mod tests {
         assert_eq!(lines.len(), 1);
         assert_eq!(lines[0].thread_self_crossings, None);
         assert_eq!(lines[0].first_self_crossing, None);
+        assert_eq!(lines[0].slid, None);
         assert_eq!(lines[0].verdict, "no_knot");
         std::fs::remove_dir_all(&out).ok();
     }
@@ -349,6 +356,18 @@ mod tests {
         };
         let text = serde_json::to_string(&line).unwrap();
         assert!(text.contains(r#""first_self_crossing":{"time_s":21.25,"segments":[16,35]}"#), "{text}");
+        assert_eq!(serde_json::from_str::<TrialLine>(&text).unwrap(), line);
+    }
+
+    #[test]
+    fn what_a_knot_let_through_reads_back_as_written() {
+        let slid = knotlab_sim::evaluate::Slid { long_end_m: 0.011, tail_m: 0.039 };
+        let line = TrialLine {
+            slid: Some(slid),
+            ..crate::report::test_line("fluid", serde_json::Value::Null, "knot_slipped")
+        };
+        let text = serde_json::to_string(&line).unwrap();
+        assert!(text.contains(r#""slid":{"long_end_m":0.011,"tail_m":0.039}"#), "{text}");
         assert_eq!(serde_json::from_str::<TrialLine>(&text).unwrap(), line);
     }
 }

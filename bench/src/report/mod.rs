@@ -183,6 +183,7 @@ pub(crate) fn test_line(method: &str, draw: serde_json::Value, verdict: &str) ->
         wound_gap_m: None,
         thread_self_crossings: None,
         first_self_crossing: None,
+        slid: None,
         sim_seconds: 0.0,
         wall_seconds: 0.0,
         error: None,
