@@ -9,8 +9,18 @@ use common::{json, knotlab};
 fn demo_json_reports_each_run_and_writes_loadable_demonstrations() {
     let dir = std::env::temp_dir().join(format!("knotlab-demo-{}", std::process::id()));
     let out = dir.to_str().unwrap();
-    let (code, v) =
-        json(&["demo", "--scene", "scenarios/default.toml", "--seeds", "5..6", "--out", out, "--json"]);
+    let (code, v) = json(&[
+        "demo",
+        "--scene",
+        "scenarios/default.toml",
+        "--seeds",
+        "5..6",
+        "--out",
+        out,
+        "--snapshots",
+        "9",
+        "--json",
+    ]);
     assert_eq!(code, 0, "{v}");
     assert_eq!(v["runs"], 1, "{v}");
     let rate = v["success_rate"].as_f64().unwrap();
@@ -38,6 +48,22 @@ fn demo_json_reports_each_run_and_writes_loadable_demonstrations() {
             assert!(slid.abs() <= 0.25, "{end}: {run}");
         }
     }
+    // A snapshot 9 s in, as the right winds the long end: the picture, the centreline and where the
+    // thread lies on the instruments (segment, link): on the left's jaws, which it is wound round.
+    let seed_dir = dir.join("seed-5");
+    assert!(seed_dir.join("snapshot-9.000s.png").is_file());
+    assert!(seed_dir.join("centreline-9.000s.csv").is_file());
+    let contacts = std::fs::read_to_string(seed_dir.join("contacts-9.000s.csv")).expect("contacts written");
+    let mut rows = contacts.lines();
+    assert_eq!(rows.next(), Some("segment,link"));
+    let rows: Vec<(usize, &str)> = rows
+        .map(|r| {
+            let (segment, link) = r.split_once(',').expect("segment,link");
+            (segment.parse().expect("a segment index"), link)
+        })
+        .collect();
+    assert!(rows.iter().any(|(_, link)| link.starts_with("left_jaw")), "{contacts}");
+    assert!(rows.iter().all(|(segment, _)| *segment < 80), "{contacts}");
     // The first self-crossings, listed as many as counted up to ten, each with its time and segments.
     let listed = run["first_self_crossings"].as_array().expect("a list");
     assert_eq!(listed.len() as u64, run["thread_self_crossings"].as_u64().unwrap().min(10), "{run}");

@@ -357,6 +357,37 @@ impl SimWorld {
         }
     }
 
+    /// Which thread segments touch which robot links now (an active contact between their
+    /// colliders): `(segment, link name)`, segments from the needle end, sorted. Shows where the
+    /// thread lies on the instruments, e.g. turns wound round an instrument that should not hold them.
+    pub fn thread_contacts(&self) -> Vec<(usize, String)> {
+        let link_of = |body: RigidBodyHandle| {
+            self.link_bodies
+                .iter()
+                .position(|h| *h == Some(body))
+                .map(|k| self.rig.tree.links[k].name.clone())
+        };
+        let segment_of = |body: RigidBodyHandle| self.thread.segment_index(body);
+        let mut found: Vec<(usize, String)> = self
+            .physics
+            .narrow_phase
+            .contact_pairs()
+            .filter(|pair| pair.has_any_active_contact())
+            .filter_map(|pair| {
+                let b1 = self.physics.colliders.get(pair.collider1)?.parent()?;
+                let b2 = self.physics.colliders.get(pair.collider2)?.parent()?;
+                match (segment_of(b1), segment_of(b2)) {
+                    (Some(i), None) => Some((i, link_of(b2)?)),
+                    (None, Some(i)) => Some((i, link_of(b1)?)),
+                    _ => None,
+                }
+            })
+            .collect();
+        found.sort();
+        found.dedup();
+        found
+    }
+
     /// The wound gap between the flaps' inner faces, m.
     pub fn wound_gap_m(&self) -> f64 {
         self.tissue.gap_m(&self.physics)

@@ -40,7 +40,8 @@ pub struct DemoArgs {
     expert: Option<PathBuf>,
     /// Draw the scene into PNG files OUT/snapshot-T.png at these skill times, s (comma-separated; times
     /// past the skill's end fall in the holding test, on the same clock), and write the thread's
-    /// centreline beside each (OUT/centreline-T.csv, x_m,y_m,z_m from the needle end).
+    /// centreline beside each (OUT/centreline-T.csv, x_m,y_m,z_m from the needle end) and which of its
+    /// segments touch which robot links (OUT/contacts-T.csv, segment,link).
     #[arg(long, value_parser = parse_list)]
     snapshots: Option<Numbers>,
     /// Half the width of each snapshot view, m (the views are centred 3 cm above the wound, or 0.6 of
@@ -192,6 +193,13 @@ pub fn run(args: DemoArgs, out: &mut Output) -> anyhow::Result<ExitCode> {
             let mut csv = String::from("x_m,y_m,z_m\n");
             for p in &snapshot.centreline_m {
                 csv.push_str(&format!("{},{},{}\n", p.x, p.y, p.z));
+            }
+            std::fs::write(&path, csv).with_context(|| path.display().to_string())?;
+            // Where the thread lies on the instruments.
+            let path = dir.join(format!("contacts-{t:.3}s.csv"));
+            let mut csv = String::from("segment,link\n");
+            for (segment, link) in &snapshot.contacts {
+                csv.push_str(&format!("{segment},{link}\n"));
             }
             std::fs::write(&path, csv).with_context(|| path.display().to_string())?;
         }

@@ -61,11 +61,18 @@ pub struct Snapshot {
     pub png: Vec<u8>,
     /// The thread's centreline, needle end first, world frame, m.
     pub centreline_m: Vec<nalgebra::Vector3<f64>>,
+    /// Which thread segments touch which robot links ([`SimWorld::thread_contacts`]).
+    pub contacts: Vec<(usize, String)>,
 }
 
 fn snapshot(world: &SimWorld, options: &RecordOptions, time_s: f64) -> Option<Snapshot> {
     let png = render_png(world, &view(world, options)).ok()?;
-    Some(Snapshot { time_s, png, centreline_m: world.thread.centreline(&world.physics) })
+    Some(Snapshot {
+        time_s,
+        png,
+        centreline_m: world.thread.centreline(&world.physics),
+        contacts: world.thread_contacts(),
+    })
 }
 
 /// How many of a run's self-crossings its reports list ([`DemoRun::first_self_crossings`]).
