@@ -151,6 +151,49 @@ fn hold_end(physics: &mut Physics, thread: &Thread, first: bool, clamped: bool) 
     physics.impulse_joints.insert(anchor, segment, joint, true)
 }
 
+/// A strand of `thread`'s material and segment length laid along `path` (as many whole segments as
+/// the path holds), at rest.
+fn strand_along(physics: &mut Physics, thread: &ThreadParams, path: &[Vector3<f64>]) -> Thread {
+    let path_m: f64 = path.windows(2).map(|w| (w[1] - w[0]).norm()).sum();
+    let segment_m = thread.segment_length_m();
+    let segments = ((path_m / segment_m).floor() as usize).max(2);
+    let params = ThreadParams { length_m: segments as f64 * segment_m, segments, ..*thread };
+    let strand = Thread::build(physics, &params, &path[0], &Vector3::x());
+    strand.lay_along(physics, path);
+    strand
+}
+
+/// The two phases of a trial: a snug (`snug_s`), then a hold (`hold_s`), in steps of `dt_s`.
+struct Phases {
+    snug_steps: usize,
+    hold_steps: usize,
+}
+
+impl Phases {
+    fn new(dt_s: f64, snug_s: f64, hold_s: f64) -> Self {
+        Self { snug_steps: (snug_s / dt_s).round() as usize, hold_steps: (hold_s / dt_s).round() as usize }
+    }
+
+    fn steps(&self) -> usize {
+        self.snug_steps + self.hold_steps
+    }
+
+    /// The step the hold starts at ...
+    fn hold_start(&self) -> usize {
+        self.snug_steps
+    }
+
+    /// ... and the step half way through it.
+    fn hold_half(&self) -> usize {
+        self.snug_steps + self.hold_steps / 2
+    }
+
+    /// The snug's tension ramp at `step`: from 0 to 1 over the snug's first half.
+    fn ramp(&self, step: usize) -> f64 {
+        (2.0 * step as f64 / self.snug_steps as f64).min(1.0)
+    }
+}
+
 /// A world without gravity holding A (both ends pinned) and B wound twice round it, with `thread`'s
 /// material and segment length, and the joints that hold A's first and last ends.
 fn wound_pair(
@@ -170,12 +213,7 @@ fn wound_pair(
         &Vector3::x(),
     );
     let a_joints = [hold_end(&mut physics, &a, true, clamped), hold_end(&mut physics, &a, false, clamped)];
-    let path = wound_path();
-    let path_m: f64 = path.windows(2).map(|w| (w[1] - w[0]).norm()).sum();
-    let b_segments = ((path_m / segment_m).floor() as usize).max(2);
-    let b_params = ThreadParams { length_m: b_segments as f64 * segment_m, segments: b_segments, ..*thread };
-    let b = Thread::build(&mut physics, &b_params, &path[0], &Vector3::x());
-    b.lay_along(&mut physics, &path);
+    let b = strand_along(&mut physics, thread, &wound_path());
     (physics, a, b, a_joints)
 }
 
@@ -308,20 +346,18 @@ pub fn run_capstan(
             physics.bodies[h].lock_rotations(true, true);
         }
     }
-    let dt_s = physics.dt_s();
-    let snug_steps = (params.snug_s / dt_s).round() as usize;
-    let hold_steps = (params.hold_s / dt_s).round() as usize;
+    let phases = Phases::new(physics.dt_s(), params.snug_s, params.hold_s);
     let z_of = |physics: &Physics| physics.bodies[first].translation().z;
     let (mut z_start, mut z_half) = (0.0, 0.0);
-    for step in 0..snug_steps + hold_steps {
-        if step == snug_steps {
+    for step in 0..phases.steps() {
+        if step == phases.hold_start() {
             z_start = z_of(&physics);
         }
-        if step == snug_steps + hold_steps / 2 {
+        if step == phases.hold_half() {
             z_half = z_of(&physics);
         }
-        let (first_n, last_n) = if step < snug_steps {
-            let ramp = (2.0 * step as f64 / snug_steps as f64).min(1.0);
+        let (first_n, last_n) = if step < phases.hold_start() {
+            let ramp = phases.ramp(step);
             (params.snug_n * ramp, params.snug_n * ramp)
         } else {
             (params.high_n, params.low_n)
@@ -346,7 +382,7 @@ pub fn run_capstan(
         slip_m: z_start - z_end,
         late_slip_m: z_half - z_end,
         turns_end: winding_turns(&a_line, &b.centreline(&physics)),
-        steps: snug_steps + hold_steps,
+        steps: phases.steps(),
     })
 }
 
@@ -401,13 +437,11 @@ pub fn run_holding(
     for h in [free, loaded] {
         physics.bodies[h].lock_rotations(true, true);
     }
-    let dt_s = physics.dt_s();
-    let snug_steps = (params.snug_s / dt_s).round() as usize;
-    let hold_steps = (params.hold_s / dt_s).round() as usize;
+    let phases = Phases::new(physics.dt_s(), params.snug_s, params.hold_s);
     let along = |physics: &Physics| physics.bodies[loaded].translation().z;
     let (mut at_start, mut at_half, mut turns_snug) = (0.0, 0.0, 0.0);
-    for step in 0..snug_steps + hold_steps {
-        if step == snug_steps {
+    for step in 0..phases.steps() {
+        if step == phases.hold_start() {
             at_start = along(&physics);
             turns_snug = winding_turns(&a.centreline(&physics), &b.centreline(&physics));
             if params.release_a {
@@ -421,11 +455,11 @@ pub fn run_holding(
                 physics.impulse_joints.insert(anchor, free, FixedJointBuilder::new(), true);
             }
         }
-        if step == snug_steps + hold_steps / 2 {
+        if step == phases.hold_half() {
             at_half = along(&physics);
         }
-        let ramp = (2.0 * step as f64 / snug_steps as f64).min(1.0);
-        let (free_n, loaded_n) = if step < snug_steps {
+        let ramp = phases.ramp(step);
+        let (free_n, loaded_n) = if step < phases.hold_start() {
             (params.snug_n * ramp, params.snug_n * ramp)
         } else {
             (0.0, params.loop_n)
@@ -443,7 +477,7 @@ pub fn run_holding(
         late_slip_m: at_end - at_half,
         turns_snug,
         turns_end: winding_turns(&a.centreline(&physics), &b.centreline(&physics)),
-        steps: snug_steps + hold_steps,
+        steps: phases.steps(),
     })
 }
 
@@ -489,31 +523,23 @@ pub fn run_capstan_over_ball(
         Vector3::new(r * a.cos(), 0.0, r * a.sin())
     }));
     path.push(Vector3::new(r, 0.0, -BALL_TAIL_M));
-    let path_m: f64 = path.windows(2).map(|w| (w[1] - w[0]).norm()).sum();
-    let segment_m = thread.segment_length_m();
-    let segments = ((path_m / segment_m).floor() as usize).max(2);
-    let strand_params = ThreadParams { length_m: segments as f64 * segment_m, segments, ..*thread };
-    let strand = Thread::build(&mut physics, &strand_params, &path[0], &Vector3::x());
-    strand.lay_along(&mut physics, &path);
-    let (first, last) = (strand.segments[0], strand.segments[segments - 1]);
+    let strand = strand_along(&mut physics, thread, &path);
+    let (first, last) = (strand.segments[0], strand.segments[strand.segments.len() - 1]);
     for h in [first, last] {
         physics.bodies[h].lock_rotations(true, true);
     }
-    let dt_s = physics.dt_s();
-    let snug_steps = (params.snug_s / dt_s).round() as usize;
-    let hold_steps = (params.hold_s / dt_s).round() as usize;
+    let phases = Phases::new(physics.dt_s(), params.snug_s, params.hold_s);
     let z_of = |physics: &Physics| physics.bodies[first].translation().z;
     let (mut z_start, mut z_half) = (0.0, 0.0);
-    for step in 0..snug_steps + hold_steps {
-        if step == snug_steps {
+    for step in 0..phases.steps() {
+        if step == phases.hold_start() {
             z_start = z_of(&physics);
         }
-        if step == snug_steps + hold_steps / 2 {
+        if step == phases.hold_half() {
             z_half = z_of(&physics);
         }
-        let ramp = (2.0 * step as f64 / snug_steps as f64).min(1.0);
-        let high_n = params.high_n * ramp;
-        let low_n = if step < snug_steps { high_n } else { params.high_n / params.ratio };
+        let high_n = params.high_n * phases.ramp(step);
+        let low_n = if step < phases.hold_start() { high_n } else { params.high_n / params.ratio };
         for (h, force_n) in [(first, high_n), (last, low_n)] {
             let body = &mut physics.bodies[h];
             body.reset_forces(true);
