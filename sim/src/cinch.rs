@@ -194,6 +194,35 @@ impl Phases {
     }
 }
 
+/// Steps `physics` through `phases`, pulling the two ends of a strand along z with the forces
+/// `forces(step)` gives (`(first_z_n, last_z_n)`, each set fresh every step), and returns the first
+/// end's height at the hold's start, half way through it and at the end, m.
+fn pull_ends(
+    physics: &mut Physics,
+    phases: &Phases,
+    (first, last): (RigidBodyHandle, RigidBodyHandle),
+    forces: impl Fn(usize) -> (f64, f64),
+) -> Result<(f64, f64, f64), HealthError> {
+    let z_of = |physics: &Physics| physics.bodies[first].translation().z;
+    let (mut z_start, mut z_half) = (0.0, 0.0);
+    for step in 0..phases.steps() {
+        if step == phases.hold_start() {
+            z_start = z_of(physics);
+        }
+        if step == phases.hold_half() {
+            z_half = z_of(physics);
+        }
+        let (first_n, last_n) = forces(step);
+        for (h, force_n) in [(first, first_n), (last, last_n)] {
+            let body = &mut physics.bodies[h];
+            body.reset_forces(true);
+            body.add_force(Vector::new(0.0, 0.0, force_n), true);
+        }
+        physics.step(&|_| "thread segment".to_owned())?;
+    }
+    Ok((z_start, z_half, z_of(physics)))
+}
+
 /// A world without gravity holding A (both ends pinned) and B wound twice round it, with `thread`'s
 /// material and segment length, and the joints that hold A's first and last ends.
 fn wound_pair(
@@ -347,29 +376,16 @@ pub fn run_capstan(
         }
     }
     let phases = Phases::new(physics.dt_s(), params.snug_s, params.hold_s);
-    let z_of = |physics: &Physics| physics.bodies[first].translation().z;
-    let (mut z_start, mut z_half) = (0.0, 0.0);
-    for step in 0..phases.steps() {
-        if step == phases.hold_start() {
-            z_start = z_of(&physics);
-        }
-        if step == phases.hold_half() {
-            z_half = z_of(&physics);
-        }
+    // B's first end lies along -z, its last along +z: each pulled outwards.
+    let (z_start, z_half, z_end) = pull_ends(&mut physics, &phases, (first, last), |step| {
         let (first_n, last_n) = if step < phases.hold_start() {
             let ramp = phases.ramp(step);
             (params.snug_n * ramp, params.snug_n * ramp)
         } else {
             (params.high_n, params.low_n)
         };
-        for (h, force_n) in [(first, -first_n), (last, last_n)] {
-            let body = &mut physics.bodies[h];
-            body.reset_forces(true);
-            body.add_force(Vector::new(0.0, 0.0, force_n), true);
-        }
-        physics.step(&|_| "thread segment".to_owned())?;
-    }
-    let z_end = z_of(&physics);
+        (-first_n, last_n)
+    })?;
     let a_line = a.centreline(&physics);
     let end_m = physics.bodies[last].translation();
     let end_m = Vector3::new(end_m.x, end_m.y, end_m.z);
@@ -529,25 +545,12 @@ pub fn run_capstan_over_ball(
         physics.bodies[h].lock_rotations(true, true);
     }
     let phases = Phases::new(physics.dt_s(), params.snug_s, params.hold_s);
-    let z_of = |physics: &Physics| physics.bodies[first].translation().z;
-    let (mut z_start, mut z_half) = (0.0, 0.0);
-    for step in 0..phases.steps() {
-        if step == phases.hold_start() {
-            z_start = z_of(&physics);
-        }
-        if step == phases.hold_half() {
-            z_half = z_of(&physics);
-        }
+    // Both ends hang down and are pulled down.
+    let (z_start, z_half, z_end) = pull_ends(&mut physics, &phases, (first, last), |step| {
         let high_n = params.high_n * phases.ramp(step);
         let low_n = if step < phases.hold_start() { high_n } else { params.high_n / params.ratio };
-        for (h, force_n) in [(first, high_n), (last, low_n)] {
-            let body = &mut physics.bodies[h];
-            body.reset_forces(true);
-            body.add_force(Vector::new(0.0, 0.0, -force_n), true);
-        }
-        physics.step(&|_| "thread segment".to_owned())?;
-    }
-    let z_end = z_of(&physics);
+        (-high_n, -low_n)
+    })?;
     let to_end = physics.bodies[last].translation().z > -(params.ball_radius_m + END_NEAR_M);
     Ok((z_start - z_end, z_half - z_end, to_end))
 }
