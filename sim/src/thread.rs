@@ -172,12 +172,21 @@ impl Thread {
     }
 
     /// Moves the whole thread, at rest, onto `polyline` (needle end first), each segment a chord of it;
-    /// thread left over runs on straight beyond the last point.
+    /// thread left over runs on straight beyond the last point. Each segment's frame is carried from
+    /// the one before by the smallest turn (parallel transport), so neighbours meet untwisted, as a
+    /// twist-locked joint wants them, however the polyline bends in space. (Turning each segment from
+    /// the x axis by its own smallest turn left the shipped layout's neighbours up to 2.3 rad apart in
+    /// twist, which the twist-locked joints snapped straight in the first steps, and a knot laid that
+    /// way came apart: `sim/tests/thread_laid_along_a_bent_path_starts_untwisted.rs`.)
     pub fn lay_along(&self, physics: &mut Physics, polyline: &[nalgebra::Vector3<f64>]) {
         let points = crate::layout::chord_points(polyline, self.segment_length_m, self.segments.len() + 1);
+        let mut rotation = Rotation::IDENTITY;
+        let mut along = Vector::X;
         for (i, h) in self.segments.iter().enumerate() {
             let (a, b) = (points[i], points[i + 1]);
-            let rotation = Rotation::from_rotation_arc(Vector::X, to_vec(&(b - a).normalize()));
+            let dir = to_vec(&(b - a).normalize());
+            rotation = (Rotation::from_rotation_arc(along, dir) * rotation).normalize();
+            along = dir;
             let body = &mut physics.bodies[*h];
             body.set_position(Pose::from_parts(to_vec(&(0.5 * (a + b))), rotation), true);
             body.set_linvel(Vector::ZERO, true);
