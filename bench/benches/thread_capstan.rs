@@ -60,7 +60,7 @@ fn main() {
     ));
     for (note, solver, strand, held_as_jaws) in rows {
         for friction in [thread.friction, 0.3, 1.0] {
-            let strand = ThreadParams { friction, ..strand };
+            let strand = ThreadParams { friction, friction_on_itself: None, ..strand };
             let cells: Vec<String> = RATIOS
                 .iter()
                 .map(|ratio| {
@@ -102,7 +102,7 @@ fn main() {
     println!("| friction (bound) | {} |", header.join(" | "));
     println!("|---|{}", "---|".repeat(fractions.len()));
     for friction in [thread.friction, 0.3, 1.0] {
-        let strand = ThreadParams { friction, ..thread };
+        let strand = ThreadParams { friction, friction_on_itself: None, ..thread };
         let bound = (friction * std::f64::consts::PI).exp();
         let cells: Vec<String> = fractions
             .iter()

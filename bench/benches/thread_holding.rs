@@ -79,7 +79,7 @@ fn main() {
     for Row { name, solver, strand, frictions, loops } in rows {
         for &friction in frictions {
             for &loop_n in loops {
-                let strand = ThreadParams { friction, ..strand };
+                let strand = ThreadParams { friction, friction_on_itself: None, ..strand };
                 let cells: Vec<String> = RELEASES
                     .iter()
                     .map(|&(release_a, release_b, _)| {

@@ -12,6 +12,7 @@ use knotlab_hw::geometry::segment_distance;
 use nalgebra::Vector3;
 use rapier3d::prelude::*;
 
+use crate::hooks::ThreadOnItself;
 use crate::physics::{HealthError, Physics, SolverParams};
 use crate::thread::{Thread, ThreadParams};
 use crate::tunnelling::{Capsule, TunnellingMonitor};
@@ -153,7 +154,7 @@ fn hold_end(physics: &mut Physics, thread: &Thread, first: bool, clamped: bool) 
 
 /// A strand of `thread`'s material and segment length laid along `path` (as many whole segments as
 /// the path holds), at rest.
-fn strand_along(physics: &mut Physics, thread: &ThreadParams, path: &[Vector3<f64>]) -> Thread {
+pub(crate) fn strand_along(physics: &mut Physics, thread: &ThreadParams, path: &[Vector3<f64>]) -> Thread {
     let path_m: f64 = path.windows(2).map(|w| (w[1] - w[0]).norm()).sum();
     let segment_m = thread.segment_length_m();
     let segments = ((path_m / segment_m).floor() as usize).max(2);
@@ -194,11 +195,21 @@ impl Phases {
     }
 }
 
+/// One step of a trial's strands, contacts of the thread with itself taking its own friction.
+pub(crate) fn step_strands(physics: &mut Physics, thread: &ThreadParams) -> Result<(), HealthError> {
+    let label = |_| "thread segment".to_owned();
+    match ThreadOnItself::of(thread) {
+        Some(hook) => physics.step_with_hooks(&hook, &label),
+        None => physics.step(&label),
+    }
+}
+
 /// Steps `physics` through `phases`, pulling the two ends of a strand along z with the forces
 /// `forces(step)` gives (`(first_z_n, last_z_n)`, each set fresh every step), and returns the first
 /// end's height at the hold's start, half way through it and at the end, m.
 fn pull_ends(
     physics: &mut Physics,
+    thread: &ThreadParams,
     phases: &Phases,
     (first, last): (RigidBodyHandle, RigidBodyHandle),
     forces: impl Fn(usize) -> (f64, f64),
@@ -218,7 +229,7 @@ fn pull_ends(
             body.reset_forces(true);
             body.add_force(Vector::new(0.0, 0.0, force_n), true);
         }
-        physics.step(&|_| "thread segment".to_owned())?;
+        step_strands(physics, thread)?;
     }
     Ok((z_start, z_half, z_of(physics)))
 }
@@ -287,7 +298,7 @@ pub fn run_cinch(
             body.reset_forces(true);
             body.add_force(Vector::new(0.0, 0.0, sign * tension_n), true);
         }
-        physics.step(&|_| "thread segment".to_owned())?;
+        step_strands(&mut physics, thread)?;
         let mut capsules: Vec<Capsule> = a.capsules(&physics, radius_m);
         capsules.extend(b.capsules(&physics, radius_m));
         if monitor.update(&capsules, pairs.iter().copied()) > 0 && outcome.first_pass_tension_n.is_none() {
@@ -377,7 +388,7 @@ pub fn run_capstan(
     }
     let phases = Phases::new(physics.dt_s(), params.snug_s, params.hold_s);
     // B's first end lies along -z, its last along +z: each pulled outwards.
-    let (z_start, z_half, z_end) = pull_ends(&mut physics, &phases, (first, last), |step| {
+    let (z_start, z_half, z_end) = pull_ends(&mut physics, thread, &phases, (first, last), |step| {
         let (first_n, last_n) = if step < phases.hold_start() {
             let ramp = phases.ramp(step);
             (params.snug_n * ramp, params.snug_n * ramp)
@@ -485,7 +496,7 @@ pub fn run_holding(
             body.reset_forces(true);
             body.add_force(Vector::new(0.0, 0.0, force_n), true);
         }
-        physics.step(&|_| "thread segment".to_owned())?;
+        step_strands(&mut physics, thread)?;
     }
     let at_end = along(&physics);
     Ok(HoldingOutcome {
@@ -546,7 +557,7 @@ pub fn run_capstan_over_ball(
     }
     let phases = Phases::new(physics.dt_s(), params.snug_s, params.hold_s);
     // Both ends hang down and are pulled down.
-    let (z_start, z_half, z_end) = pull_ends(&mut physics, &phases, (first, last), |step| {
+    let (z_start, z_half, z_end) = pull_ends(&mut physics, thread, &phases, (first, last), |step| {
         let high_n = params.high_n * phases.ramp(step);
         let low_n = if step < phases.hold_start() { high_n } else { params.high_n / params.ratio };
         (-high_n, -low_n)

@@ -9,7 +9,8 @@
 //! - [`layout`]: where the thread lies at the start of the task.
 //! - [`evaluate`]: the knot's verdict in the scene, with the holding test.
 //! - [`grasp`]: grasping as a constraint that slips above the grip force.
-//! - [`hooks`]: the contact filter (thread through the flaps and through the jaws holding it).
+//! - [`hooks`]: the contact filter (thread through the flaps and through the jaws holding it) and
+//!   the thread's friction on itself.
 //! - [`knot`]: which knot a thread's centreline holds, whether it is down, the verdict.
 //! - [`physics`]: the Rapier sets of a scene, its step and health check.
 //! - [`scene`]: the scene file (TOML) and its checks.
@@ -18,6 +19,7 @@
 //! - [`servo`]: how a joint follows its command (lag, limits, play, calibration).
 //! - [`thread`]: the suture as a chain of capsules.
 //! - [`cinch`]: a strand wound twice round another and pulled: how much tension the contacts hold.
+//! - [`reef`]: a square knot of two strands, loaded with its free ends let go: does it hold?
 //! - [`tunnelling`]: detecting one capsule passing through another.
 
 pub mod backend;
@@ -30,6 +32,7 @@ pub mod knot;
 pub mod layout;
 pub mod needle;
 pub mod physics;
+pub mod reef;
 pub mod scene;
 pub mod servo;
 pub mod shapes;

@@ -43,8 +43,13 @@ pub struct ThreadParams {
     pub bend_stiffness_n_m_per_rad: f64,
     /// Bending damping of each joint, N m s/rad.
     pub bend_damping_n_m_s_per_rad: f64,
-    /// Coulomb friction coefficient of the thread surface.
+    /// Coulomb friction coefficient of the thread surface (against the instruments, the needle, the
+    /// tissue: combined with theirs as Rapier combines coefficients).
     pub friction: f64,
+    /// The friction of the thread on itself, if not `friction`: every contact between two segments
+    /// takes it as it is ([`crate::hooks::ThreadOnItself`]). Knots hold by this friction alone.
+    #[serde(default)]
+    pub friction_on_itself: Option<f64>,
     /// Linear velocity damping of each segment, 1/s (air and tissue drag).
     pub linear_damping_per_s: f64,
     /// Whether neighbouring segments may turn about the thread's axis relative to each other (`false`:
@@ -70,6 +75,7 @@ impl Default for ThreadParams {
             bend_stiffness_n_m_per_rad: 2e-5,
             bend_damping_n_m_s_per_rad: 2e-7,
             friction: 0.3,
+            friction_on_itself: None,
             linear_damping_per_s: 1.0,
             twist_free: true,
         }
@@ -126,6 +132,11 @@ impl Thread {
                 .mass(segment_mass)
                 .friction(params.friction)
                 .collision_groups(InteractionGroups::new(THREAD_GROUP, Group::ALL, InteractionTestMode::And))
+                .active_hooks(if params.friction_on_itself.is_some() {
+                    ActiveHooks::MODIFY_SOLVER_CONTACTS
+                } else {
+                    ActiveHooks::empty()
+                })
                 .build();
             physics.colliders.insert_with_parent(collider, handle, &mut physics.bodies);
             segments.push(handle);

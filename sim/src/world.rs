@@ -11,7 +11,7 @@ use rand_distr::{Distribution, Normal};
 use rapier3d::prelude::*;
 
 use crate::grasp::{Grasp, GraspEvent};
-use crate::hooks::ContactFilter;
+use crate::hooks::{ContactFilter, ThreadOnItself};
 use crate::layout::start_layout;
 use crate::needle::Needle;
 use crate::physics::{HealthError, Physics};
@@ -403,6 +403,7 @@ impl SimWorld {
     /// or just lost (what is near their centre). Jaws that closed on nothing touch everything.
     fn contact_filter(&self, poses: &[IsometryMatrix3<f64>]) -> ContactFilter {
         let mut filter = ContactFilter::default();
+        filter.thread_on_itself = ThreadOnItself::of(&self.config.thread);
         let colliders_of = |i: usize| -> Vec<ColliderHandle> {
             self.thread
                 .segments

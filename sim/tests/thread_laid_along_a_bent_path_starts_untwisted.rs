@@ -19,7 +19,7 @@ fn twists(physics: &Physics, thread: &Thread) -> Vec<f64> {
         .windows(2)
         .map(|pair| {
             let q = physics.bodies[pair[0]].rotation().inverse() * *physics.bodies[pair[1]].rotation();
-            let twist = 2.0 * f64::from(q.x).atan2(f64::from(q.w));
+            let twist = 2.0 * q.x.atan2(q.w);
             (twist + std::f64::consts::PI).rem_euclid(std::f64::consts::TAU) - std::f64::consts::PI
         })
         .collect()

@@ -1,0 +1,95 @@
+//! Benchmark: does a square (reef) knot hold in the simulated thread once its free ends are let go?
+//! Two strands laid as a loose square knot (no gravity) are snugged by all four ends at 1 N for 2 s
+//! (their slack drawn in slowly), then red's standing part is held and blue's pulled with a set
+//! tension for 2 s, the free ends held or let go (`knotlab_sim::reef::run_reef`). Whether a knot
+//! near the threshold holds turns on details of its shape, so each cell lays it three ways (features
+//! 5, 6 and 7 mm apart). Printed per thread model, friction of the thread on itself and load, for
+//! each of the three: how far the loaded end moved in the 2 s (in the last second), or "off" where
+//! the knot came apart. A first throw alone cannot hold at any
+//! friction (`thread_holding`); whether two throws hold decides what the scripted expert ties.
+//!
+//! `cargo bench -p knotlab-bench --bench thread_reef`
+
+use knotlab_sim::physics::SolverParams;
+use knotlab_sim::reef::{ReefParams, run_reef};
+use knotlab_sim::thread::ThreadParams;
+
+/// The loose knots' spreads, m.
+const SPREADS_M: [f64; 3] = [0.005, 0.006, 0.007];
+
+/// One thread model of the table and what it is tried with.
+struct Row<'a> {
+    name: &'a str,
+    solver: SolverParams,
+    strand: ThreadParams,
+    frictions: &'a [f64],
+}
+
+fn main() {
+    let scene = knotlab_bench::shipped_scene();
+    let (solver, thread) = (scene.solver, scene.thread);
+    println!(
+        "a loose square knot snugged by its four ends at 1 N for 2 s; then one standing part held, the other pulled for 2 s, the free ends held or let go: how far the loaded end moved (in the last second); one core"
+    );
+    println!("| thread | friction on itself | load | free ends held | free ends let go |");
+    println!("|---|---|---|---|---|");
+    // Shorter segments: the bending stiffness per joint scaled with the count, more solver iterations.
+    let finer = |k: usize| {
+        let strand = ThreadParams {
+            segments: k * thread.segments,
+            bend_stiffness_n_m_per_rad: k as f64 * thread.bend_stiffness_n_m_per_rad,
+            bend_damping_n_m_s_per_rad: k as f64 * thread.bend_damping_n_m_s_per_rad,
+            ..thread
+        };
+        (SolverParams { solver_iterations: k * solver.solver_iterations, ..solver }, strand)
+    };
+    let (solver_2, thread_2) = finer(2);
+    let rows = [
+        Row {
+            name: "shipped (3.1 mm segments)",
+            solver,
+            strand: thread,
+            frictions: &[0.15, 0.3, 0.4, 0.5, 0.7, 1.0],
+        },
+        // Slow (about 20 s a cell).
+        Row { name: "1.56 mm segments", solver: solver_2, strand: thread_2, frictions: &[0.15, 0.5, 1.0] },
+    ];
+    for Row { name, solver, strand, frictions } in rows {
+        for &friction in frictions {
+            for load_n in [0.05, 0.3] {
+                let strand = ThreadParams { friction_on_itself: Some(friction), ..strand };
+                let cells: Vec<String> = [false, true]
+                    .into_iter()
+                    .map(|release_free| {
+                        let runs: Vec<String> = SPREADS_M
+                            .iter()
+                            .filter_map(|&spread_m| {
+                                let params = ReefParams {
+                                    spread_m,
+                                    lift_m: 0.002,
+                                    tail_m: 0.03,
+                                    snug_n: 1.0,
+                                    snug_s: 2.0,
+                                    snug_damping_per_s: 200.0,
+                                    load_n,
+                                    hold_s: 2.0,
+                                    release_free,
+                                };
+                                // A knot that came apart (a strand that slid out and flew away trips the
+                                // speed check) counts as not held.
+                                match run_reef(&solver, &strand, &params) {
+                                    Ok(o) if o.knot_end == o.knot_laid => {
+                                        Some(format!("{:.1} ({:.1})", 1e3 * o.slip_m, 1e3 * o.late_slip_m))
+                                    }
+                                    _ => None,
+                                }
+                            })
+                            .collect();
+                        format!("{}/{}: {} mm", runs.len(), SPREADS_M.len(), runs.join(", "))
+                    })
+                    .collect();
+                println!("| {name} | {friction} | {load_n} N | {} |", cells.join(" | "));
+            }
+        }
+    }
+}
