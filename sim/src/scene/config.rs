@@ -389,6 +389,9 @@ impl SceneConfig {
         c.range("thread.bend_stiffness_n_m_per_rad", t.bend_stiffness_n_m_per_rad, 0.0, 1.0);
         c.range("thread.bend_damping_n_m_s_per_rad", t.bend_damping_n_m_s_per_rad, 0.0, 1.0);
         c.range("thread.friction", t.friction, 0.0, 2.0);
+        if let Some(f) = t.friction_on_itself {
+            c.range("thread.friction_on_itself", f, 0.0, 2.0);
+        }
         c.range("thread.linear_damping_per_s", t.linear_damping_per_s, 0.0, 100.0);
         if t.radius_m * 2.0 >= t.length_m / t.segments.max(1) as f64 {
             c.0.push((
