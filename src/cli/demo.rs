@@ -38,9 +38,9 @@ pub struct DemoArgs {
     /// scenarios/experts/instrument-tie.toml).
     #[arg(long, value_name = "FILE")]
     expert: Option<PathBuf>,
-    /// Draw the scene into PNG files OUT/snapshot-T.png at these skill times, s (comma-separated; times
-    /// past the skill's end fall in the holding test, on the same clock), and write the thread's
-    /// centreline beside each (OUT/centreline-T.csv, x_m,y_m,z_m from the needle end) and which of its
+    /// Draw the scene into PNG files OUT/snapshot-T.png at these times, s from the start
+    /// (comma-separated; times past the skill's end fall in the holding test, on the same clock), and
+    /// write the thread's centreline beside each (OUT/centreline-T.csv, x_m,y_m,z_m from the needle end) and which of its
     /// segments touch which robot links (OUT/contacts-T.csv, segment,link).
     #[arg(long, value_parser = parse_list)]
     snapshots: Option<Numbers>,
@@ -48,7 +48,7 @@ pub struct DemoArgs {
     /// the half width for narrower views; 0.015 shows the knot).
     #[arg(long, value_name = "M", default_value_t = 0.08, value_parser = parse_half_width)]
     snapshot_half_width: f64,
-    /// Stop the skill at this skill time, s, and evaluate what is there (a short trial, to debug).
+    /// Stop at this time (s from the start) and evaluate what is there (a short trial, to debug).
     #[arg(long, value_name = "S")]
     until: Option<f64>,
     /// Print JSON instead of text.

@@ -51,7 +51,7 @@ pub struct RunArgs {
     /// Turns the stitch (the tissue) about its normal by this much, degrees.
     #[arg(long, allow_hyphen_values = true, default_value_t = 0.0)]
     stitch_rotate: f64,
-    /// Stop the skill at this skill time, s, and evaluate what is there (a short trial, to debug).
+    /// Stop at this time (s from the start) and evaluate what is there (a short trial, to debug).
     #[arg(long, value_name = "S")]
     until: Option<f64>,
     /// The rig to execute on after the preview (a rig config, e.g. scenarios/rigs/melfa.toml). Without

@@ -104,6 +104,20 @@ fn range_problems(g: &TieGeometry) -> Vec<(String, String)> {
         c.range("left_fetches.approach_m", f.approach_m, 0.0, 0.1);
         c.range("left_fetches.stop_short_m", f.stop_short_m, -0.05, 0.05);
     }
+    if let Some(s) = &g.second_throw {
+        c.range("second_throw.tail_hold_along", s.tail_hold_along, 0.0, 1.0);
+        c.direction("second_throw.winding_towards", &s.winding_towards);
+        c.range("second_throw.winding_turns", s.winding_turns, 0.0, 5.0);
+        for (key, p) in [
+            ("second_throw.winding_point_m", &s.winding_point_m),
+            ("second_throw.left_run_down_to_m", &s.left_run_down_to_m),
+            ("second_throw.right_run_down_to_m", &s.right_run_down_to_m),
+            ("second_throw.left_pull_to_m", &s.left_pull_to_m),
+            ("second_throw.right_pull_to_m", &s.right_pull_to_m),
+        ] {
+            c.point(key, p);
+        }
+    }
     c.0
 }
 
@@ -135,6 +149,16 @@ mod tests {
     }
 
     #[test]
+    fn a_second_throw_table_takes_its_own_defaults_for_keys_left_out() {
+        let g = parse_tie_geometry("[second_throw]\nwinding_turns = 2.0\n", "x.toml").unwrap();
+        let second = g.second_throw.expect("a second throw");
+        assert_eq!(second.winding_turns, 2.0);
+        assert_eq!(second.tail_hold_along, crate::expert::SecondThrow::default().tail_hold_along);
+        // The first throw is the shipped one.
+        assert_eq!(TieGeometry { second_throw: None, ..g }, TieGeometry::default());
+    }
+
+    #[test]
     fn bad_files_name_the_key_and_why() {
         let schema = |text: &str| match parse_tie_geometry(text, "bad.toml") {
             Err(GeometryFileError::Schema { file, line, key, .. }) => (file, line, key),
@@ -155,6 +179,12 @@ mod tests {
         };
         let keys: Vec<&str> = problems.iter().map(|(k, _)| k.as_str()).collect();
         assert_eq!(keys, ["left_pull_to_m.y", "winding_towards", "pull_force_n"], "{problems:?}");
+        let Err(GeometryFileError::Invalid { problems, .. }) =
+            parse_tie_geometry("[second_throw]\ntail_hold_along = 1.5\n", "bad.toml")
+        else {
+            panic!("out of range accepted");
+        };
+        assert_eq!(problems[0].0, "second_throw.tail_hold_along", "{problems:?}");
         let missing = load_tie_geometry(Path::new("/nonexistent/expert.toml")).unwrap_err().to_string();
         assert!(missing.starts_with("/nonexistent/expert.toml: cannot read"), "{missing}");
     }

@@ -209,6 +209,17 @@ impl TrackBuilder {
         Some(UnitQuaternion::from_rotation_matrix(&r))
     }
 
+    /// Holds the jaws as the arm's model has them at the last key (instead of along the shaft): for a
+    /// track that goes on from where another left the instrument. Needs [`TrackBuilder::follow`].
+    pub fn hold_as_it_stands(&mut self) {
+        let Some(q) = self.tip_frame() else { return };
+        self.hold = Hold::Frame(q);
+        let key = self.make_key(self.time_s, self.position_m, self.hold);
+        if let Some(last) = self.poses.last_mut() {
+            *last = key;
+        }
+    }
+
     /// Moves along `path` in `duration_s` (minimum jerk) while the jaws turn to point along
     /// `direction` (world frame), with the wrist.
     pub fn go_pointing(&mut self, path: Path, duration_s: f64, direction: Vector3<f64>) {

@@ -18,6 +18,7 @@ use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
 use super::motion::{Follow, Path, TrackBuilder, Tremor};
+use super::second_throw::{SecondThrow, tail_between_knot_and_left};
 
 /// Where the expert puts things, in the stitch frame (m), and how hard it pulls.
 #[derive(Clone, Debug, PartialEq, serde::Deserialize, serde::Serialize)]
@@ -103,6 +104,9 @@ pub struct TieGeometry {
     /// Whether a pull that reaches the set force stops and holds the thread there (both let go
     /// together at the end, the knot cinched between two tensions) rather than letting go at once.
     pub hold_at_force: bool,
+    /// The second throw, if the expert ties one: the first throw's pulls then hold, and the second
+    /// is planned from the world they leave ([`super::second_throw`]).
+    pub second_throw: Option<SecondThrow>,
 }
 
 impl Default for TieGeometry {
@@ -144,6 +148,7 @@ impl Default for TieGeometry {
             draw_relax: 0.4,
             pull_force_n: 0.3,
             hold_at_force: true,
+            second_throw: None,
         }
     }
 }
@@ -207,13 +212,40 @@ impl Variation {
     }
 }
 
+/// The assist's last stretch onto the tail it takes for the second throw, along its jaws, m.
+const TAKE_APPROACH_M: f64 = 0.012;
+
 /// The jaw centre of an arm as its links stand (world frame, m).
 fn jaw_centre_m(world: &SimWorld, arm: ArmName) -> Vector3<f64> {
     (world.world_from_tip(arm) * Point3::new(0.0, 0.0, -JAW_CENTRE_OFFSET_M)).coords
 }
 
-/// The plan as a skill, for the world as it stands (its start condition).
+/// Which throw a plan ties, and what the instruments hold when it starts.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Stage {
+    /// The first, from the task's start condition; `keep_hold`: the pulls hold at the end instead of
+    /// letting go (a second throw follows).
+    First { keep_hold: bool },
+    /// The second, after the first: the left holds the tail and the right the long end, pulled apart;
+    /// the assist first takes the tail this fraction of the way from the knot to the left's jaws.
+    Second { tail_hold_along: f64 },
+}
+
+/// The plan as a skill, for the world as it stands (its start condition): the first throw, and all
+/// of the knot unless `geometry` asks for a second throw ([`plan_second_throw`]).
 pub fn plan_instrument_tie(world: &SimWorld, geometry: &TieGeometry, variation: &Variation) -> Skill {
+    plan_throw(world, geometry, variation, Stage::First { keep_hold: geometry.second_throw.is_some() })
+}
+
+/// The second throw, planned from the world the first throw left (`None` if `geometry` asks for
+/// none).
+pub fn plan_second_throw(world: &SimWorld, geometry: &TieGeometry, variation: &Variation) -> Option<Skill> {
+    let second = geometry.second_throw.as_ref()?;
+    let throw = second.applied_to(geometry);
+    Some(plan_throw(world, &throw, variation, Stage::Second { tail_hold_along: second.tail_hold_along }))
+}
+
+fn plan_throw(world: &SimWorld, geometry: &TieGeometry, variation: &Variation, stage: Stage) -> Skill {
     let world_from_stitch: Isometry3<f64> = world.tissue.world_from_tissue;
     let at = |p: [f64; 3]| (world_from_stitch * Point3::from(Vector3::from(p))).coords;
     let dir = |d: [f64; 3]| world_from_stitch.rotation * Vector3::from(d);
@@ -232,10 +264,36 @@ pub fn plan_instrument_tie(world: &SimWorld, geometry: &TieGeometry, variation: 
         });
         b
     };
-    let mut left = builder(ArmName::Left, open, &variation.tremor[0]);
+    let second = matches!(stage, Stage::Second { .. });
+    let mut left = builder(ArmName::Left, if second { 0.0 } else { open }, &variation.tremor[0]);
     let mut right = builder(ArmName::Right, 0.0, &variation.tremor[1]);
-    let mut assist = builder(ArmName::Assist, 0.0, &variation.tremor[2]);
+    let mut assist = builder(ArmName::Assist, if second { open } else { 0.0 }, &variation.tremor[2]);
     let pause = &variation.pauses_s;
+    if let Stage::Second { tail_hold_along } = stage {
+        // Every instrument goes on as it stands (the first throw left the jaws pointing their ways).
+        for track in [&mut left, &mut right, &mut assist] {
+            track.hold_as_it_stands();
+        }
+        // The assist takes the tail between the knot and the left's jaws (the tail between its open
+        // jaws, along their hinge), then the left lets go of it.
+        if let Some((tail_m, tail_dir)) = tail_between_knot_and_left(world, tail_hold_along) {
+            let trocar_m = trocar_of(&world.config, ArmName::Assist);
+            let jaws = (tail_m - trocar_m).normalize();
+            let hinge = Unit::new_normalize(tail_dir - jaws * tail_dir.dot(&jaws));
+            let frame =
+                nalgebra::Rotation3::from_basis_unchecked(&[hinge.cross(&jaws), hinge.into_inner(), jaws]);
+            assist.go_framing(Path::To(tail_m - jaws * TAKE_APPROACH_M), d(1.5), frame);
+            assist.go(Path::To(tail_m), d(0.8));
+            assist.wait_until(assist.time_s() + pause[3]);
+            assist.jaw(0.0, d(0.3));
+            assist.wait_until(assist.time_s() + d(0.3) + 0.1);
+        }
+        left.wait_until(assist.time_s() + pause[5]);
+        left.jaw(open, d(0.2));
+        left.wait_until(left.time_s() + d(0.2) + pause[0]);
+        right.wait_until(left.time_s());
+        assist.wait_until(left.time_s());
+    }
 
     // L1: the left to the winding point; the right takes up the long end meanwhile, to where the
     // winding starts: the long end then runs from the stitch past the left's jaws.
@@ -271,7 +329,9 @@ pub fn plan_instrument_tie(world: &SimWorld, geometry: &TieGeometry, variation: 
         hinge.into_inner(),
         jaws.into_inner(),
     ]);
+    let l1_s = left.time_s();
     left.go_framing(Path::To(winding_point), d(2.0), left_frame);
+    right.wait_until(l1_s);
     right.go(Path::To(centre + start_dir.into_inner() * geometry.winding_radius_m), d(2.0));
     left.wait_until(left.time_s() + pause[0]);
     left.jaw(0.0, d(0.3));
@@ -388,6 +448,30 @@ pub fn plan_instrument_tie(world: &SimWorld, geometry: &TieGeometry, variation: 
         track.go(Path::To(at(to)), d(geometry.run_down_s));
     }
     let pull_s = left.time_s().max(right.time_s()) + 0.3;
+    if let Stage::First { keep_hold: true } = stage {
+        // The pulls hold the knot cinched until the second throw: both stop at the set force (or
+        // where they were going) and hold there together to the end of this plan.
+        for (track, to) in [(&mut left, geometry.left_pull_to_m), (&mut right, geometry.right_pull_to_m)] {
+            track.wait_until(pull_s);
+            track.go(Path::To(at(to)), d(2.5));
+        }
+        let end_s = left.time_s().max(right.time_s()) + 1.0;
+        for track in [&mut left, &mut right] {
+            track.event(ForceEvent {
+                name: "set force".into(),
+                from_s: pull_s + d(0.5),
+                until_s: end_s,
+                threshold_n: geometry.pull_force_n,
+                action: ForceAction::Hold,
+            });
+            track.wait_until(end_s);
+        }
+        assist.wait_until(end_s);
+        return Skill {
+            name: "instrument tie: surgeon's knot, first throw".into(),
+            tracks: vec![left.build(), right.build(), assist.build()],
+        };
+    }
     for (track, to) in [(&mut left, geometry.left_pull_to_m), (&mut right, geometry.right_pull_to_m)] {
         track.wait_until(pull_s);
         let from_s = pull_s;
@@ -411,8 +495,10 @@ pub fn plan_instrument_tie(world: &SimWorld, geometry: &TieGeometry, variation: 
         track.wait_until(track.time_s() + d(0.2) + 0.3);
     }
     assist.wait_until(left.time_s());
-    Skill {
-        name: "instrument tie: surgeon's knot".into(),
-        tracks: vec![left.build(), right.build(), assist.build()],
-    }
+    let name = if second {
+        "instrument tie: surgeon's knot, second throw"
+    } else {
+        "instrument tie: surgeon's knot"
+    };
+    Skill { name: name.into(), tracks: vec![left.build(), right.build(), assist.build()] }
 }

@@ -35,13 +35,14 @@ pub enum RecordError {
 /// What recording options ask for besides the demonstration.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct RecordOptions {
-    /// Draw the scene at these skill times, s.
+    /// Draw the scene at these times (from the recording's start), s.
     pub snapshot_times_s: Vec<f64>,
     /// Cycles between samples (10: 100 Hz at a 1 ms step).
     pub cycles_per_sample: u64,
     /// Half the width of each snapshot view, m (0: the default 8 cm).
     pub snapshot_half_width_m: f64,
-    /// Stop the skill at this skill time, s, and evaluate what is there (a short trial, to debug).
+    /// Stop at this time (from the recording's start, s) and evaluate what is there (a short trial, to
+    /// debug).
     pub stop_after_s: Option<f64>,
 }
 
@@ -149,8 +150,12 @@ pub fn sample_instruments(record: &CycleRecord, world: &SimWorld, records: &mut 
 /// Sees every control cycle's record and the scene after it (for debugging, logging, diagnostics).
 pub type CycleObserver<'a> = dyn FnMut(&CycleRecord, &SimWorld) + 'a;
 
+/// Plans the skill that follows the one just finished, from the world it left (`None`: no more).
+pub type NextSkill<'a> = dyn FnMut(&SimWorld) -> Option<Skill> + 'a;
+
 /// Runs `skill` on `world` through the rig `config` and records it; `observer`, if any, sees every
-/// cycle.
+/// cycle. When a skill finishes, `next`, if any, may give another to run on (one recording).
+#[allow(clippy::too_many_arguments)]
 pub fn record_demonstration(
     world: SimWorld,
     rig: &Rig,
@@ -159,6 +164,7 @@ pub fn record_demonstration(
     metadata: Metadata,
     options: &RecordOptions,
     mut observer: Option<&mut CycleObserver<'_>>,
+    mut next: Option<&mut NextSkill<'_>>,
 ) -> Result<DemoRun, RecordError> {
     let started = Instant::now();
     let mut backend = SimBackend::new(world);
@@ -183,26 +189,35 @@ pub fn record_demonstration(
         if let Some(observe) = observer.as_mut() {
             observe(&record, &world);
         }
+        // The knot as the left last lets go of the tail.
         let left_holds = world.arm(ArmName::Left).grasp.is_some();
-        if left_held && !left_holds && knot_at_release.is_none() {
+        if left_held && !left_holds {
             knot_at_release = Some(knot_now(&world));
         }
-        left_held |= left_holds;
+        left_held = left_holds;
         if record.cycle % every == 0 {
             sample_instruments(&record, &world, &mut records);
         }
-        while snapshot_times.first().is_some_and(|t| *t <= record.skill_time_s) {
+        while snapshot_times.first().is_some_and(|t| *t <= record.time_s) {
             let t = snapshot_times.remove(0);
             snapshots.extend(snapshot(&world, options, t));
         }
+        let following = match (&record.status, next.as_mut()) {
+            (Status::Finished, Some(next)) => next(&world),
+            _ => None,
+        };
         drop(world);
+        if let Some(skill) = following {
+            controller.load_skill(skill)?;
+            continue;
+        }
         if matches!(record.status, Status::Finished)
-            || options.stop_after_s.is_some_and(|t| record.skill_time_s >= t)
+            || options.stop_after_s.is_some_and(|t| record.time_s >= t)
         {
             break;
         }
     }
-    let simulated_s = controller.record().skill_time_s;
+    let simulated_s = controller.record().time_s;
     drop(controller);
     let mut world = backend.world();
     let evaluation = if fault.is_some() {
@@ -318,5 +333,13 @@ pub fn demonstrate_with(
     let skill = super::plan_instrument_tie(&world, geometry, &variation);
     let rate_hz = 1.0 / (world.config.solver.dt_s * options.cycles_per_sample.max(1) as f64);
     let metadata = expert_metadata(&world, scene_name, Some(seed), rate_hz);
-    Ok(record_demonstration(world, &rig, &config, skill, metadata, options, observer)?)
+    // The second throw, once, planned from where the first left the thread.
+    let mut planned_second = false;
+    let mut second = |world: &SimWorld| {
+        if std::mem::replace(&mut planned_second, true) {
+            return None;
+        }
+        super::plan_second_throw(world, geometry, &variation)
+    };
+    Ok(record_demonstration(world, &rig, &config, skill, metadata, options, observer, Some(&mut second))?)
 }

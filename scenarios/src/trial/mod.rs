@@ -244,7 +244,7 @@ pub fn run_trial(
     let mut metadata = expert_metadata(&world, &setup.scene_name, Some(setup.seed), rate_hz);
     metadata.source = format!("knotlab run ({})", setup.method);
     metadata.description = format!("{} at a moved stitch", learned.knowledge.task);
-    let run = record_demonstration(world, &rig, &config, skill.clone(), metadata, options, observer)
+    let run = record_demonstration(world, &rig, &config, skill.clone(), metadata, options, observer, None)
         .map_err(ExpertError::from)?;
     Ok(TrialRun { run, skill, approach_s, obstacles, fluid, kinematics, collision })
 }

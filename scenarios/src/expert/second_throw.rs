@@ -1,0 +1,86 @@
+//! The second throw of the surgeon's knot: one turn the other way, laid on the first. A first throw
+//! alone cannot hold once the instruments let go (`sim/tests/throw_holds_the_loop_only_while_its_ends_are_held.rs`);
+//! two throws can (`sim/tests/square_knot_holds_its_free_ends_let_go.rs`). The expert plans it from
+//! the world the first throw left, as a surgeon looks before the next move: the assist takes the tail
+//! between the knot and the left's jaws, the left lets go of it, and the throw goes as the first
+//! ([`super::plan`]) with its own winding and pulls.
+
+use knotlab_hw::rig::ArmName;
+use knotlab_sim::world::SimWorld;
+use nalgebra::Vector3;
+
+use super::plan::TieGeometry;
+
+/// Where the second throw differs from the first (stitch frame, m; the rest as the first throw).
+#[derive(Clone, Debug, PartialEq, serde::Deserialize, serde::Serialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct SecondThrow {
+    /// The assist takes the tail this fraction of the way from the knot to the left's jaws.
+    pub tail_hold_along: f64,
+    /// The left's jaw centre while the long end is wound round them.
+    pub winding_point_m: [f64; 3],
+    /// The winding's first move (picks the sense of the turn).
+    pub winding_towards: [f64; 3],
+    /// Turns of the winding.
+    pub winding_turns: f64,
+    /// The run-down: the left draws the tail to here ...
+    pub left_run_down_to_m: [f64; 3],
+    /// ... while the right takes its jaws to here.
+    pub right_run_down_to_m: [f64; 3],
+    /// Then the pulls until the set force: the left towards here ...
+    pub left_pull_to_m: [f64; 3],
+    /// ... the right towards here.
+    pub right_pull_to_m: [f64; 3],
+}
+
+impl Default for SecondThrow {
+    fn default() -> Self {
+        let first = TieGeometry::default();
+        Self {
+            tail_hold_along: 0.6,
+            winding_point_m: first.winding_point_m,
+            winding_towards: [0.0, 0.0, -1.0],
+            winding_turns: 1.0,
+            left_run_down_to_m: first.left_run_down_to_m,
+            right_run_down_to_m: first.right_run_down_to_m,
+            left_pull_to_m: first.left_pull_to_m,
+            right_pull_to_m: first.right_pull_to_m,
+        }
+    }
+}
+
+impl SecondThrow {
+    /// The first throw's geometry with this throw's differences.
+    pub fn applied_to(&self, first: &TieGeometry) -> TieGeometry {
+        TieGeometry {
+            winding_point_m: self.winding_point_m,
+            winding_towards: self.winding_towards,
+            winding_turns: self.winding_turns,
+            left_run_down_to_m: self.left_run_down_to_m,
+            right_run_down_to_m: self.right_run_down_to_m,
+            left_pull_to_m: self.left_pull_to_m,
+            right_pull_to_m: self.right_pull_to_m,
+            second_throw: None,
+            ..first.clone()
+        }
+    }
+}
+
+/// Where the tail lies `along` of the way (by segments) from the knot to the left's jaws, and which
+/// way it runs there (towards the left), world frame; `None` if the left holds no thread or the
+/// stitch holds none.
+pub fn tail_between_knot_and_left(world: &SimWorld, along: f64) -> Option<(Vector3<f64>, Vector3<f64>)> {
+    let grasp = world.arm(ArmName::Left).grasp.as_ref()?;
+    let inside = world.stitch.segments_inside()?;
+    let line = world.thread.centreline(&world.physics);
+    // The tail runs from the stitch towards the tail's end: the left holds it past the stitch.
+    let (from, to) = (*inside.end() + 1, grasp.segment);
+    if to <= from || to + 1 >= line.len() {
+        return None;
+    }
+    let at = from + ((to - from) as f64 * along).round() as usize;
+    let at = at.clamp(from, to - 1);
+    let point = 0.5 * (line[at] + line[at + 1]);
+    let direction = (line[at + 1] - line[at]).try_normalize(1e-12)?;
+    Some((point, direction))
+}
