@@ -5,8 +5,11 @@
 //! near the threshold holds turns on details of its shape, so each cell lays it three ways (features
 //! 5, 6 and 7 mm apart). Printed per thread model, friction of the thread on itself and load, for
 //! each of the three: how far the loaded end moved in the 2 s (in the last second), or "off" where
-//! the knot came apart. A first throw alone cannot hold at any
-//! friction (`thread_holding`); whether two throws hold decides what the scripted expert ties.
+//! the knot came apart. A first throw alone cannot hold at any friction (`thread_holding`); whether
+//! two throws hold decides what the scripted expert ties. Found (issue 6, session 29): with its free
+//! ends held the knot holds at every friction; let go, it comes apart at 0.15 (the scene's thread) and
+//! holds at 0.5, 0.7 and 1.0 on itself (under 0.3 N it settles 0.5-25 mm, then stays), in some layouts
+//! only at 0.3 and 0.4; 1.56 mm segments need 1.0.
 //!
 //! `cargo bench -p knotlab-bench --bench thread_reef`
 
