@@ -7,10 +7,11 @@
 //! counted, the deepest overlap of two segments' axes before the first pass as a fraction of the
 //! touching distance, the winding at the start and the end (a pass takes a turn off), and
 //! milliseconds per step on one core. A second table pulls the same strand to 2 N and prints how tight
-//! its turns lie, by segment length: at the shipped 3.1 mm the turns' joints lie 1.71 mm from the
-//! other strand's axis (touching: 0.8 mm), at 1.56 mm 1.03 mm, at 0.78 mm 0.83 mm, at 4 and 18 times
+//! its turns lie, by segment length: at the shipped 3.1 mm the turns' joints lie 1.77 mm from the
+//! other strand's axis (touching: 0.8 mm), at 1.56 mm 1.08 mm, at 0.78 mm 0.83 mm, at 4 and 18 times
 //! the cost of a step. With the twist between segments locked (the scene since session 26) the shipped
-//! scene's wrap loses a turn at 6.4 N (5.9 N with it free).
+//! scene's wrap loses a turn at 6.0 N (6.4 N laid twisted between segments, until session 29; 5.9 N
+//! with the twist free).
 //!
 //! `cargo bench -p knotlab-bench --bench thread_cinch`
 

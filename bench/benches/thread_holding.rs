@@ -8,7 +8,9 @@
 //! second), or "off" where the turns came undone. Found (issue 6): with its free ends held the throw
 //! holds (a few mm of settling); with both let go it slides off under 0.05 N at every friction (0.15
 //! to 1.0) and segment length (3.1, 1.56, 0.78 mm). A wrap whose one end is slack cannot hold the
-//! other (the capstan equation), so a first throw let go holds nothing: the second throw must.
+//! other (the capstan equation), so a first throw let go holds nothing: the second throw must. Laid
+//! untwisted (session 29) it also holds with only A's free end let go (B's held, 0.2-0.8 mm, 4.6 mm
+//! at 0.78 mm segments and friction 1.0); with B's let go it comes off, as with both.
 //!
 //! `cargo bench -p knotlab-bench --bench thread_holding`
 

@@ -43,7 +43,7 @@ pub struct SolverParams {
     /// length unit, is 3 mm/s). The joints of a chain pulled tight drag its segments into the strand
     /// they press on a little every step; corrected too slowly, the overlap grows until one strand is
     /// through: a strand wound twice round another and pulled apart passed through at 0.7 N with
-    /// 0.1 m/s, at 5.9 N with 1 m/s, the thread's twist free (locked: 1.3 N and 6.4 N; `cargo bench -p
+    /// 0.1 m/s, at 5.9 N with 1 m/s, the thread's twist free (locked: 1.3 N and 6.4 N, 0.8 N and 6.0 N laid untwisted; `cargo bench -p
     /// knotlab-bench --bench thread_cinch`).
     pub max_corrective_speed_m_s: f64,
     /// A body faster than this is reported as exploding, m/s.
