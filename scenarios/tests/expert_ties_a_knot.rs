@@ -44,4 +44,12 @@ fn seed_0_ties_a_surgeons_knot_down_at_the_stitch() {
     // 29; before, 1.06-1.79 mm, seed 0: 1.17 mm).
     assert!(e.gap_before_m < 0.002, "the wound {} m open as the instruments let go", e.gap_before_m);
     assert!(e.gap_after_m.is_some(), "the holding test ran: {:?}", e.verdict);
+    // The right's pull stopped at the set force (seed 0: 0.30 N at 23.74 s, 16 mm out: a spike as the
+    // coils caught, the slack left in the exit leg); the run lists where.
+    let stop = run
+        .force_events
+        .iter()
+        .find(|f| f.arm == "right" && f.name == "set force")
+        .unwrap_or_else(|| panic!("the right's pull stopped at its set force: {:?}", run.force_events));
+    assert!(stop.force_n >= 0.3 && stop.time_s < run.simulated_s, "{stop:?}");
 }

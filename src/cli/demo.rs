@@ -96,6 +96,8 @@ struct RunLine {
     samples: usize,
     demonstration: String,
     events: Vec<String>,
+    /// The skill's force events that fired: which instrument, which event, when (s), at what force.
+    force_events: Vec<knotlab_scenarios::expert::record::ForceFired>,
 }
 
 #[derive(Serialize)]
@@ -133,6 +135,7 @@ fn line(seed: u64, run: &DemoRun, dir: &Path) -> RunLine {
         samples: run.demonstration.instruments.iter().map(|r| r.samples.len()).sum(),
         demonstration: dir.display().to_string(),
         events: run.events.clone(),
+        force_events: run.force_events.clone(),
     }
 }
 

@@ -100,8 +100,40 @@ pub struct DemoRun {
     pub self_crossings: Vec<SelfCrossing>,
     /// The scene's grasp events (grasped, released, slipped) in order, as text.
     pub events: Vec<String>,
+    /// The skill's force events that fired (a pull stopping at its set force, say), in order.
+    pub force_events: Vec<ForceFired>,
     /// The scene at the end, after the knot's holding test.
     pub final_scene: SceneShapes,
+}
+
+/// A force event of the skill that fired.
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+pub struct ForceFired {
+    /// The instrument (`left`, `right`, `assist`).
+    pub arm: &'static str,
+    /// The event's name in the skill.
+    pub name: String,
+    /// When, s from the start of the recording.
+    pub time_s: f64,
+    /// The force the gauges read, N.
+    pub force_n: f64,
+}
+
+/// The events `controller` fired during `skill`, which started `start_s` into the recording.
+fn fired_in(controller: &knotlab_hw::controller::Controller, skill: &Skill, start_s: f64) -> Vec<ForceFired> {
+    controller
+        .fired_events()
+        .iter()
+        .map(|f| ForceFired {
+            arm: f.arm.as_str(),
+            name: skill
+                .track(f.arm)
+                .and_then(|t| t.events.get(f.event))
+                .map_or_else(String::new, |e| e.name.clone()),
+            time_s: start_s + f.time_s,
+            force_n: f.force_n,
+        })
+        .collect()
 }
 
 impl DemoRun {
@@ -169,7 +201,9 @@ pub fn record_demonstration(
     let started = Instant::now();
     let mut backend = SimBackend::new(world);
     let (mut controller, _handles) = build_rig(config, rig, Some(&mut backend))?.into_controller()?;
+    let mut running = skill.clone();
     controller.load_skill(skill)?;
+    let (mut force_events, mut skill_start_s) = (Vec::new(), 0.0);
     let mut records = empty_records();
     let every = options.cycles_per_sample.max(1);
     let mut snapshot_times = options.snapshot_times_s.clone();
@@ -207,7 +241,10 @@ pub fn record_demonstration(
             _ => None,
         };
         drop(world);
+        skill_start_s = record.time_s - record.skill_time_s;
         if let Some(skill) = following {
+            force_events.extend(fired_in(&controller, &running, skill_start_s));
+            running = skill.clone();
             controller.load_skill(skill)?;
             continue;
         }
@@ -218,6 +255,7 @@ pub fn record_demonstration(
         }
     }
     let simulated_s = controller.record().time_s;
+    force_events.extend(fired_in(&controller, &running, skill_start_s));
     drop(controller);
     let mut world = backend.world();
     let evaluation = if fault.is_some() {
@@ -260,6 +298,7 @@ pub fn record_demonstration(
         snapshots,
         self_crossings: world.thread_watch.crossings.clone(),
         events,
+        force_events,
         final_scene,
     })
 }
