@@ -262,6 +262,7 @@ fn a_force_event_opens_the_jaw_when_the_threshold_is_crossed() {
         from_s: 0.2,
         until_s: 0.8,
         threshold_n: 1.5,
+        sustain_s: 0.0,
         action: ForceAction::OpenJaw { jaw_rad: 0.5 },
     };
     controller.load_skill(hold_still_skill(arm, start, vec![event])).unwrap();
@@ -292,6 +293,39 @@ fn a_force_event_opens_the_jaw_when_the_threshold_is_crossed() {
 }
 
 #[test]
+fn a_force_event_with_a_sustain_ignores_a_shorter_spike() {
+    let arm = ArmName::Left;
+    let (_, start) = parked(arm);
+    let (mut controller, _, force) = dummy_controller(arm, PERIOD_S, ControllerParams::default());
+    let event = ForceEvent {
+        name: "release on a sustained pull".into(),
+        from_s: 0.0,
+        until_s: 0.9,
+        threshold_n: 1.0,
+        sustain_s: 0.05,
+        action: ForceAction::OpenJaw { jaw_rad: 0.5 },
+    };
+    controller.load_skill(hold_still_skill(arm, start, vec![event])).unwrap();
+    for cycle in 0..=900 {
+        let t = cycle as f64 * PERIOD_S;
+        // A 30 ms spike of 2 N at 0.2 s, then 1.2 N from 0.5 s on.
+        let f = if (0.2..0.23).contains(&t) {
+            2.0
+        } else if t >= 0.5 {
+            1.2
+        } else {
+            0.0
+        };
+        force.set(Vector3::new(f, 0.0, 0.0));
+        controller.step().unwrap();
+    }
+    let fired = controller.fired_events();
+    assert_eq!(fired.len(), 1, "fires once: {fired:?}");
+    // Not at the spike: 50 ms into the sustained pull (give or take the gauge's one-cycle lag).
+    assert!((fired[0].time_s - 0.55).abs() < 2.5 * PERIOD_S, "fired at {} s", fired[0].time_s);
+}
+
+#[test]
 fn a_hold_event_stops_the_tip_until_its_window_closes() {
     let arm = ArmName::Left;
     let (_, start) = parked(arm);
@@ -301,6 +335,7 @@ fn a_hold_event_stops_the_tip_until_its_window_closes() {
         from_s: 0.0,
         until_s: 0.7,
         threshold_n: 0.5,
+        sustain_s: 0.0,
         action: ForceAction::Hold,
     };
     controller.load_skill(hold_still_skill(arm, start, vec![event])).unwrap();
@@ -382,6 +417,7 @@ fn skills_the_rig_cannot_run_are_refused() {
         from_s: 0.0,
         until_s: 1.0,
         threshold_n: 1.0,
+        sustain_s: 0.0,
         action: ForceAction::Hold,
     };
     let mut skill = hold_still_skill(arm, start, vec![event]);

@@ -17,6 +17,8 @@ use super::record::{ArmRecord, FiredEvent};
 pub(super) struct EventState {
     /// Skill time it fired, s.
     fired_at_s: Option<f64>,
+    /// Skill time since which the force has stayed at or above the threshold, s.
+    above_since_s: Option<f64>,
     /// The tip target when it fired (for [`ForceAction::Hold`]).
     hold: Option<TipTarget>,
 }
@@ -186,7 +188,14 @@ impl ArmRuntime {
         let mut jaw = track.jaw_at(time_s);
         for (i, (event, state)) in track.events.iter().zip(&mut self.events).enumerate() {
             let inside = event.from_s <= time_s && time_s <= event.until_s;
-            if state.fired_at_s.is_none() && inside && force_n >= event.threshold_n {
+            state.above_since_s = if inside && force_n >= event.threshold_n {
+                state.above_since_s.or(Some(time_s))
+            } else {
+                None
+            };
+            let sustained =
+                state.above_since_s.is_some_and(|since| time_s - since >= event.sustain_s - 1e-12);
+            if state.fired_at_s.is_none() && sustained {
                 state.fired_at_s = Some(time_s);
                 state.hold = self.last_target.or(target);
                 fired.push(FiredEvent { arm, event: i, time_s, force_n });

@@ -15,8 +15,12 @@ pub struct ForceEvent {
     /// The window closes, s; the action's effect ends here.
     pub until_s: f64,
     /// The event fires the first cycle inside the window in which the force on the instrument (its
-    /// magnitude, from the strain gauges) reaches this, N.
+    /// magnitude, from the strain gauges) reaches this, N ...
     pub threshold_n: f64,
+    /// ... and has stayed at or above it for this long, s (0: at once). A pull that stops at a
+    /// passing spike (a coil catching as the thread is drawn through it) has not reached its force.
+    #[serde(default)]
+    pub sustain_s: f64,
     /// What happens.
     pub action: ForceAction,
 }

@@ -233,6 +233,7 @@ fn force_keys(
         from_s: slot.0,
         until_s: slot.1,
         threshold_n: p.max_force_n,
+        sustain_s: 0.0,
         action: ForceAction::OpenJaw { jaw_rad: to_rad },
     });
 }

@@ -101,6 +101,8 @@ pub struct TieGeometry {
     /// filtered, a pull held at 0.6 N, and even at 0.3 N, snaps the knot tight enough for the thread
     /// to pass through itself in some runs (a coil lost: a trefoil at release).
     pub pull_force_n: f64,
+    /// ... held this long before the pull counts it as reached, s (0: at once).
+    pub pull_force_sustain_s: f64,
     /// Whether a pull that reaches the set force stops and holds the thread there (both let go
     /// together at the end, the knot cinched between two tensions) rather than letting go at once.
     pub hold_at_force: bool,
@@ -147,6 +149,7 @@ impl Default for TieGeometry {
             right_follows_draw: 0.0,
             draw_relax: 0.4,
             pull_force_n: 0.3,
+            pull_force_sustain_s: 0.0,
             hold_at_force: true,
             second_throw: None,
         }
@@ -462,6 +465,7 @@ fn plan_throw(world: &SimWorld, geometry: &TieGeometry, variation: &Variation, s
                 from_s: pull_s + d(0.5),
                 until_s: end_s,
                 threshold_n: geometry.pull_force_n,
+                sustain_s: geometry.pull_force_sustain_s,
                 action: ForceAction::Hold,
             });
             track.wait_until(end_s);
@@ -483,6 +487,7 @@ fn plan_throw(world: &SimWorld, geometry: &TieGeometry, variation: &Variation, s
             from_s: from_s + d(0.5),
             until_s: track.time_s() + 1.0,
             threshold_n: geometry.pull_force_n,
+            sustain_s: geometry.pull_force_sustain_s,
             action: if geometry.hold_at_force {
                 ForceAction::Hold
             } else {
