@@ -40,17 +40,8 @@ fn main() {
     let header: Vec<String> = RELEASES.iter().map(|(_, _, name)| format!("let go: {name}")).collect();
     println!("| thread | friction | loop | {} |", header.join(" | "));
     println!("|---|---|---|{}", "---|".repeat(RELEASES.len()));
-    // Shorter segments: the bending stiffness per joint scaled with the count (the same stiffness per
-    // length), more solver iterations.
-    let finer = |k: usize, iterations: usize| {
-        let strand = ThreadParams {
-            segments: k * thread.segments,
-            bend_stiffness_n_m_per_rad: k as f64 * thread.bend_stiffness_n_m_per_rad,
-            bend_damping_n_m_s_per_rad: k as f64 * thread.bend_damping_n_m_s_per_rad,
-            ..thread
-        };
-        (SolverParams { solver_iterations: iterations * solver.solver_iterations, ..solver }, strand)
-    };
+    // Shorter segments, more solver iterations.
+    let finer = |k: usize, iterations: usize| knotlab_bench::finer_thread(&solver, &thread, k, iterations);
     let (solver_2, thread_2) = finer(2, 2);
     let (solver_4, thread_4) = finer(4, 4);
     let all = [thread.friction, 0.3, 1.0];

@@ -36,17 +36,8 @@ fn main() {
     );
     println!("| thread | friction on itself | load | free ends held | free ends let go |");
     println!("|---|---|---|---|---|");
-    // Shorter segments: the bending stiffness per joint scaled with the count, more solver iterations.
-    let finer = |k: usize| {
-        let strand = ThreadParams {
-            segments: k * thread.segments,
-            bend_stiffness_n_m_per_rad: k as f64 * thread.bend_stiffness_n_m_per_rad,
-            bend_damping_n_m_s_per_rad: k as f64 * thread.bend_damping_n_m_s_per_rad,
-            ..thread
-        };
-        (SolverParams { solver_iterations: k * solver.solver_iterations, ..solver }, strand)
-    };
-    let (solver_2, thread_2) = finer(2);
+    // Shorter segments, more solver iterations.
+    let (solver_2, thread_2) = knotlab_bench::finer_thread(&solver, &thread, 2, 2);
     let rows = [
         Row {
             name: "shipped (3.1 mm segments)",
@@ -66,29 +57,20 @@ fn main() {
                     .map(|release_free| {
                         let runs: Vec<String> = SPREADS_M
                             .iter()
-                            .filter_map(|&spread_m| {
-                                let params = ReefParams {
-                                    spread_m,
-                                    lift_m: 0.002,
-                                    tail_m: 0.03,
-                                    snug_n: 1.0,
-                                    snug_s: 2.0,
-                                    snug_damping_per_s: 200.0,
-                                    load_n,
-                                    hold_s: 2.0,
-                                    release_free,
-                                };
-                                // A knot that came apart (a strand that slid out and flew away trips the
-                                // speed check) counts as not held.
+                            .map(|&spread_m| {
+                                let params = ReefParams::snug_then_load(spread_m, load_n, release_free);
+                                // "off": the knot came apart (a strand that slid out and flew away
+                                // trips the speed check).
                                 match run_reef(&solver, &strand, &params) {
                                     Ok(o) if o.knot_end == o.knot_laid => {
-                                        Some(format!("{:.1} ({:.1})", 1e3 * o.slip_m, 1e3 * o.late_slip_m))
+                                        format!("{:.1} mm ({:.1})", 1e3 * o.slip_m, 1e3 * o.late_slip_m)
                                     }
-                                    _ => None,
+                                    Ok(o) => format!("off ({})", o.knot_end.name()),
+                                    Err(_) => "off (flew)".to_owned(),
                                 }
                             })
                             .collect();
-                        format!("{}/{}: {} mm", runs.len(), SPREADS_M.len(), runs.join(", "))
+                        runs.join(", ")
                     })
                     .collect();
                 println!("| {name} | {friction} | {load_n} N | {} |", cells.join(" | "));

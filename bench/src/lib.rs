@@ -18,3 +18,26 @@ pub fn shipped_scene() -> knotlab_sim::scene::SceneConfig {
         }
     }
 }
+
+/// The shipped solver and thread with segments `k` times shorter: the bending stiffness and damping
+/// per joint scaled by `k` (the same per length), the solver's iterations by `iterations`.
+pub fn finer_thread(
+    solver: &knotlab_sim::physics::SolverParams,
+    thread: &knotlab_sim::thread::ThreadParams,
+    k: usize,
+    iterations: usize,
+) -> (knotlab_sim::physics::SolverParams, knotlab_sim::thread::ThreadParams) {
+    let strand = knotlab_sim::thread::ThreadParams {
+        segments: k * thread.segments,
+        bend_stiffness_n_m_per_rad: k as f64 * thread.bend_stiffness_n_m_per_rad,
+        bend_damping_n_m_s_per_rad: k as f64 * thread.bend_damping_n_m_s_per_rad,
+        ..*thread
+    };
+    (
+        knotlab_sim::physics::SolverParams {
+            solver_iterations: iterations * solver.solver_iterations,
+            ..*solver
+        },
+        strand,
+    )
+}

@@ -112,6 +112,24 @@ pub struct ReefParams {
     pub release_free: bool,
 }
 
+impl ReefParams {
+    /// The trial as the bench and the tests run it: the loose knot's features `spread_m` apart, 2 mm
+    /// lift, 30 mm tails; snugged at 1 N for 2 s under 200/s damping; then `load_n` for 2 s.
+    pub fn snug_then_load(spread_m: f64, load_n: f64, release_free: bool) -> Self {
+        Self {
+            spread_m,
+            lift_m: 0.002,
+            tail_m: 0.03,
+            snug_n: 1.0,
+            snug_s: 2.0,
+            snug_damping_per_s: 200.0,
+            load_n,
+            hold_s: 2.0,
+            release_free,
+        }
+    }
+}
+
 /// What the trial measured.
 #[derive(Clone, Debug, PartialEq)]
 pub struct ReefOutcome {

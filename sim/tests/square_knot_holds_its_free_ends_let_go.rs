@@ -16,17 +16,7 @@ fn loaded(friction_on_itself: f64, load_n: f64, release_free: bool) -> Result<Re
     let scene =
         parse_scene(include_str!("../../scenarios/default.toml"), "default.toml").expect("shipped scene");
     let thread = ThreadParams { friction_on_itself: Some(friction_on_itself), ..scene.thread };
-    let params = ReefParams {
-        spread_m: 0.006,
-        lift_m: 0.002,
-        tail_m: 0.03,
-        snug_n: 1.0,
-        snug_s: 2.0,
-        snug_damping_per_s: 200.0,
-        load_n,
-        hold_s: 2.0,
-        release_free,
-    };
+    let params = ReefParams::snug_then_load(0.006, load_n, release_free);
     run_reef(&scene.solver, &thread, &params)
 }
 
