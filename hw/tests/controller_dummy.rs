@@ -394,6 +394,17 @@ fn skills_the_rig_cannot_run_are_refused() {
         error,
         ControllerError::SkillNeedsDevice { arm: ArmName::Right, device: DeviceKind::ArmServo, .. }
     ));
+    // A force event that must hold for a negative time: named.
+    let event = ForceEvent {
+        name: String::new(),
+        from_s: 0.0,
+        until_s: 0.5,
+        threshold_n: 1.0,
+        sustain_s: -0.1,
+        action: ForceAction::Hold,
+    };
+    let text = controller.load_skill(hold_still_skill(arm, start, vec![event])).unwrap_err().to_string();
+    assert!(text.contains("tracks[0].events[0].sustain_s: -0.1 is not a duration"), "{text}");
     // Keys out of order: the path of the bad field is named.
     let mut bad = reach_skill(arm, start, Vector3::zeros(), 0.1);
     bad.tracks[0].poses[3].time_s = 0.0;

@@ -1,5 +1,5 @@
-//! The two-throw knot trial: does the simulated thread hold a square (reef) knot, or a granny, once
-//! its free ends are let go? Two strands are laid as a loose knot, snugged by all four ends, then
+//! The two-throw knot trial: does the simulated thread hold a square (reef) knot once its free
+//! ends are let go? Two strands are laid as a loose knot, snugged by all four ends, then
 //! loaded by their standing parts (one held, one pulled, as the wound's loop pulls a tied stitch)
 //! with both free ends let go. Used by the `thread_reef` benchmark and a regression test: a first
 //! throw alone cannot hold (`cinch::run_holding`), so whether the second throw can decides what the
@@ -91,9 +91,9 @@ pub fn as_stitch(red: &[Vector3<f64>], blue: &[Vector3<f64>]) -> Vec<Vector3<f64
 /// How the trial goes.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ReefParams {
-    /// The loose knot's spread and lift ([`loose_knot`]), m.
+    /// How far apart the loose knot's features lie (red's legs are twice this apart), m.
     pub spread_m: f64,
-    /// ...
+    /// How far above and below each other the strands cross in the loose knot, m.
     pub lift_m: f64,
     /// Straight strand from the knot to each end, m.
     pub tail_m: f64,

@@ -138,6 +138,12 @@ impl Skill {
                         format!("{} is not a force above zero (N)", event.threshold_n),
                     );
                 }
+                if !(event.sustain_s.is_finite() && event.sustain_s >= 0.0) {
+                    p.add(
+                        format!("{ep}.sustain_s"),
+                        format!("{} is not a duration (s >= 0)", event.sustain_s),
+                    );
+                }
                 if let ForceAction::OpenJaw { jaw_rad } = event.action
                     && !(jaw_rad.is_finite() && jaw_rad >= 0.0)
                 {
