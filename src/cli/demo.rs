@@ -81,6 +81,9 @@ struct RunLine {
     /// The knot as the thread lay when the left let go of it (before it could fall): its type,
     /// height and the thread between the stitch and it.
     knot_at_release: Option<knotlab_sim::evaluate::KnotNow>,
+    /// How the long end lay when the left closed on the tail: turns round the left's jaws and round
+    /// the right's (a throw wound round the left's only has about none round the right's).
+    coils_at_take: Option<knotlab_scenarios::expert::diagnose::CoilsAtTake>,
     gap_before_m: f64,
     gap_after_m: Option<f64>,
     /// How much of each free end the knot drew in during the holding test (a knot that slips lets
@@ -124,6 +127,7 @@ fn line(seed: u64, run: &DemoRun, dir: &Path) -> RunLine {
         stitch_distance_m: e.stitch_distance_m,
         loop_outside_m: e.loop_outside_m,
         knot_at_release: run.knot_at_release.clone(),
+        coils_at_take: run.coils_at_take,
         gap_before_m: e.gap_before_m,
         gap_after_m: e.gap_after_m,
         slid: e.slid,

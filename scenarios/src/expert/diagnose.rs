@@ -1,5 +1,6 @@
 //! What the expert's developer needs to see in a run: how many times the thread winds around an
-//! instrument's jaws (the winding number of the centreline about the jaw axis).
+//! instrument's jaws (the winding number of the centreline about the jaw axis), and how the long end
+//! lay round both instruments when the left took the tail.
 
 use knotlab_hw::rig::ArmName;
 use knotlab_sim::world::{JAW_CENTRE_OFFSET_M, SimWorld};
@@ -36,6 +37,43 @@ pub fn thread_turns_around_jaws(world: &SimWorld, arm: ArmName) -> f64 {
     let axis = tip.rotation * Vector3::z();
     let centre = (tip * Point3::new(0.0, 0.0, -JAW_CENTRE_OFFSET_M)).coords;
     turns_about(&world.thread.centreline(&world.physics), &centre, &axis)
+}
+
+/// Turns of the long end (needle end to the exit hole) around `arm`'s jaws, as they stand; `None`
+/// while the stitch holds no thread.
+pub fn long_end_turns_around_jaws(world: &SimWorld, arm: ArmName) -> Option<f64> {
+    let inside = world.stitch.segments_inside()?;
+    let line = world.thread.centreline(&world.physics);
+    let tip = world.world_from_tip(arm);
+    let axis = tip.rotation * Vector3::z();
+    let centre = (tip * Point3::new(0.0, 0.0, -JAW_CENTRE_OFFSET_M)).coords;
+    let long_end = &line[..=(*inside.start()).min(line.len() - 1)];
+    Some(turns_about(long_end, &centre, &axis))
+}
+
+/// How the long end lay when the left first closed on the thread (taking the tail): the throw's
+/// turns should be round the left's jaws only. Turns about each jaw axis, right-handed about the
+/// jaws' direction; a loop round both instruments counts about both (with opposite signs when the
+/// jaws point towards each other).
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
+pub struct CoilsAtTake {
+    /// When the left closed, s from the start of the recording.
+    pub time_s: f64,
+    /// Turns of the long end round the left's jaws.
+    pub left_turns: f64,
+    /// Turns of the long end round the right's jaws.
+    pub right_turns: f64,
+}
+
+impl CoilsAtTake {
+    /// The long end's turns round both instruments' jaws now; `None` while the stitch holds no thread.
+    pub fn now(world: &SimWorld, time_s: f64) -> Option<Self> {
+        Some(Self {
+            time_s,
+            left_turns: long_end_turns_around_jaws(world, ArmName::Left)?,
+            right_turns: long_end_turns_around_jaws(world, ArmName::Right)?,
+        })
+    }
 }
 
 #[cfg(test)]

@@ -5,6 +5,7 @@
 
 use std::time::Instant;
 
+use super::diagnose::CoilsAtTake;
 use knotlab_hw::controller::{ControllerError, CycleRecord, Status};
 use knotlab_hw::rig::{ArmName, Rig};
 use knotlab_hw::rig_config::{RigBuildError, RigConfig, build_rig};
@@ -88,6 +89,8 @@ pub struct DemoRun {
     /// The knot as the thread lay in the cycle the left instrument let go of it, after holding it
     /// (the instrument tie's final release): where the pulls cinched it, before it could fall.
     pub knot_at_release: Option<KnotNow>,
+    /// How the long end lay round the instruments when the left first closed on the thread.
+    pub coils_at_take: Option<CoilsAtTake>,
     /// Why the controller stopped early, if it did.
     pub fault: Option<String>,
     /// Simulated time of the skill, s.
@@ -210,7 +213,7 @@ pub fn record_demonstration(
     snapshot_times.sort_by(f64::total_cmp);
     let mut snapshots = Vec::new();
     let mut fault = None;
-    let (mut left_held, mut knot_at_release) = (false, None);
+    let (mut left_held, mut knot_at_release, mut coils_at_take) = (false, None, None);
     loop {
         let record = match controller.step() {
             Ok(record) => record.clone(),
@@ -227,6 +230,9 @@ pub fn record_demonstration(
         let left_holds = world.arm(ArmName::Left).grasp.is_some();
         if left_held && !left_holds {
             knot_at_release = Some(knot_now(&world));
+        }
+        if !left_held && left_holds && coils_at_take.is_none() {
+            coils_at_take = Some(CoilsAtTake::now(&world, record.time_s));
         }
         left_held = left_holds;
         if record.cycle % every == 0 {
@@ -292,6 +298,7 @@ pub fn record_demonstration(
         demonstration,
         evaluation,
         knot_at_release: knot_at_release.flatten(),
+        coils_at_take: coils_at_take.flatten(),
         fault,
         simulated_s,
         wall_s,
