@@ -112,3 +112,16 @@ fn the_pulls_let_go_at_the_set_force_or_hold_it_as_the_geometry_says() {
         assert_eq!(action, ForceAction::Hold);
     }
 }
+
+#[test]
+fn the_left_is_wound_round_with_its_jaws_as_open_as_the_geometry_says() {
+    let world = SimWorld::new(scene(), Rig::shipped().expect("the shipped rig")).expect("the scene builds");
+    let closings = |winding_jaw_rad: f64| {
+        let geometry = TieGeometry { winding_jaw_rad, ..TieGeometry::default() };
+        let skill = plan_instrument_tie(&world, &geometry, &Variation::none());
+        let jaw = &skill.track(ArmName::Left).expect("the left").jaw;
+        jaw.windows(2).filter(|w| w[0].jaw_rad > 0.3 && w[1].jaw_rad < 0.05).count()
+    };
+    assert_eq!(closings(0.0), 2, "closed to be wound round, then closed on the tail");
+    assert_eq!(closings(0.6), 1, "wound round open, closed only on the tail");
+}

@@ -86,6 +86,7 @@ fn range_problems(g: &TieGeometry) -> Vec<(String, String)> {
     c.range("run_down_s", g.run_down_s, 0.1, 60.0);
     c.range("winding_turns", g.winding_turns, 0.0, 5.0);
     c.range("take_tail_jaw_rad", g.take_tail_jaw_rad, 0.0, 1.6);
+    c.range("winding_jaw_rad", g.winding_jaw_rad, 0.0, 1.6);
     c.range("speed_fraction", g.speed_fraction, 0.01, 1.0);
     c.range("pull_force_n", g.pull_force_n, 0.01, 10.0);
     c.range("pull_force_sustain_s", g.pull_force_sustain_s, 0.0, 5.0);

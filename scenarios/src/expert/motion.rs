@@ -225,7 +225,20 @@ impl TrackBuilder {
     pub fn go_pointing(&mut self, path: Path, duration_s: f64, direction: Vector3<f64>) {
         let from = self.jaw_direction();
         let to = direction.normalize();
-        self.go_with(path, duration_s, |s| Hold::Pointing(from.lerp(&to, min_jerk(s))));
+        // Half way between opposite directions their blend is zero: those turn about a side at
+        // right angles instead (any will do), through the same half turn.
+        let opposite = from.dot(&to) < -1.0 + 1e-9;
+        let side = {
+            let helper = if from.x.abs() < 0.9 { Vector3::x() } else { Vector3::y() };
+            UnitVector3::new_normalize(from.cross(&helper))
+        };
+        self.go_with(path, duration_s, |s| {
+            Hold::Pointing(if opposite {
+                Rotation3::from_axis_angle(&side, std::f64::consts::PI * min_jerk(s)) * from
+            } else {
+                from.lerp(&to, min_jerk(s))
+            })
+        });
         self.hold = Hold::Pointing(to);
     }
 

@@ -45,6 +45,9 @@ pub struct TieGeometry {
     pub winding_s: f64,
     /// Turns of the winding (a surgeon's knot: 2).
     pub winding_turns: f64,
+    /// The left's jaws are open this far while the long end is wound round them, rad: coils wound
+    /// tight round closed jaws are stretched when the jaws open to take the tail.
+    pub winding_jaw_rad: f64,
     /// The assist presents the tail this far ahead of the left's jaw centre, along its jaws, m.
     pub tail_ahead_m: f64,
     /// If not empty, the assist takes the tail along these points (stitch frame) instead of the swing.
@@ -128,6 +131,7 @@ impl Default for TieGeometry {
             winding_behind_m: 0.003,
             winding_s: 8.0,
             winding_turns: 2.0,
+            winding_jaw_rad: 0.0,
             tail_ahead_m: 0.012,
             tail_beyond_m: 0.008,
             tail_tension_m: 0.003,
@@ -307,12 +311,15 @@ fn plan_throw(world: &SimWorld, geometry: &TieGeometry, variation: &Variation, s
         None => Unit::new_normalize(trocar_of(&world.config, ArmName::Right) - winding_point),
     };
     let axis = jaws;
-    let across = |d: Vector3<f64>| Unit::new_normalize(d - axis.into_inner() * d.dot(&axis));
+    let across = |d: Vector3<f64>| Unit::try_new(d - axis.into_inner() * d.dot(&axis), 1e-9);
     // The winding starts opposite the exit point, so that the long end already lies across the
     // left's jaws, a little before the point where it would run straight over them.
     let exit = world.tissue.hole_m(&world.physics, Flap::B);
-    let over = across(winding_point - exit);
-    let towards = across(dir(geometry.winding_towards));
+    // (With the exit on the jaw axis, any side will do: the one at right angles to `towards`.)
+    let towards = across(dir(geometry.winding_towards))
+        .or_else(|| across(Vector3::x()))
+        .unwrap_or_else(|| Unit::new_normalize(Vector3::y()));
+    let over = across(winding_point - exit).unwrap_or_else(|| Unit::new_normalize(axis.cross(&towards)));
     // The turns' sense: right-handed about the axis that moves `over` towards `towards`.
     let axis = if axis.cross(&over).dot(&towards) >= 0.0 { axis } else { -axis };
     let start_dir =
@@ -323,10 +330,7 @@ fn plan_throw(world: &SimWorld, geometry: &TieGeometry, variation: &Variation, s
     // that the tail then runs between the open jaws.
     let entry = world.tissue.hole_m(&world.physics, Flap::A);
     let tail_point = winding_point + jaws.into_inner() * geometry.tail_ahead_m;
-    let hinge = {
-        let d = tail_point - entry;
-        Unit::new_normalize(d - jaws.into_inner() * d.dot(&jaws))
-    };
+    let hinge = across(tail_point - entry).unwrap_or(towards);
     let left_frame = nalgebra::Rotation3::from_basis_unchecked(&[
         hinge.cross(&jaws),
         hinge.into_inner(),
@@ -337,7 +341,7 @@ fn plan_throw(world: &SimWorld, geometry: &TieGeometry, variation: &Variation, s
     right.wait_until(l1_s);
     right.go(Path::To(centre + start_dir.into_inner() * geometry.winding_radius_m), d(2.0));
     left.wait_until(left.time_s() + pause[0]);
-    left.jaw(0.0, d(0.3));
+    left.jaw(geometry.winding_jaw_rad, d(0.3));
     left.wait_until(left.time_s() + d(0.3) + pause[1]);
 
     // R2: the right winds the long end around the left's jaws, after the left is there.
