@@ -125,3 +125,74 @@ fn the_left_is_wound_round_with_its_jaws_as_open_as_the_geometry_says() {
     assert_eq!(closings(0.0), 2, "closed to be wound round, then closed on the tail");
     assert_eq!(closings(0.6), 1, "wound round open, closed only on the tail");
 }
+
+/// The angle between the right's jaw centre, seen from the left's, and the left's jaws, at `time_s`.
+fn right_seen_along_the_left_jaws(
+    skill: &knotlab_hw::skill::Skill,
+    world: &SimWorld,
+    time_s: f64,
+) -> (f64, Vector3<f64>) {
+    use knotlab_hw::kinematics::TipOrientation;
+    use knotlab_sim::world::JAW_CENTRE_OFFSET_M;
+    let centre = |arm: ArmName| {
+        let target = skill.track(arm).and_then(|t| t.target_at(time_s)).expect("a target");
+        let tip = target.world_position_m;
+        let jaws = match target.orientation {
+            TipOrientation::Frame(r) => r * Vector3::z(),
+            TipOrientation::JawDirection(d) => d.normalize(),
+            TipOrientation::AlongShaft => (tip - trocar_of(&world.config, arm)).normalize(),
+        };
+        (tip - jaws * JAW_CENTRE_OFFSET_M, jaws)
+    };
+    let (left, jaws) = centre(ArmName::Left);
+    let (right, _) = centre(ArmName::Right);
+    ((right - left).normalize().dot(&jaws).acos(), jaws)
+}
+
+/// The right's bearing from the left's jaws just before they turn from `wound` (their direction as
+/// the long end is wound round them) and as they first point `to`.
+fn bearing_across_the_turn(
+    skill: &knotlab_hw::skill::Skill,
+    world: &SimWorld,
+    wound: Vector3<f64>,
+    to: Vector3<f64>,
+) -> (f64, f64) {
+    let times: Vec<f64> = (0..(skill.duration_s() * 100.0) as usize).map(|i| i as f64 * 0.01).collect();
+    let jaws = |t: f64| right_seen_along_the_left_jaws(skill, world, t).1;
+    let arrived =
+        *times.iter().find(|t| jaws(**t).dot(&to) > 0.9998).expect("the left's jaws turn to the tail");
+    let turning = *times
+        .iter()
+        .rev()
+        .filter(|t| **t < arrived)
+        .find(|t| jaws(**t).dot(&wound) > 0.9998)
+        .expect("from the way they were wound round");
+    let bearing = |t: f64| right_seen_along_the_left_jaws(skill, world, t).0;
+    (bearing(turning), bearing(arrived))
+}
+
+#[test]
+fn fetching_the_tail_as_one_body_the_right_turns_with_the_left_jaws() {
+    use knotlab_scenarios::expert::plan::LeftFetch;
+    let world = SimWorld::new(scene(), Rig::shipped().expect("the shipped rig")).expect("the scene builds");
+    let file = concat!(env!("CARGO_MANIFEST_DIR"), "/experts/coils-on-the-left.toml");
+    let geometry =
+        knotlab_scenarios::expert::load_tie_geometry(std::path::Path::new(file)).expect("the file");
+    let fetch = geometry.left_fetches.clone().expect("the left fetches the tail");
+    assert!(fetch.as_one_body);
+    let wound = Vector3::from(geometry.left_jaw_direction.expect("a jaw direction")).normalize();
+    let to = Vector3::from(fetch.jaw_direction).normalize();
+    // As one body: the right keeps its bearing from the left's jaws as they turn to the tail.
+    let skill = plan_instrument_tie(&world, &geometry, &Variation::none());
+    let (before, after) = bearing_across_the_turn(&skill, &world, wound, to);
+    println!(
+        "as one body: the right {before:.3} rad from the left's jaws before their turn, {after:.3} after"
+    );
+    assert!((before - after).abs() < 0.05, "{before} rad before the turn, {after} rad after");
+    // Following their shift only, it does not.
+    let shifted = TieGeometry { left_fetches: Some(LeftFetch { as_one_body: false, ..fetch }), ..geometry };
+    let skill = plan_instrument_tie(&world, &shifted, &Variation::none());
+    let (before, after) = bearing_across_the_turn(&skill, &world, wound, to);
+    println!("following the shift: {before:.3} rad before, {after:.3} after");
+    assert!((before - after).abs() > 0.2, "{before} rad before the turn, {after} rad after");
+}

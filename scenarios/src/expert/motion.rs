@@ -58,6 +58,16 @@ pub enum Path {
         /// Advance along the axis per turn, m.
         pitch_m: f64,
     },
+    /// Carried with another body: its point `pivot_from_m` moves straight to `pivot_to_m` while it
+    /// turns by `rotation` about that point.
+    Carried {
+        /// The pivot at the start, m.
+        pivot_from_m: Vector3<f64>,
+        /// ... and at the end, m.
+        pivot_to_m: Vector3<f64>,
+        /// The body's turn.
+        rotation: UnitQuaternion<f64>,
+    },
 }
 
 /// How the jaws are held during a move.
@@ -209,6 +219,15 @@ impl TrackBuilder {
         Some(UnitQuaternion::from_rotation_matrix(&r))
     }
 
+    /// The tip frame the jaws are held in now, `world_from_tip`: the one asked for, or the arm's
+    /// model's at the last key (`None` without one).
+    pub fn held_frame(&self) -> Option<UnitQuaternion<f64>> {
+        match self.hold {
+            Hold::Frame(q) => Some(q),
+            _ => self.tip_frame(),
+        }
+    }
+
     /// Holds the jaws as the arm's model has them at the last key (instead of along the shaft): for a
     /// track that goes on from where another left the instrument. Needs [`TrackBuilder::follow`].
     pub fn hold_as_it_stands(&mut self) {
@@ -254,6 +273,27 @@ impl TrackBuilder {
         self.hold = Hold::Frame(to);
     }
 
+    /// Whether the arm reaches every pose of a straight move to `end_m` turning to `world_from_tip`
+    /// (as [`TrackBuilder::go_framing`] would ask; true without the arm's model: nothing to check).
+    pub fn reaches_framing(&self, end_m: Vector3<f64>, world_from_tip: Rotation3<f64>) -> bool {
+        let Some(follow) = &self.follow else { return true };
+        let to = UnitQuaternion::from_rotation_matrix(&world_from_tip);
+        let from = self.held_frame().unwrap_or(to);
+        let start = self.position_m;
+        const STEPS: usize = 50;
+        let keys: Vec<PoseKey> = (1..=STEPS)
+            .map(|i| {
+                let s = min_jerk(i as f64 / STEPS as f64);
+                self.make_key(
+                    self.time_s + i as f64,
+                    start + (end_m - start) * s,
+                    Hold::Frame(from.slerp(&to, s)),
+                )
+            })
+            .collect();
+        follow.check(&keys, 1.0).is_some()
+    }
+
     /// Holds still until `time_s` (a pause, or waiting for another instrument).
     pub fn wait_until(&mut self, time_s: f64) {
         while self.time_s + self.key_period_s < time_s {
@@ -282,6 +322,10 @@ impl TrackBuilder {
                     let rotation = Rotation3::from_axis_angle(&axis, angle);
                     let along = axis.into_inner() * pitch_m * turns * min_jerk(s);
                     centre_m + rotation * (start - centre_m) + along
+                }
+                Path::Carried { pivot_from_m, pivot_to_m, rotation } => {
+                    let turned = UnitQuaternion::identity().slerp(&rotation, min_jerk(s));
+                    pivot_from_m + (pivot_to_m - pivot_from_m) * min_jerk(s) + turned * (start - pivot_from_m)
                 }
             }
         };

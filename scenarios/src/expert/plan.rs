@@ -127,6 +127,7 @@ impl Default for TieGeometry {
                 jaw_direction: [0.0, 0.0, -1.0],
                 approach_m: 0.012,
                 stop_short_m: 0.0,
+                as_one_body: false,
             }),
             winding_behind_m: 0.003,
             winding_s: 8.0,
@@ -173,6 +174,12 @@ pub struct LeftFetch {
     pub approach_m: f64,
     /// The jaws' centre stops this far short of the tail, m.
     pub stop_short_m: f64,
+    /// The left's whole tip frame turns on the way (its hinge along the tail) and the right turns
+    /// with the jaws' direction about their centre, as one body, so that coils wound tight round
+    /// the jaws keep their shape (false: the left only points its jaws, the solver choosing their roll, and the
+    /// right follows their shift).
+    #[serde(default)]
+    pub as_one_body: bool,
 }
 
 /// How a human performance varies from run to run.
@@ -376,9 +383,41 @@ fn plan_throw(world: &SimWorld, geometry: &TieGeometry, variation: &Variation, s
         left.wait_until(left.time_s() + d(0.3));
         let shift = behind - left.position_m();
         let relocate_from = left.time_s();
-        left.go_pointing(Path::To(behind), d(1.5), jaws_to);
-        right.wait_until(relocate_from);
-        right.go(Path::To(right.position_m() + shift), left.time_s() - relocate_from);
+        if fetch.as_one_body {
+            // The whole tip frame turns (the hinge along the tail, so that it runs between the open
+            // jaws; no roll left to the solver, which may flip it half way and jerk the coils), and
+            // the right turns with it about the left's jaws: the coils keep their shape.
+            let along = tail_hold - entry;
+            let hinge = Unit::new_normalize(along - jaws_to * along.dot(&jaws_to));
+            let (left_from, frame_from, jaws_from) =
+                (left.position_m(), left.held_frame(), left.jaw_direction());
+            let y_now = frame_from.map_or_else(Vector3::y, |q| q * Vector3::y());
+            // Of the two hinge senses the one nearer the present, unless the wrist cannot turn so.
+            let hinge = if hinge.dot(&y_now) >= 0.0 { hinge } else { -hinge };
+            let frame_with = |hinge: Unit<Vector3<f64>>| {
+                nalgebra::Rotation3::from_basis_unchecked(&[
+                    hinge.cross(&jaws_to),
+                    hinge.into_inner(),
+                    jaws_to,
+                ])
+            };
+            let frame = [frame_with(hinge), frame_with(-hinge)]
+                .into_iter()
+                .find(|f| left.reaches_framing(behind, *f))
+                .unwrap_or_else(|| frame_with(hinge));
+            left.go_framing(Path::To(behind), d(1.5), frame);
+            // The right turns with the jaws' direction only: turned about the jaws as well, it would
+            // go round them and wind or unwind the coils.
+            let rotation = nalgebra::UnitQuaternion::rotation_between(&jaws_from, &jaws_to)
+                .unwrap_or_else(nalgebra::UnitQuaternion::identity);
+            right.wait_until(relocate_from);
+            let carried = Path::Carried { pivot_from_m: left_from, pivot_to_m: behind, rotation };
+            right.go(carried, left.time_s() - relocate_from);
+        } else {
+            left.go_pointing(Path::To(behind), d(1.5), jaws_to);
+            right.wait_until(relocate_from);
+            right.go(Path::To(right.position_m() + shift), left.time_s() - relocate_from);
+        }
         left.wait_until(left.time_s() + pause[4]);
         // The jaws' centre stops short of the tail, so the tail lies towards their tips, ahead of
         // the coils: every coil then passes over it when the jaws draw back.
