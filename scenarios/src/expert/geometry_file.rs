@@ -90,13 +90,10 @@ fn range_problems(g: &TieGeometry) -> Vec<(String, String)> {
     c.range("speed_fraction", g.speed_fraction, 0.01, 1.0);
     c.range("pull_force_n", g.pull_force_n, 0.01, 10.0);
     c.range("pull_force_sustain_s", g.pull_force_sustain_s, 0.0, 5.0);
-    for (key, v) in [
-        ("tail_give_fraction", g.tail_give_fraction),
-        ("right_follows_draw", g.right_follows_draw),
-        ("draw_relax", g.draw_relax),
-    ] {
+    for (key, v) in [("tail_give_fraction", g.tail_give_fraction), ("draw_relax", g.draw_relax)] {
         c.range(key, v, 0.0, 1.0);
     }
+    c.range("right_follows_draw", g.right_follows_draw, -1.0, 1.0);
     c.range("tail_swing_lean.x", g.tail_swing_lean[0], -10.0, 10.0);
     c.range("tail_swing_lean.y", g.tail_swing_lean[1], -10.0, 10.0);
     c.range("tail_swing_lean.z", g.tail_swing_lean[2], -10.0, 10.0);

@@ -95,7 +95,8 @@ pub struct TieGeometry {
     pub speed_fraction: f64,
     /// Before the pulls, the left draws the tail back this far along its jaws, m.
     pub draw_back_m: f64,
-    /// ... while the right moves this fraction of the same way.
+    /// ... while the right moves this fraction of the same way (negative: the other way, holding the
+    /// coils back as the jaws draw out of them).
     pub right_follows_draw: f64,
     /// While drawing back, the jaws turn this fraction of the way towards the shaft.
     pub draw_relax: f64,
