@@ -261,6 +261,24 @@ impl TrackBuilder {
         self.hold = Hold::Pointing(to);
     }
 
+    /// Moves along `path` in `duration_s` while the jaws turn to point along `direction` (world
+    /// frame), the whole tip frame turning by the smallest rotation that does it, so the roll goes
+    /// with the jaws instead of being chosen afresh by the solver (which may flip it). Needs the
+    /// arm's model ([`TrackBuilder::follow`]) for the frame it starts from, unless one is held.
+    pub fn go_turning(&mut self, path: Path, duration_s: f64, direction: Vector3<f64>) {
+        let from_jaws = self.jaw_direction();
+        let turn = UnitQuaternion::rotation_between(&from_jaws, &direction.normalize())
+            .unwrap_or_else(UnitQuaternion::identity);
+        match self.held_frame() {
+            Some(from) => {
+                let to = turn * from;
+                self.go_with(path, duration_s, |s| Hold::Frame(from.slerp(&to, min_jerk(s))));
+                self.hold = Hold::Frame(to);
+            }
+            None => self.go_pointing(path, duration_s, direction),
+        }
+    }
+
     /// Moves along `path` while the tip frame turns to `world_from_tip` (the jaws along its z, their
     /// hinge along its y). Needs the arm's model ([`TrackBuilder::follow`]) for the frame it starts from.
     pub fn go_framing(&mut self, path: Path, duration_s: f64, world_from_tip: Rotation3<f64>) {
@@ -410,5 +428,39 @@ mod tests {
             .collect();
         assert!(radii.iter().all(|r| (r - 0.02).abs() < 1e-3), "{radii:?}");
         assert_eq!(track.poses.len(), 201);
+    }
+
+    fn quaternion_of(key: &PoseKey) -> UnitQuaternion<f64> {
+        match key.orientation {
+            Orientation::Frame { quaternion_xyzw: [x, y, z, w] } => {
+                UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(w, x, y, z))
+            }
+            ref other => panic!("a whole frame, not {other:?}"),
+        }
+    }
+
+    #[test]
+    fn turning_the_jaws_carries_their_roll_along() {
+        let mut b = TrackBuilder::new(
+            ArmName::Left,
+            Vector3::zeros(),
+            0.0,
+            0.01,
+            Tremor::none(),
+            Vector3::new(0.0, 0.0, 1.0),
+        );
+        // A frame with the jaws along x and the hinge along z, then the jaws turned to y.
+        let frame = Rotation3::from_basis_unchecked(&[-Vector3::y(), -Vector3::z(), Vector3::x()]);
+        b.go_framing(Path::To(Vector3::zeros()), 0.5, frame);
+        b.go_turning(Path::To(Vector3::new(0.0, 0.0, -0.01)), 1.0, Vector3::y());
+        let track = b.build();
+        let last = quaternion_of(track.poses.last().expect("keys"));
+        assert!((last * Vector3::z() - Vector3::y()).norm() < 1e-9, "the jaws along y");
+        // Turned about z (x to y), the hinge stays along -z: the roll went with the jaws.
+        assert!((last * Vector3::y() + Vector3::z()).norm() < 1e-9, "the hinge {:?}", last * Vector3::y());
+        // On the way every key holds a whole frame, the hinge along -z throughout.
+        for key in &track.poses[51..] {
+            assert!((quaternion_of(key) * Vector3::y() + Vector3::z()).norm() < 1e-9);
+        }
     }
 }

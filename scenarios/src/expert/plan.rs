@@ -485,7 +485,14 @@ fn plan_throw(world: &SimWorld, geometry: &TieGeometry, variation: &Variation, s
     let drawn_to = left.position_m() + draw;
     let shaft = (drawn_to - trocar_of(&world.config, ArmName::Left)).normalize();
     let relaxed = left.jaw_direction().lerp(&shaft, geometry.draw_relax);
-    left.go_pointing(Path::To(drawn_to), d(1.2), relaxed);
+    if geometry.left_fetches.as_ref().is_some_and(|f| f.as_one_body) {
+        // The left holds a whole frame since the fetch: it turns that frame, the roll going with it
+        // (handed to the solver, the roll flipped: the jaws jumped at 400-530 mm/s and tore the
+        // needle out of the right's jaws).
+        left.go_turning(Path::To(drawn_to), d(1.2), relaxed);
+    } else {
+        left.go_pointing(Path::To(drawn_to), d(1.2), relaxed);
+    }
     right.go(Path::To(right.position_m() + draw * geometry.right_follows_draw), left.time_s() - first_s);
     // The run-down: the knot onto the wound.
     let run_down_s = left.time_s() + pause[4];
