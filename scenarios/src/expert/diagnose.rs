@@ -31,11 +31,15 @@ pub fn turns_about(points: &[Vector3<f64>], centre_m: &Vector3<f64>, axis: &Vect
     total / std::f64::consts::TAU
 }
 
+/// `arm`'s jaw centre and jaw direction as they stand, world frame.
+fn jaw_axis(world: &SimWorld, arm: ArmName) -> (Vector3<f64>, Vector3<f64>) {
+    let tip = world.world_from_tip(arm);
+    ((tip * Point3::new(0.0, 0.0, -JAW_CENTRE_OFFSET_M)).coords, tip.rotation * Vector3::z())
+}
+
 /// Turns of the thread (needle end to tail end) around `arm`'s jaws, as they stand.
 pub fn thread_turns_around_jaws(world: &SimWorld, arm: ArmName) -> f64 {
-    let tip = world.world_from_tip(arm);
-    let axis = tip.rotation * Vector3::z();
-    let centre = (tip * Point3::new(0.0, 0.0, -JAW_CENTRE_OFFSET_M)).coords;
+    let (centre, axis) = jaw_axis(world, arm);
     turns_about(&world.thread.centreline(&world.physics), &centre, &axis)
 }
 
@@ -44,9 +48,7 @@ pub fn thread_turns_around_jaws(world: &SimWorld, arm: ArmName) -> f64 {
 pub fn long_end_turns_around_jaws(world: &SimWorld, arm: ArmName) -> Option<f64> {
     let inside = world.stitch.segments_inside()?;
     let line = world.thread.centreline(&world.physics);
-    let tip = world.world_from_tip(arm);
-    let axis = tip.rotation * Vector3::z();
-    let centre = (tip * Point3::new(0.0, 0.0, -JAW_CENTRE_OFFSET_M)).coords;
+    let (centre, axis) = jaw_axis(world, arm);
     let long_end = &line[..=(*inside.start()).min(line.len() - 1)];
     Some(turns_about(long_end, &centre, &axis))
 }

@@ -176,9 +176,9 @@ pub struct LeftFetch {
     /// The jaws' centre stops this far short of the tail, m.
     pub stop_short_m: f64,
     /// The left's whole tip frame turns on the way (its hinge along the tail) and the right turns
-    /// with the jaws' direction about their centre, as one body, so that coils wound tight round
-    /// the jaws keep their shape (false: the left only points its jaws, the solver choosing their roll, and the
-    /// right follows their shift).
+    /// with the jaws' direction about their centre, as one body, so that coils wound tight round the
+    /// jaws keep their shape; the left then keeps a whole frame as it draws the tail back (false: the
+    /// left only points its jaws, the solver choosing their roll, and the right follows their shift).
     #[serde(default)]
     pub as_one_body: bool,
 }
@@ -388,8 +388,11 @@ fn plan_throw(world: &SimWorld, geometry: &TieGeometry, variation: &Variation, s
             // The whole tip frame turns (the hinge along the tail, so that it runs between the open
             // jaws; no roll left to the solver, which may flip it half way and jerk the coils), and
             // the right turns with it about the left's jaws: the coils keep their shape.
-            let along = tail_hold - entry;
-            let hinge = Unit::new_normalize(along - jaws_to * along.dot(&jaws_to));
+            // (A tail along the new jaw direction leaves the hinge free: any side across them.)
+            let across_to = |d: Vector3<f64>| Unit::try_new(d - jaws_to * d.dot(&jaws_to), 1e-9);
+            let hinge = across_to(tail_hold - entry)
+                .or_else(|| across_to(Vector3::x()))
+                .unwrap_or_else(|| Unit::new_normalize(Vector3::y()));
             let (left_from, frame_from, jaws_from) =
                 (left.position_m(), left.held_frame(), left.jaw_direction());
             let y_now = frame_from.map_or_else(Vector3::y, |q| q * Vector3::y());
