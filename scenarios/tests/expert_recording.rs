@@ -114,6 +114,19 @@ fn the_pulls_let_go_at_the_set_force_or_hold_it_as_the_geometry_says() {
 }
 
 #[test]
+fn the_left_pulls_the_tail_to_its_own_set_force_when_given_one() {
+    let world = SimWorld::new(scene(), Rig::shipped().expect("the shipped rig")).expect("the scene builds");
+    let geometry = TieGeometry { tail_pull_force_n: Some(0.7), ..TieGeometry::default() };
+    let skill = plan_instrument_tie(&world, &geometry, &Variation::none());
+    let set_force = |arm: ArmName| {
+        let events = &skill.track(arm).expect("the arm pulls").events;
+        events.iter().find(|e| e.name == "set force").expect("a set force").threshold_n
+    };
+    assert_eq!(set_force(ArmName::Left), 0.7);
+    assert_eq!(set_force(ArmName::Right), geometry.pull_force_n);
+}
+
+#[test]
 fn the_left_is_wound_round_with_its_jaws_as_open_as_the_geometry_says() {
     let world = SimWorld::new(scene(), Rig::shipped().expect("the shipped rig")).expect("the scene builds");
     let closings = |winding_jaw_rad: f64| {
@@ -126,26 +139,33 @@ fn the_left_is_wound_round_with_its_jaws_as_open_as_the_geometry_says() {
     assert_eq!(closings(0.6), 1, "wound round open, closed only on the tail");
 }
 
+/// `arm`'s jaw centre and jaw direction as its target stands at `time_s`.
+fn jaws_at(
+    skill: &knotlab_hw::skill::Skill,
+    world: &SimWorld,
+    arm: ArmName,
+    time_s: f64,
+) -> (Vector3<f64>, Vector3<f64>) {
+    use knotlab_hw::kinematics::TipOrientation;
+    use knotlab_sim::world::JAW_CENTRE_OFFSET_M;
+    let target = skill.track(arm).and_then(|t| t.target_at(time_s)).expect("a target");
+    let tip = target.world_position_m;
+    let jaws = match target.orientation {
+        TipOrientation::Frame(r) => r * Vector3::z(),
+        TipOrientation::JawDirection(d) => d.normalize(),
+        TipOrientation::AlongShaft => (tip - trocar_of(&world.config, arm)).normalize(),
+    };
+    (tip - jaws * JAW_CENTRE_OFFSET_M, jaws)
+}
+
 /// The angle between the right's jaw centre, seen from the left's, and the left's jaws, at `time_s`.
 fn right_seen_along_the_left_jaws(
     skill: &knotlab_hw::skill::Skill,
     world: &SimWorld,
     time_s: f64,
 ) -> (f64, Vector3<f64>) {
-    use knotlab_hw::kinematics::TipOrientation;
-    use knotlab_sim::world::JAW_CENTRE_OFFSET_M;
-    let centre = |arm: ArmName| {
-        let target = skill.track(arm).and_then(|t| t.target_at(time_s)).expect("a target");
-        let tip = target.world_position_m;
-        let jaws = match target.orientation {
-            TipOrientation::Frame(r) => r * Vector3::z(),
-            TipOrientation::JawDirection(d) => d.normalize(),
-            TipOrientation::AlongShaft => (tip - trocar_of(&world.config, arm)).normalize(),
-        };
-        (tip - jaws * JAW_CENTRE_OFFSET_M, jaws)
-    };
-    let (left, jaws) = centre(ArmName::Left);
-    let (right, _) = centre(ArmName::Right);
+    let (left, jaws) = jaws_at(skill, world, ArmName::Left, time_s);
+    let (right, _) = jaws_at(skill, world, ArmName::Right, time_s);
     ((right - left).normalize().dot(&jaws).acos(), jaws)
 }
 

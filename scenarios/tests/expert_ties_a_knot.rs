@@ -60,4 +60,11 @@ fn seed_0_ties_a_surgeons_knot_down_at_the_stitch() {
     let coils = run.coils_at_take.expect("the left took the tail, the long end through the stitch");
     assert!((1.5..2.5).contains(&coils.left_turns.abs()), "{coils:?}");
     assert!(coils.right_turns.abs() > 1.0, "{coils:?}");
+    // Which is also where the long end touches the right's instrument: besides the few segments next
+    // to the needle in its jaws, two stretches far along it (seed 0: 11-15 and 24-28), where each
+    // loop passes round the right's jaws and clevis (session 31). `coils-on-the-left.toml` brings the
+    // turns about the right's jaw axis to -0.2 yet keeps such a bight (16-20 and 34-39, every seed
+    // of 0-15 that took the tail with the turns on): a loop round the right's wrist.
+    let far: Vec<usize> = coils.long_end_on_right.iter().copied().filter(|s| *s > 8).collect();
+    assert!(far.len() >= 4 && far[far.len() - 1] > far[0] + 8, "{coils:?}");
 }

@@ -127,7 +127,7 @@ fn line(seed: u64, run: &DemoRun, dir: &Path) -> RunLine {
         stitch_distance_m: e.stitch_distance_m,
         loop_outside_m: e.loop_outside_m,
         knot_at_release: run.knot_at_release.clone(),
-        coils_at_take: run.coils_at_take,
+        coils_at_take: run.coils_at_take.clone(),
         gap_before_m: e.gap_before_m,
         gap_after_m: e.gap_after_m,
         slid: e.slid,

@@ -1,6 +1,6 @@
 //! What the expert's developer needs to see in a run: how many times the thread winds around an
 //! instrument's jaws (the winding number of the centreline about the jaw axis), and how the long end
-//! lay round both instruments when the left took the tail.
+//! lay round both instruments when the left took the tail, and which of its segments lay on the right.
 
 use knotlab_hw::rig::ArmName;
 use knotlab_sim::world::{JAW_CENTRE_OFFSET_M, SimWorld};
@@ -53,11 +53,25 @@ pub fn long_end_turns_around_jaws(world: &SimWorld, arm: ArmName) -> Option<f64>
     Some(turns_about(long_end, &centre, &axis))
 }
 
+/// The long end's segments touching the links whose names start with `link_prefix`, sorted, each
+/// once; `None` while the stitch holds no thread.
+pub fn long_end_segments_on(world: &SimWorld, link_prefix: &str) -> Option<Vec<usize>> {
+    let inside = world.stitch.segments_inside()?;
+    let mut segments: Vec<usize> = world
+        .thread_contacts()
+        .into_iter()
+        .filter(|(segment, link)| *segment < *inside.start() && link.starts_with(link_prefix))
+        .map(|(segment, _)| segment)
+        .collect();
+    segments.dedup();
+    Some(segments)
+}
+
 /// How the long end lay when the left first closed on the thread (taking the tail): the throw's
 /// turns should be round the left's jaws only. Turns about each jaw axis, right-handed about the
 /// jaws' direction; a loop round both instruments counts about both (with opposite signs when the
 /// jaws point towards each other).
-#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
 pub struct CoilsAtTake {
     /// When the left closed, s from the start of the recording.
     pub time_s: f64,
@@ -65,6 +79,10 @@ pub struct CoilsAtTake {
     pub left_turns: f64,
     /// Turns of the long end round the right's jaws.
     pub right_turns: f64,
+    /// The long end's segments (from the needle end) touching the right's instrument: besides the
+    /// few next to the needle in its jaws, a bight of the exit's leg hooked over the right's jaws
+    /// shows as two segments far apart, and the right's pulls drag it along.
+    pub long_end_on_right: Vec<usize>,
 }
 
 impl CoilsAtTake {
@@ -74,6 +92,7 @@ impl CoilsAtTake {
             time_s,
             left_turns: long_end_turns_around_jaws(world, ArmName::Left)?,
             right_turns: long_end_turns_around_jaws(world, ArmName::Right)?,
+            long_end_on_right: long_end_segments_on(world, "right_")?,
         })
     }
 }

@@ -89,6 +89,9 @@ fn range_problems(g: &TieGeometry) -> Vec<(String, String)> {
     c.range("winding_jaw_rad", g.winding_jaw_rad, 0.0, 1.6);
     c.range("speed_fraction", g.speed_fraction, 0.01, 1.0);
     c.range("pull_force_n", g.pull_force_n, 0.01, 10.0);
+    if let Some(f) = g.tail_pull_force_n {
+        c.range("tail_pull_force_n", f, 0.01, 10.0);
+    }
     c.range("pull_force_sustain_s", g.pull_force_sustain_s, 0.0, 5.0);
     for (key, v) in [("tail_give_fraction", g.tail_give_fraction), ("draw_relax", g.draw_relax)] {
         c.range(key, v, 0.0, 1.0);

@@ -105,6 +105,9 @@ pub struct TieGeometry {
     /// filtered, a pull held at 0.6 N, and even at 0.3 N, snaps the knot tight enough for the thread
     /// to pass through itself in some runs (a coil lost: a trefoil at release).
     pub pull_force_n: f64,
+    /// The left's set force on the tail, if not `pull_force_n`, N: the tail drawn on through the
+    /// coils draws the long end's slack from the exit's leg round through the stitch.
+    pub tail_pull_force_n: Option<f64>,
     /// ... held this long before the pull counts it as reached, s (0: at once).
     pub pull_force_sustain_s: f64,
     /// Whether a pull that reaches the set force stops and holds the thread there (both let go
@@ -155,6 +158,7 @@ impl Default for TieGeometry {
             right_follows_draw: 0.0,
             draw_relax: 0.4,
             pull_force_n: 0.3,
+            tail_pull_force_n: None,
             pull_force_sustain_s: 0.0,
             hold_at_force: true,
             second_throw: None,
@@ -505,6 +509,7 @@ fn plan_throw(world: &SimWorld, geometry: &TieGeometry, variation: &Variation, s
         track.go(Path::To(at(to)), d(geometry.run_down_s));
     }
     let pull_s = left.time_s().max(right.time_s()) + 0.3;
+    let tail_pull_force_n = geometry.tail_pull_force_n.unwrap_or(geometry.pull_force_n);
     if let Stage::First { keep_hold: true } = stage {
         // The pulls hold the knot cinched until the second throw: both stop at the set force (or
         // where they were going) and hold there together to the end of this plan.
@@ -513,12 +518,12 @@ fn plan_throw(world: &SimWorld, geometry: &TieGeometry, variation: &Variation, s
             track.go(Path::To(at(to)), d(2.5));
         }
         let end_s = left.time_s().max(right.time_s()) + 1.0;
-        for track in [&mut left, &mut right] {
+        for (track, threshold_n) in [(&mut left, tail_pull_force_n), (&mut right, geometry.pull_force_n)] {
             track.event(ForceEvent {
                 name: "set force".into(),
                 from_s: pull_s + d(0.5),
                 until_s: end_s,
-                threshold_n: geometry.pull_force_n,
+                threshold_n,
                 sustain_s: geometry.pull_force_sustain_s,
                 action: ForceAction::Hold,
             });
@@ -530,7 +535,10 @@ fn plan_throw(world: &SimWorld, geometry: &TieGeometry, variation: &Variation, s
             tracks: vec![left.build(), right.build(), assist.build()],
         };
     }
-    for (track, to) in [(&mut left, geometry.left_pull_to_m), (&mut right, geometry.right_pull_to_m)] {
+    for (track, to, threshold_n) in [
+        (&mut left, geometry.left_pull_to_m, tail_pull_force_n),
+        (&mut right, geometry.right_pull_to_m, geometry.pull_force_n),
+    ] {
         track.wait_until(pull_s);
         let from_s = pull_s;
         // The jaws keep pointing as they do: turning them along the shaft on the way passes the
@@ -540,7 +548,7 @@ fn plan_throw(world: &SimWorld, geometry: &TieGeometry, variation: &Variation, s
             name: "set force".into(),
             from_s: from_s + d(0.5),
             until_s: track.time_s() + 1.0,
-            threshold_n: geometry.pull_force_n,
+            threshold_n,
             sustain_s: geometry.pull_force_sustain_s,
             action: if geometry.hold_at_force {
                 ForceAction::Hold
