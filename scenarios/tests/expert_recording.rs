@@ -127,6 +127,36 @@ fn the_left_pulls_the_tail_to_its_own_set_force_when_given_one() {
 }
 
 #[test]
+fn while_winding_the_right_turns_its_jaws_across_the_left_as_the_geometry_says() {
+    let world = SimWorld::new(scene(), Rig::shipped().expect("the shipped rig")).expect("the scene builds");
+    let file = concat!(env!("CARGO_MANIFEST_DIR"), "/experts/coils-on-the-left.toml");
+    let geometry =
+        knotlab_scenarios::expert::load_tie_geometry(std::path::Path::new(file)).expect("the file");
+    // Cosines between the two instruments' jaws over the winding (it starts after the right reaches
+    // the circle, 2 s in, and takes 8 s).
+    let cosines = |right_jaws_across_winding: f64| {
+        let geometry = TieGeometry { right_jaws_across_winding, ..geometry.clone() };
+        let skill = plan_instrument_tie(&world, &geometry, &Variation::none());
+        (30..100)
+            .map(|k| {
+                let t = k as f64 * 0.1;
+                let (_, left) = jaws_at(&skill, &world, ArmName::Left, t);
+                let (_, right) = jaws_at(&skill, &world, ArmName::Right, t);
+                left.dot(&right).abs()
+            })
+            .collect::<Vec<f64>>()
+    };
+    let along_shaft = cosines(0.0);
+    let least = along_shaft.iter().copied().fold(f64::INFINITY, f64::min);
+    println!("along its shaft: cosine at least {least:.3}");
+    assert!(least > 0.5, "along its shaft the right's jaws reach back along the left's: {least}");
+    let across = cosines(1.0);
+    let most = across.iter().copied().fold(0.0, f64::max);
+    println!("across: cosine at most {most:.3}");
+    assert!(most < 0.05, "across the left's jaws all the way round: {most}");
+}
+
+#[test]
 fn the_left_is_wound_round_with_its_jaws_as_open_as_the_geometry_says() {
     let world = SimWorld::new(scene(), Rig::shipped().expect("the shipped rig")).expect("the scene builds");
     let closings = |winding_jaw_rad: f64| {

@@ -93,7 +93,11 @@ fn range_problems(g: &TieGeometry) -> Vec<(String, String)> {
         c.range("tail_pull_force_n", f, 0.01, 10.0);
     }
     c.range("pull_force_sustain_s", g.pull_force_sustain_s, 0.0, 5.0);
-    for (key, v) in [("tail_give_fraction", g.tail_give_fraction), ("draw_relax", g.draw_relax)] {
+    for (key, v) in [
+        ("tail_give_fraction", g.tail_give_fraction),
+        ("draw_relax", g.draw_relax),
+        ("right_jaws_across_winding", g.right_jaws_across_winding),
+    ] {
         c.range(key, v, 0.0, 1.0);
     }
     c.range("right_follows_draw", g.right_follows_draw, -1.0, 1.0);

@@ -39,6 +39,10 @@ pub struct TieGeometry {
     /// Where the left's jaws point while the long end is wound around them (stitch frame); `None`: at
     /// the right's trocar, so that the right's shaft circles them at a distance.
     pub left_jaw_direction: Option<[f64; 3]>,
+    /// While winding, the right's jaws turn this fraction of the way from along its shaft, which
+    /// reaches back past the circle to where the long end leaves the coils for the exit, to at
+    /// right angles to the left's jaws (its shaft's direction with the part along them taken out).
+    pub right_jaws_across_winding: f64,
     /// The winding circles this far behind the left's jaw centre (towards its wrist), m.
     pub winding_behind_m: f64,
     /// How long the winding takes, s (slow enough for the arm to follow the circle).
@@ -133,6 +137,7 @@ impl Default for TieGeometry {
                 stop_short_m: 0.0,
                 as_one_body: false,
             }),
+            right_jaws_across_winding: 0.0,
             winding_behind_m: 0.003,
             winding_s: 8.0,
             winding_turns: 2.0,
@@ -351,7 +356,15 @@ fn plan_throw(world: &SimWorld, geometry: &TieGeometry, variation: &Variation, s
     let l1_s = left.time_s();
     left.go_framing(Path::To(winding_point), d(2.0), left_frame);
     right.wait_until(l1_s);
-    right.go(Path::To(centre + start_dir.into_inner() * geometry.winding_radius_m), d(2.0));
+    let winding_start = centre + start_dir.into_inner() * geometry.winding_radius_m;
+    let shaft = (centre - trocar_of(&world.config, ArmName::Right)).normalize();
+    match across(shaft).filter(|_| geometry.right_jaws_across_winding > 0.0) {
+        Some(jaws_across) => {
+            let jaws = shaft.lerp(&jaws_across, geometry.right_jaws_across_winding);
+            right.go_turning(Path::To(winding_start), d(2.0), jaws)
+        }
+        None => right.go(Path::To(winding_start), d(2.0)),
+    }
     left.wait_until(left.time_s() + pause[0]);
     left.jaw(geometry.winding_jaw_rad, d(0.3));
     left.wait_until(left.time_s() + d(0.3) + pause[1]);
