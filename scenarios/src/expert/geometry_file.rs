@@ -112,6 +112,9 @@ fn range_problems(g: &TieGeometry) -> Vec<(String, String)> {
     }
     if let Some(s) = &g.second_throw {
         c.range("second_throw.tail_hold_along", s.tail_hold_along, 0.0, 1.0);
+        if let Some(d) = &s.left_jaw_direction {
+            c.direction("second_throw.left_jaw_direction", d);
+        }
         c.direction("second_throw.winding_towards", &s.winding_towards);
         c.range("second_throw.winding_turns", s.winding_turns, 0.0, 5.0);
         for (key, p) in [

@@ -19,6 +19,9 @@ pub struct SecondThrow {
     pub tail_hold_along: f64,
     /// The left's jaw centre while the long end is wound round them.
     pub winding_point_m: [f64; 3],
+    /// Where the left's jaws point while the long end is wound round them (stitch frame); `None`: as
+    /// in the first throw.
+    pub left_jaw_direction: Option<[f64; 3]>,
     /// The winding's first move (picks the sense of the turn).
     pub winding_towards: [f64; 3],
     /// Turns of the winding.
@@ -39,6 +42,7 @@ impl Default for SecondThrow {
         Self {
             tail_hold_along: 0.6,
             winding_point_m: first.winding_point_m,
+            left_jaw_direction: None,
             winding_towards: [0.0, 0.0, -1.0],
             winding_turns: 1.0,
             left_run_down_to_m: first.left_run_down_to_m,
@@ -54,6 +58,7 @@ impl SecondThrow {
     pub fn applied_to(&self, first: &TieGeometry) -> TieGeometry {
         TieGeometry {
             winding_point_m: self.winding_point_m,
+            left_jaw_direction: self.left_jaw_direction.or(first.left_jaw_direction),
             winding_towards: self.winding_towards,
             winding_turns: self.winding_turns,
             left_run_down_to_m: self.left_run_down_to_m,
@@ -83,4 +88,19 @@ pub fn tail_between_knot_and_left(world: &SimWorld, along: f64) -> Option<(Vecto
     let point = 0.5 * (line[at] + line[at + 1]);
     let direction = (line[at + 1] - line[at]).try_normalize(1e-12)?;
     Some((point, direction))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_second_throw_points_the_left_jaws_as_the_first_unless_told() {
+        let first = TieGeometry { left_jaw_direction: Some([0.0, -1.0, 1.0]), ..TieGeometry::default() };
+        let same = SecondThrow::default().applied_to(&first);
+        assert_eq!(same.left_jaw_direction, Some([0.0, -1.0, 1.0]));
+        let own = SecondThrow { left_jaw_direction: Some([1.0, 0.0, 0.0]), ..SecondThrow::default() };
+        assert_eq!(own.applied_to(&first).left_jaw_direction, Some([1.0, 0.0, 0.0]));
+        assert_eq!(own.applied_to(&first).second_throw, None, "a throw, not another knot");
+    }
 }
