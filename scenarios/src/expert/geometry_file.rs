@@ -6,7 +6,7 @@
 
 use std::path::Path;
 
-use super::plan::TieGeometry;
+use super::plan::{LeftFetch, TieGeometry};
 
 /// Why a tie geometry file was refused (`Invalid`: every value out of range, with its key).
 pub type GeometryFileError = knotlab_hw::toml_file::TomlFileError;
@@ -44,6 +44,14 @@ impl Check {
         if !(norm.is_finite() && norm > 1e-9) {
             self.0.push((key.to_owned(), format!("must be a direction (finite, not zero), got {d:?}")));
         }
+    }
+
+    /// How the left fetches the tail, its keys under `table`.
+    fn fetch(&mut self, table: &str, f: &LeftFetch) {
+        self.range(&format!("{table}.along_tail"), f.along_tail, 0.0, 1.0);
+        self.direction(&format!("{table}.jaw_direction"), &f.jaw_direction);
+        self.range(&format!("{table}.approach_m"), f.approach_m, 0.0, 0.1);
+        self.range(&format!("{table}.stop_short_m"), f.stop_short_m, -0.05, 0.05);
     }
 }
 
@@ -105,15 +113,15 @@ fn range_problems(g: &TieGeometry) -> Vec<(String, String)> {
     c.range("tail_swing_lean.y", g.tail_swing_lean[1], -10.0, 10.0);
     c.range("tail_swing_lean.z", g.tail_swing_lean[2], -10.0, 10.0);
     if let Some(f) = &g.left_fetches {
-        c.range("left_fetches.along_tail", f.along_tail, 0.0, 1.0);
-        c.direction("left_fetches.jaw_direction", &f.jaw_direction);
-        c.range("left_fetches.approach_m", f.approach_m, 0.0, 0.1);
-        c.range("left_fetches.stop_short_m", f.stop_short_m, -0.05, 0.05);
+        c.fetch("left_fetches", f);
     }
     if let Some(s) = &g.second_throw {
         c.range("second_throw.tail_hold_along", s.tail_hold_along, 0.0, 1.0);
         if let Some(d) = &s.left_jaw_direction {
             c.direction("second_throw.left_jaw_direction", d);
+        }
+        if let Some(f) = &s.left_fetches {
+            c.fetch("second_throw.left_fetches", f);
         }
         c.direction("second_throw.winding_towards", &s.winding_towards);
         c.range("second_throw.winding_turns", s.winding_turns, 0.0, 5.0);

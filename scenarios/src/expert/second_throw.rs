@@ -9,7 +9,7 @@ use knotlab_hw::rig::ArmName;
 use knotlab_sim::world::SimWorld;
 use nalgebra::Vector3;
 
-use super::plan::TieGeometry;
+use super::plan::{LeftFetch, TieGeometry};
 
 /// Where the second throw differs from the first (stitch frame, m; the rest as the first throw).
 #[derive(Clone, Debug, PartialEq, serde::Deserialize, serde::Serialize)]
@@ -22,6 +22,8 @@ pub struct SecondThrow {
     /// Where the left's jaws point while the long end is wound round them (stitch frame); `None`: as
     /// in the first throw.
     pub left_jaw_direction: Option<[f64; 3]>,
+    /// How the left takes its turn to the tail; `None`: as in the first throw.
+    pub left_fetches: Option<LeftFetch>,
     /// The winding's first move (picks the sense of the turn).
     pub winding_towards: [f64; 3],
     /// Turns of the winding.
@@ -43,6 +45,7 @@ impl Default for SecondThrow {
             tail_hold_along: 0.6,
             winding_point_m: first.winding_point_m,
             left_jaw_direction: None,
+            left_fetches: None,
             winding_towards: [0.0, 0.0, -1.0],
             winding_turns: 1.0,
             left_run_down_to_m: first.left_run_down_to_m,
@@ -59,6 +62,7 @@ impl SecondThrow {
         TieGeometry {
             winding_point_m: self.winding_point_m,
             left_jaw_direction: self.left_jaw_direction.or(first.left_jaw_direction),
+            left_fetches: self.left_fetches.clone().or_else(|| first.left_fetches.clone()),
             winding_towards: self.winding_towards,
             winding_turns: self.winding_turns,
             left_run_down_to_m: self.left_run_down_to_m,
@@ -102,5 +106,10 @@ mod tests {
         let own = SecondThrow { left_jaw_direction: Some([1.0, 0.0, 0.0]), ..SecondThrow::default() };
         assert_eq!(own.applied_to(&first).left_jaw_direction, Some([1.0, 0.0, 0.0]));
         assert_eq!(own.applied_to(&first).second_throw, None, "a throw, not another knot");
+        assert_eq!(own.applied_to(&first).left_fetches, first.left_fetches, "fetching as the first");
+        let level =
+            LeftFetch { jaw_direction: [1.0, 0.0, 0.0], ..first.left_fetches.clone().expect("a fetch") };
+        let fetching = SecondThrow { left_fetches: Some(level.clone()), ..SecondThrow::default() };
+        assert_eq!(fetching.applied_to(&first).left_fetches, Some(level));
     }
 }
