@@ -13,6 +13,12 @@ fn scene() -> knotlab_sim::scene::SceneConfig {
     parse_scene(include_str!("../default.toml"), "default.toml").expect("the shipped scene")
 }
 
+/// The experimental expert file `experts/coils-on-the-left.toml`.
+fn coils_on_the_left() -> TieGeometry {
+    let file = concat!(env!("CARGO_MANIFEST_DIR"), "/experts/coils-on-the-left.toml");
+    knotlab_scenarios::expert::load_tie_geometry(std::path::Path::new(file)).expect("the file")
+}
+
 #[test]
 fn the_plan_is_reachable_for_every_variation() {
     let rig = Rig::shipped().expect("the shipped rig");
@@ -129,9 +135,7 @@ fn the_left_pulls_the_tail_to_its_own_set_force_when_given_one() {
 #[test]
 fn while_winding_the_right_turns_its_jaws_across_the_left_as_the_geometry_says() {
     let world = SimWorld::new(scene(), Rig::shipped().expect("the shipped rig")).expect("the scene builds");
-    let file = concat!(env!("CARGO_MANIFEST_DIR"), "/experts/coils-on-the-left.toml");
-    let geometry =
-        knotlab_scenarios::expert::load_tie_geometry(std::path::Path::new(file)).expect("the file");
+    let geometry = coils_on_the_left();
     // Cosines between the two instruments' jaws over the winding (it starts after the right reaches
     // the circle, 2 s in, and takes 8 s).
     let cosines = |right_jaws_across_winding: f64| {
@@ -225,9 +229,7 @@ fn bearing_across_the_turn(
 fn fetching_the_tail_as_one_body_the_right_turns_with_the_left_jaws() {
     use knotlab_scenarios::expert::plan::LeftFetch;
     let world = SimWorld::new(scene(), Rig::shipped().expect("the shipped rig")).expect("the scene builds");
-    let file = concat!(env!("CARGO_MANIFEST_DIR"), "/experts/coils-on-the-left.toml");
-    let geometry =
-        knotlab_scenarios::expert::load_tie_geometry(std::path::Path::new(file)).expect("the file");
+    let geometry = coils_on_the_left();
     let fetch = geometry.left_fetches.clone().expect("the left fetches the tail");
     assert!(fetch.as_one_body);
     let wound = Vector3::from(geometry.left_jaw_direction.expect("a jaw direction")).normalize();

@@ -202,6 +202,23 @@ mod tests {
             panic!("out of range accepted");
         };
         assert_eq!(problems[0].0, "second_throw.tail_hold_along", "{problems:?}");
+        let Err(GeometryFileError::Invalid { problems, .. }) = parse_tie_geometry(
+            "tail_pull_force_n = 0.0\nright_jaws_across_winding = 1.5\n[second_throw]\n\
+             left_jaw_direction = [0.0, 0.0, 0.0]\n[second_throw.left_fetches]\nalong_tail = 2.0\n\
+             jaw_direction = [0.0, 0.0, -1.0]\napproach_m = 0.01\nstop_short_m = 0.0\n",
+            "bad.toml",
+        ) else {
+            panic!("out of range accepted");
+        };
+        let keys: Vec<&str> = problems.iter().map(|(k, _)| k.as_str()).collect();
+        for key in [
+            "tail_pull_force_n",
+            "right_jaws_across_winding",
+            "second_throw.left_jaw_direction",
+            "second_throw.left_fetches.along_tail",
+        ] {
+            assert!(keys.contains(&key), "{key} not named: {problems:?}");
+        }
         let missing = load_tie_geometry(Path::new("/nonexistent/expert.toml")).unwrap_err().to_string();
         assert!(missing.starts_with("/nonexistent/expert.toml: cannot read"), "{missing}");
     }
