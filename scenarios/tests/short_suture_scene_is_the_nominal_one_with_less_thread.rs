@@ -1,5 +1,7 @@
 //! `scenarios/short-suture.toml` is the nominal scene with a shorter suture, nothing else changed,
 //! so that runs on it compare with the nominal scene's on the thread's length alone.
+//! `scenarios/short-suture-friction-0.5.toml` is that scene with the thread's friction on itself
+//! raised to where two throws hold (the expert's second throw is worked out on it).
 
 use knotlab_sim::scene::parse_scene;
 
@@ -25,4 +27,17 @@ fn the_short_suture_scene_differs_from_the_nominal_one_only_in_the_thread_length
     short.thread.length_m = nominal.thread.length_m;
     short.thread.segments = nominal.thread.segments;
     assert_eq!(short, nominal, "every other setting as in default.toml");
+}
+
+#[test]
+fn the_two_throw_scene_is_the_short_suture_one_with_more_friction_on_itself() {
+    let short = parse_scene(include_str!("../short-suture.toml"), "short-suture.toml")
+        .expect("the short-suture scene");
+    let mut sticky =
+        parse_scene(include_str!("../short-suture-friction-0.5.toml"), "short-suture-friction-0.5.toml")
+            .expect("the two-throw scene");
+    assert_eq!(short.thread.friction_on_itself, None, "short-suture.toml: one friction for all");
+    assert_eq!(sticky.thread.friction_on_itself, Some(0.5));
+    sticky.thread.friction_on_itself = None;
+    assert_eq!(sticky, short, "every other setting as in short-suture.toml");
 }

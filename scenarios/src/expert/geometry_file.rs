@@ -109,6 +109,13 @@ fn range_problems(g: &TieGeometry) -> Vec<(String, String)> {
         c.range(key, v, 0.0, 1.0);
     }
     c.range("right_follows_draw", g.right_follows_draw, -1.0, 1.0);
+    if let Some(p) = &g.right_draws_to_m {
+        c.point("right_draws_to_m", p);
+    }
+    c.range("draw_s", g.draw_s, 0.1, 60.0);
+    if let Some(f) = g.run_down_force_n {
+        c.range("run_down_force_n", f, 0.01, 10.0);
+    }
     c.range("tail_swing_lean.x", g.tail_swing_lean[0], -10.0, 10.0);
     c.range("tail_swing_lean.y", g.tail_swing_lean[1], -10.0, 10.0);
     c.range("tail_swing_lean.z", g.tail_swing_lean[2], -10.0, 10.0);
@@ -124,6 +131,25 @@ fn range_problems(g: &TieGeometry) -> Vec<(String, String)> {
             c.fetch("second_throw.left_fetches", f);
         }
         c.direction("second_throw.winding_towards", &s.winding_towards);
+        if let Some(v) = s.winding_lead_rad {
+            let tau = std::f64::consts::TAU;
+            c.range("second_throw.winding_lead_rad", v, -tau, tau);
+        }
+        if let Some(v) = s.draw_back_m {
+            c.range("second_throw.draw_back_m", v, -0.1, 0.1);
+        }
+        if let Some(v) = s.right_follows_draw {
+            c.range("second_throw.right_follows_draw", v, -1.0, 1.0);
+        }
+        if let Some(p) = &s.right_draws_to_m {
+            c.point("second_throw.right_draws_to_m", p);
+        }
+        if let Some(v) = s.draw_s {
+            c.range("second_throw.draw_s", v, 0.1, 60.0);
+        }
+        if let Some(v) = s.run_down_force_n {
+            c.range("second_throw.run_down_force_n", v, 0.01, 10.0);
+        }
         c.range("second_throw.winding_turns", s.winding_turns, 0.0, 5.0);
         for (key, p) in [
             ("second_throw.winding_point_m", &s.winding_point_m),
@@ -203,8 +229,11 @@ mod tests {
         };
         assert_eq!(problems[0].0, "second_throw.tail_hold_along", "{problems:?}");
         let Err(GeometryFileError::Invalid { problems, .. }) = parse_tie_geometry(
-            "tail_pull_force_n = 0.0\nright_jaws_across_winding = 1.5\n[second_throw]\n\
-             left_jaw_direction = [0.0, 0.0, 0.0]\n[second_throw.left_fetches]\nalong_tail = 2.0\n\
+            "tail_pull_force_n = 0.0\nright_jaws_across_winding = 1.5\ndraw_s = 0.0\n\
+             run_down_force_n = -1.0\nright_draws_to_m = [0.0, 0.0, 0.3]\n[second_throw]\n\
+             left_jaw_direction = [0.0, 0.0, 0.0]\nwinding_lead_rad = 7.0\ndraw_back_m = 0.5\n\
+             right_follows_draw = -5.0\nright_draws_to_m = [0.3, 0.0, 0.0]\ndraw_s = 100.0\n\
+             run_down_force_n = 0.0\n[second_throw.left_fetches]\nalong_tail = 2.0\n\
              jaw_direction = [0.0, 0.0, -1.0]\napproach_m = 0.01\nstop_short_m = 0.0\n",
             "bad.toml",
         ) else {
@@ -214,7 +243,16 @@ mod tests {
         for key in [
             "tail_pull_force_n",
             "right_jaws_across_winding",
+            "draw_s",
+            "run_down_force_n",
+            "right_draws_to_m.z",
             "second_throw.left_jaw_direction",
+            "second_throw.winding_lead_rad",
+            "second_throw.draw_back_m",
+            "second_throw.right_follows_draw",
+            "second_throw.right_draws_to_m.x",
+            "second_throw.draw_s",
+            "second_throw.run_down_force_n",
             "second_throw.left_fetches.along_tail",
         ] {
             assert!(keys.contains(&key), "{key} not named: {problems:?}");

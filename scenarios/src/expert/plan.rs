@@ -86,6 +86,9 @@ pub struct TieGeometry {
     pub right_run_down_to_m: [f64; 3],
     /// How long the run-down takes, s.
     pub run_down_s: f64,
+    /// If set, each instrument stops its run-down where its gauge first reads this force, N (the
+    /// grip on a thread slips at 5 N: a run-down that drags a jammed throw would lose it).
+    pub run_down_force_n: Option<f64>,
     /// Then the left pulls the tail towards here, out over its flap at the tissue's level...
     pub left_pull_to_m: [f64; 3],
     /// ... while the right pulls the long end out over the other flap, until the set force. Pulled
@@ -102,6 +105,11 @@ pub struct TieGeometry {
     /// ... while the right moves this fraction of the same way (negative: the other way, holding the
     /// coils back as the jaws draw out of them).
     pub right_follows_draw: f64,
+    /// If set, the right goes here meanwhile instead (stitch frame): drawing the turn off the left's
+    /// jaws by the long end while the left, whose tail is already knotted, hardly moves.
+    pub right_draws_to_m: Option<[f64; 3]>,
+    /// How long the draw takes, s.
+    pub draw_s: f64,
     /// While drawing back, the jaws turn this fraction of the way towards the shaft.
     pub draw_relax: f64,
     /// The pulls' set force, N (as the gauges read it, through their low-pass). With the gauges
@@ -155,12 +163,15 @@ impl Default for TieGeometry {
             left_run_down_to_m: [0.0, 0.04, 0.05],
             right_run_down_to_m: [0.0, -0.012, 0.012],
             run_down_s: 2.5,
+            run_down_force_n: None,
             left_pull_to_m: [0.0, 0.06, 0.01],
             right_pull_to_m: [0.0, -0.05, 0.005],
             assist_retreat_m: [0.04, 0.04, 0.04],
             speed_fraction: 0.3,
             draw_back_m: 0.032,
             right_follows_draw: 0.0,
+            right_draws_to_m: None,
+            draw_s: 1.2,
             draw_relax: 0.4,
             pull_force_n: 0.3,
             tail_pull_force_n: None,
@@ -251,8 +262,9 @@ enum Stage {
     /// letting go (a second throw follows).
     First { keep_hold: bool },
     /// The second, after the first: the left holds the tail and the right the long end, pulled apart;
-    /// the assist first takes the tail this fraction of the way from the knot to the left's jaws.
-    Second { tail_hold_along: f64 },
+    /// the assist first takes the tail this fraction of the way from the knot to the left's jaws,
+    /// unless the left keeps it (`tail_hold_along` `None`).
+    Second { tail_hold_along: Option<f64> },
 }
 
 /// The plan as a skill, for the world as it stands (its start condition): the first throw, and all
@@ -266,7 +278,8 @@ pub fn plan_instrument_tie(world: &SimWorld, geometry: &TieGeometry, variation: 
 pub fn plan_second_throw(world: &SimWorld, geometry: &TieGeometry, variation: &Variation) -> Option<Skill> {
     let second = geometry.second_throw.as_ref()?;
     let throw = second.applied_to(geometry);
-    Some(plan_throw(world, &throw, variation, Stage::Second { tail_hold_along: second.tail_hold_along }))
+    let tail_hold_along = (!second.left_keeps_tail).then_some(second.tail_hold_along);
+    Some(plan_throw(world, &throw, variation, Stage::Second { tail_hold_along }))
 }
 
 fn plan_throw(world: &SimWorld, geometry: &TieGeometry, variation: &Variation, stage: Stage) -> Skill {
@@ -289,6 +302,7 @@ fn plan_throw(world: &SimWorld, geometry: &TieGeometry, variation: &Variation, s
         b
     };
     let second = matches!(stage, Stage::Second { .. });
+    let left_keeps_tail = matches!(stage, Stage::Second { tail_hold_along: None });
     let mut left = builder(ArmName::Left, if second { 0.0 } else { open }, &variation.tremor[0]);
     let mut right = builder(ArmName::Right, 0.0, &variation.tremor[1]);
     let mut assist = builder(ArmName::Assist, if second { open } else { 0.0 }, &variation.tremor[2]);
@@ -300,7 +314,8 @@ fn plan_throw(world: &SimWorld, geometry: &TieGeometry, variation: &Variation, s
         }
         // The assist takes the tail between the knot and the left's jaws (the tail between its open
         // jaws, along their hinge), then the left lets go of it.
-        if let Some((tail_m, tail_dir)) = tail_between_knot_and_left(world, tail_hold_along) {
+        let taken = tail_hold_along.and_then(|along| tail_between_knot_and_left(world, along));
+        if let Some((tail_m, tail_dir)) = taken {
             let trocar_m = trocar_of(&world.config, ArmName::Assist);
             let jaws = (tail_m - trocar_m).normalize();
             let hinge = Unit::new_normalize(tail_dir - jaws * tail_dir.dot(&jaws));
@@ -313,8 +328,10 @@ fn plan_throw(world: &SimWorld, geometry: &TieGeometry, variation: &Variation, s
             assist.wait_until(assist.time_s() + d(0.3) + 0.1);
         }
         left.wait_until(assist.time_s() + pause[5]);
-        left.jaw(open, d(0.2));
-        left.wait_until(left.time_s() + d(0.2) + pause[0]);
+        if tail_hold_along.is_some() {
+            left.jaw(open, d(0.2));
+            left.wait_until(left.time_s() + d(0.2) + pause[0]);
+        }
         right.wait_until(left.time_s());
         assist.wait_until(left.time_s());
     }
@@ -366,8 +383,12 @@ fn plan_throw(world: &SimWorld, geometry: &TieGeometry, variation: &Variation, s
         None => right.go(Path::To(winding_start), d(2.0)),
     }
     left.wait_until(left.time_s() + pause[0]);
-    left.jaw(geometry.winding_jaw_rad, d(0.3));
-    left.wait_until(left.time_s() + d(0.3) + pause[1]);
+    if left_keeps_tail {
+        left.wait_until(left.time_s() + pause[1]);
+    } else {
+        left.jaw(geometry.winding_jaw_rad, d(0.3));
+        left.wait_until(left.time_s() + d(0.3) + pause[1]);
+    }
 
     // R2: the right winds the long end around the left's jaws, after the left is there.
     right.wait_until(left.time_s() + pause[2]);
@@ -388,7 +409,10 @@ fn plan_throw(world: &SimWorld, geometry: &TieGeometry, variation: &Variation, s
     assist
         .go(Path::To(tail_now + (entry - tail_now) * geometry.tail_give_fraction), wound_s - assist.time_s());
 
-    if let Some(fetch) = &geometry.left_fetches {
+    if left_keeps_tail {
+        // The left holds the tail already: the turn lies round its jaws behind the tail.
+        left.wait_until(wound_s + pause[3]);
+    } else if let Some(fetch) = &geometry.left_fetches {
         // The left takes its coils to the tail where the assist holds it (the right follows, so the
         // coils stay as they are): to a point behind the tail along the new jaw direction, then onto
         // the tail, jaws open.
@@ -509,11 +533,15 @@ fn plan_throw(world: &SimWorld, geometry: &TieGeometry, variation: &Variation, s
         // The left holds a whole frame since the fetch: it turns that frame, the roll going with it
         // (handed to the solver, the roll flipped: the jaws jumped at 400-530 mm/s and tore the
         // needle out of the right's jaws).
-        left.go_turning(Path::To(drawn_to), d(1.2), relaxed);
+        left.go_turning(Path::To(drawn_to), d(geometry.draw_s), relaxed);
     } else {
-        left.go_pointing(Path::To(drawn_to), d(1.2), relaxed);
+        left.go_pointing(Path::To(drawn_to), d(geometry.draw_s), relaxed);
     }
-    right.go(Path::To(right.position_m() + draw * geometry.right_follows_draw), left.time_s() - first_s);
+    let right_to = match geometry.right_draws_to_m {
+        Some(p) => at(p),
+        None => right.position_m() + draw * geometry.right_follows_draw,
+    };
+    right.go(Path::To(right_to), left.time_s() - first_s);
     // The run-down: the knot onto the wound.
     let run_down_s = left.time_s() + pause[4];
     for (track, to) in [(&mut left, geometry.left_run_down_to_m), (&mut right, geometry.right_run_down_to_m)]
@@ -521,6 +549,20 @@ fn plan_throw(world: &SimWorld, geometry: &TieGeometry, variation: &Variation, s
         track.wait_until(run_down_s);
         track.go(Path::To(at(to)), d(geometry.run_down_s));
     }
+    // A run-down stopped at its force holds there to the end: going on to the pulls from the
+    // run-down's end would drag what stopped it.
+    let hold_from_run_down = |track: &mut TrackBuilder| {
+        if let Some(threshold_n) = geometry.run_down_force_n {
+            track.event(ForceEvent {
+                name: "run-down force".into(),
+                from_s: run_down_s,
+                until_s: track.time_s(),
+                threshold_n,
+                sustain_s: 0.0,
+                action: ForceAction::Hold,
+            });
+        }
+    };
     let pull_s = left.time_s().max(right.time_s()) + 0.3;
     let tail_pull_force_n = geometry.tail_pull_force_n.unwrap_or(geometry.pull_force_n);
     if let Stage::First { keep_hold: true } = stage {
@@ -541,6 +583,7 @@ fn plan_throw(world: &SimWorld, geometry: &TieGeometry, variation: &Variation, s
                 action: ForceAction::Hold,
             });
             track.wait_until(end_s);
+            hold_from_run_down(track);
         }
         assist.wait_until(end_s);
         return Skill {
@@ -573,6 +616,7 @@ fn plan_throw(world: &SimWorld, geometry: &TieGeometry, variation: &Variation, s
         // Both let go at the end, whether or not the set force was reached.
         track.jaw(open, d(0.2));
         track.wait_until(track.time_s() + d(0.2) + 0.3);
+        hold_from_run_down(track);
     }
     assist.wait_until(left.time_s());
     let name = if second {

@@ -24,8 +24,28 @@ pub struct SecondThrow {
     pub left_jaw_direction: Option<[f64; 3]>,
     /// How the left takes its turn to the tail; `None`: as in the first throw.
     pub left_fetches: Option<LeftFetch>,
+    /// The left keeps the tail it holds from the first throw and the long end is wound round its
+    /// closed jaws: no hand-over, no fetch. Drawn back, the left pulls the tail's free end (beyond
+    /// its jaws) through the turn, as if it had taken the tail there.
+    pub left_keeps_tail: bool,
+    /// The assist presents the tail ahead of the left's jaws instead of the left fetching it (a
+    /// fetch turns the jaws, and the turn slid off their tips on the way: session 31).
+    pub assist_presents: bool,
+    /// Before the pulls, the left draws the tail back this far along its jaws, m; `None`: as the
+    /// first throw.
+    pub draw_back_m: Option<f64>,
+    /// ... while the right moves this fraction of the same way; `None`: as the first throw.
+    pub right_follows_draw: Option<f64>,
+    /// ... or goes here (stitch frame); `None`: as the first throw.
+    pub right_draws_to_m: Option<[f64; 3]>,
+    /// How long the draw takes, s; `None`: as the first throw.
+    pub draw_s: Option<f64>,
+    /// The run-down's stopping force, N; `None`: as the first throw.
+    pub run_down_force_n: Option<f64>,
     /// The winding's first move (picks the sense of the turn).
     pub winding_towards: [f64; 3],
+    /// Where the winding starts (see [`TieGeometry::winding_lead_rad`]); `None`: as the first throw.
+    pub winding_lead_rad: Option<f64>,
     /// Turns of the winding.
     pub winding_turns: f64,
     /// The run-down: the left draws the tail to here ...
@@ -46,7 +66,15 @@ impl Default for SecondThrow {
             winding_point_m: first.winding_point_m,
             left_jaw_direction: None,
             left_fetches: None,
+            assist_presents: false,
+            left_keeps_tail: false,
+            draw_back_m: None,
+            right_follows_draw: None,
+            right_draws_to_m: None,
+            draw_s: None,
+            run_down_force_n: None,
             winding_towards: [0.0, 0.0, -1.0],
+            winding_lead_rad: None,
             winding_turns: 1.0,
             left_run_down_to_m: first.left_run_down_to_m,
             right_run_down_to_m: first.right_run_down_to_m,
@@ -62,8 +90,18 @@ impl SecondThrow {
         TieGeometry {
             winding_point_m: self.winding_point_m,
             left_jaw_direction: self.left_jaw_direction.or(first.left_jaw_direction),
-            left_fetches: self.left_fetches.clone().or_else(|| first.left_fetches.clone()),
+            left_fetches: if self.assist_presents || self.left_keeps_tail {
+                None
+            } else {
+                self.left_fetches.clone().or_else(|| first.left_fetches.clone())
+            },
+            draw_back_m: self.draw_back_m.unwrap_or(first.draw_back_m),
+            right_follows_draw: self.right_follows_draw.unwrap_or(first.right_follows_draw),
+            right_draws_to_m: self.right_draws_to_m.or(first.right_draws_to_m),
+            draw_s: self.draw_s.unwrap_or(first.draw_s),
+            run_down_force_n: self.run_down_force_n.or(first.run_down_force_n),
             winding_towards: self.winding_towards,
+            winding_lead_rad: self.winding_lead_rad.unwrap_or(first.winding_lead_rad),
             winding_turns: self.winding_turns,
             left_run_down_to_m: self.left_run_down_to_m,
             right_run_down_to_m: self.right_run_down_to_m,
@@ -111,5 +149,35 @@ mod tests {
             LeftFetch { jaw_direction: [1.0, 0.0, 0.0], ..first.left_fetches.clone().expect("a fetch") };
         let fetching = SecondThrow { left_fetches: Some(level.clone()), ..SecondThrow::default() };
         assert_eq!(fetching.applied_to(&first).left_fetches, Some(level));
+        let presented = SecondThrow { assist_presents: true, ..fetching };
+        assert_eq!(presented.applied_to(&first).left_fetches, None, "the assist brings the tail");
+        let kept = SecondThrow { left_keeps_tail: true, ..SecondThrow::default() };
+        assert_eq!(kept.applied_to(&first).left_fetches, None, "the left holds the tail already");
+    }
+
+    #[test]
+    fn the_draw_and_run_down_are_the_first_throws_unless_told() {
+        let first = TieGeometry { right_follows_draw: -0.6, ..TieGeometry::default() };
+        let same = SecondThrow::default().applied_to(&first);
+        assert_eq!(
+            (same.draw_back_m, same.right_follows_draw, same.right_draws_to_m, same.draw_s),
+            (first.draw_back_m, first.right_follows_draw, first.right_draws_to_m, first.draw_s)
+        );
+        assert_eq!((same.run_down_force_n, same.winding_lead_rad), (None, first.winding_lead_rad));
+        let own = SecondThrow {
+            draw_back_m: Some(0.008),
+            right_follows_draw: Some(0.0),
+            right_draws_to_m: Some([0.005, -0.015, 0.01]),
+            draw_s: Some(4.0),
+            run_down_force_n: Some(2.5),
+            winding_lead_rad: Some(-1.5),
+            ..SecondThrow::default()
+        }
+        .applied_to(&first);
+        assert_eq!(
+            (own.draw_back_m, own.right_follows_draw, own.right_draws_to_m, own.draw_s),
+            (0.008, 0.0, Some([0.005, -0.015, 0.01]), 4.0)
+        );
+        assert_eq!((own.run_down_force_n, own.winding_lead_rad), (Some(2.5), -1.5));
     }
 }
