@@ -135,6 +135,9 @@ fn range_problems(g: &TieGeometry) -> Vec<(String, String)> {
             let tau = std::f64::consts::TAU;
             c.range("second_throw.winding_lead_rad", v, -tau, tau);
         }
+        if let Some(v) = s.loosen_m {
+            c.range("second_throw.loosen_m", v, -0.1, 0.1);
+        }
         if let Some(v) = s.draw_back_m {
             c.range("second_throw.draw_back_m", v, -0.1, 0.1);
         }
@@ -231,7 +234,7 @@ mod tests {
         let Err(GeometryFileError::Invalid { problems, .. }) = parse_tie_geometry(
             "tail_pull_force_n = 0.0\nright_jaws_across_winding = 1.5\ndraw_s = 0.0\n\
              run_down_force_n = -1.0\nright_draws_to_m = [0.0, 0.0, 0.3]\n[second_throw]\n\
-             left_jaw_direction = [0.0, 0.0, 0.0]\nwinding_lead_rad = 7.0\ndraw_back_m = 0.5\n\
+             left_jaw_direction = [0.0, 0.0, 0.0]\nwinding_lead_rad = 7.0\nloosen_m = 0.5\ndraw_back_m = 0.5\n\
              right_follows_draw = -5.0\nright_draws_to_m = [0.3, 0.0, 0.0]\ndraw_s = 100.0\n\
              run_down_force_n = 0.0\n[second_throw.left_fetches]\nalong_tail = 2.0\n\
              jaw_direction = [0.0, 0.0, -1.0]\napproach_m = 0.01\nstop_short_m = 0.0\n",
@@ -248,6 +251,7 @@ mod tests {
             "right_draws_to_m.z",
             "second_throw.left_jaw_direction",
             "second_throw.winding_lead_rad",
+            "second_throw.loosen_m",
             "second_throw.draw_back_m",
             "second_throw.right_follows_draw",
             "second_throw.right_draws_to_m.x",

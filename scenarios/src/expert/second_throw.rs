@@ -31,6 +31,9 @@ pub struct SecondThrow {
     /// The assist presents the tail ahead of the left's jaws instead of the left fetching it (a
     /// fetch turns the jaws, and the turn slid off their tips on the way: session 31).
     pub assist_presents: bool,
+    /// After winding, the right gives this much thread back towards the left's jaws, m; `None`: as
+    /// the first throw.
+    pub loosen_m: Option<f64>,
     /// Before the pulls, the left draws the tail back this far along its jaws, m; `None`: as the
     /// first throw.
     pub draw_back_m: Option<f64>,
@@ -68,6 +71,7 @@ impl Default for SecondThrow {
             left_fetches: None,
             assist_presents: false,
             left_keeps_tail: false,
+            loosen_m: None,
             draw_back_m: None,
             right_follows_draw: None,
             right_draws_to_m: None,
@@ -95,6 +99,7 @@ impl SecondThrow {
             } else {
                 self.left_fetches.clone().or_else(|| first.left_fetches.clone())
             },
+            loosen_m: self.loosen_m.unwrap_or(first.loosen_m),
             draw_back_m: self.draw_back_m.unwrap_or(first.draw_back_m),
             right_follows_draw: self.right_follows_draw.unwrap_or(first.right_follows_draw),
             right_draws_to_m: self.right_draws_to_m.or(first.right_draws_to_m),
@@ -165,6 +170,7 @@ mod tests {
         );
         assert_eq!((same.run_down_force_n, same.winding_lead_rad), (None, first.winding_lead_rad));
         let own = SecondThrow {
+            loosen_m: Some(0.006),
             draw_back_m: Some(0.008),
             right_follows_draw: Some(0.0),
             right_draws_to_m: Some([0.005, -0.015, 0.01]),
@@ -179,5 +185,6 @@ mod tests {
             (0.008, 0.0, Some([0.005, -0.015, 0.01]), 4.0)
         );
         assert_eq!((own.run_down_force_n, own.winding_lead_rad), (Some(2.5), -1.5));
+        assert_eq!((same.loosen_m, own.loosen_m), (first.loosen_m, 0.006));
     }
 }
