@@ -124,6 +124,12 @@ fn range_problems(g: &TieGeometry) -> Vec<(String, String)> {
     }
     if let Some(s) = &g.second_throw {
         c.range("second_throw.tail_hold_along", s.tail_hold_along, 0.0, 1.0);
+        if s.assist_presents && s.left_keeps_tail {
+            c.0.push((
+                "second_throw.assist_presents".to_owned(),
+                "cannot be set with left_keeps_tail: the left holds the tail already".to_owned(),
+            ));
+        }
         if let Some(d) = &s.left_jaw_direction {
             c.direction("second_throw.left_jaw_direction", d);
         }
@@ -236,7 +242,8 @@ mod tests {
              run_down_force_n = -1.0\nright_draws_to_m = [0.0, 0.0, 0.3]\n[second_throw]\n\
              left_jaw_direction = [0.0, 0.0, 0.0]\nwinding_lead_rad = 7.0\nloosen_m = 0.5\ndraw_back_m = 0.5\n\
              right_follows_draw = -5.0\nright_draws_to_m = [0.3, 0.0, 0.0]\ndraw_s = 100.0\n\
-             run_down_force_n = 0.0\n[second_throw.left_fetches]\nalong_tail = 2.0\n\
+             run_down_force_n = 0.0\nassist_presents = true\nleft_keeps_tail = true\n\
+             [second_throw.left_fetches]\nalong_tail = 2.0\n\
              jaw_direction = [0.0, 0.0, -1.0]\napproach_m = 0.01\nstop_short_m = 0.0\n",
             "bad.toml",
         ) else {
@@ -250,6 +257,7 @@ mod tests {
             "run_down_force_n",
             "right_draws_to_m.z",
             "second_throw.left_jaw_direction",
+            "second_throw.assist_presents",
             "second_throw.winding_lead_rad",
             "second_throw.loosen_m",
             "second_throw.draw_back_m",

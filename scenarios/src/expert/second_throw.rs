@@ -25,11 +25,13 @@ pub struct SecondThrow {
     /// How the left takes its turn to the tail; `None`: as in the first throw.
     pub left_fetches: Option<LeftFetch>,
     /// The left keeps the tail it holds from the first throw and the long end is wound round its
-    /// closed jaws: no hand-over, no fetch. Drawn back, the left pulls the tail's free end (beyond
-    /// its jaws) through the turn, as if it had taken the tail there.
+    /// closed jaws: no hand-over, no fetch. Drawn off the jaws' tips (the left drawing back, or the
+    /// right going to `right_draws_to_m`), the turn is meant to pass over the tail's free end beyond
+    /// them, as if the left had taken the tail there.
     pub left_keeps_tail: bool,
     /// The assist presents the tail ahead of the left's jaws instead of the left fetching it (a
-    /// fetch turns the jaws, and the turn slid off their tips on the way: session 31).
+    /// fetch turns the jaws, and the turn slid off their tips on the way: session 31). Not with
+    /// `left_keeps_tail`.
     pub assist_presents: bool,
     /// After winding, the right gives this much thread back towards the left's jaws, m; `None`: as
     /// the first throw.
@@ -168,7 +170,10 @@ mod tests {
             (same.draw_back_m, same.right_follows_draw, same.right_draws_to_m, same.draw_s),
             (first.draw_back_m, first.right_follows_draw, first.right_draws_to_m, first.draw_s)
         );
-        assert_eq!((same.run_down_force_n, same.winding_lead_rad), (None, first.winding_lead_rad));
+        assert_eq!(
+            (same.run_down_force_n, same.winding_lead_rad),
+            (first.run_down_force_n, first.winding_lead_rad)
+        );
         let own = SecondThrow {
             loosen_m: Some(0.006),
             draw_back_m: Some(0.008),
