@@ -84,6 +84,7 @@ fn range_problems(g: &TieGeometry) -> Vec<(String, String)> {
         ("coils_back_m", g.coils_back_m),
         ("tail_tension_m", g.tail_tension_m),
         ("tail_beyond_m", g.tail_beyond_m),
+        ("tail_take_short_m", g.tail_take_short_m),
         ("draw_back_m", g.draw_back_m),
     ] {
         c.range(key, v, -0.1, 0.1);
@@ -140,6 +141,9 @@ fn range_problems(g: &TieGeometry) -> Vec<(String, String)> {
         if let Some(v) = s.winding_lead_rad {
             let tau = std::f64::consts::TAU;
             c.range("second_throw.winding_lead_rad", v, -tau, tau);
+        }
+        if let Some(v) = s.tail_take_short_m {
+            c.range("second_throw.tail_take_short_m", v, -0.1, 0.1);
         }
         if let Some(v) = s.loosen_m {
             c.range("second_throw.loosen_m", v, -0.1, 0.1);
@@ -240,7 +244,7 @@ mod tests {
         let Err(GeometryFileError::Invalid { problems, .. }) = parse_tie_geometry(
             "tail_pull_force_n = 0.0\nright_jaws_across_winding = 1.5\ndraw_s = 0.0\n\
              run_down_force_n = -1.0\nright_draws_to_m = [0.0, 0.0, 0.3]\n[second_throw]\n\
-             left_jaw_direction = [0.0, 0.0, 0.0]\nwinding_lead_rad = 7.0\nloosen_m = 0.5\ndraw_back_m = 0.5\n\
+             left_jaw_direction = [0.0, 0.0, 0.0]\nwinding_lead_rad = 7.0\nloosen_m = 0.5\ntail_take_short_m = 0.5\ndraw_back_m = 0.5\n\
              right_follows_draw = -5.0\nright_draws_to_m = [0.3, 0.0, 0.0]\ndraw_s = 100.0\n\
              run_down_force_n = 0.0\nassist_presents = true\nleft_keeps_tail = true\n\
              [second_throw.left_fetches]\nalong_tail = 2.0\n\
@@ -260,6 +264,7 @@ mod tests {
             "second_throw.assist_presents",
             "second_throw.winding_lead_rad",
             "second_throw.loosen_m",
+            "second_throw.tail_take_short_m",
             "second_throw.draw_back_m",
             "second_throw.right_follows_draw",
             "second_throw.right_draws_to_m.x",

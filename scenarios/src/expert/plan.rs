@@ -54,6 +54,10 @@ pub struct TieGeometry {
     pub winding_jaw_rad: f64,
     /// The assist presents the tail this far ahead of the left's jaw centre, along its jaws, m.
     pub tail_ahead_m: f64,
+    /// ... and the left's jaw centre stops this far short of it, m: jaws open 0.6 rad leave the
+    /// thread room between them only in their front 3.6 mm (capsules 3 mm thick), so a tail at the
+    /// jaw centre is pinched by both and squeezed out as they close.
+    pub tail_take_short_m: f64,
     /// If not empty, the assist takes the tail along these points (stitch frame) instead of the swing.
     pub tail_via_m: Vec<[f64; 3]>,
     /// Where the assist's jaws point along the tail's route (stitch frame); `None`: along its shaft.
@@ -151,6 +155,7 @@ impl Default for TieGeometry {
             winding_turns: 2.0,
             winding_jaw_rad: 0.0,
             tail_ahead_m: 0.012,
+            tail_take_short_m: 0.0,
             tail_beyond_m: 0.008,
             tail_tension_m: 0.003,
             take_tail_jaw_rad: 0.8,
@@ -504,7 +509,7 @@ fn plan_throw(world: &SimWorld, geometry: &TieGeometry, variation: &Variation, s
         left.wait_until(wound_s + pause[3]);
         left.jaw(geometry.take_tail_jaw_rad, d(0.3));
         left.wait_until(assist.time_s());
-        left.go(Path::To(tail_point), d(1.0));
+        left.go(Path::To(tail_point - jaws.into_inner() * geometry.tail_take_short_m), d(1.0));
         left.wait_until(left.time_s() + pause[4]);
         left.jaw(0.0, d(0.3));
         left.wait_until(left.time_s() + d(0.3) + 0.1);

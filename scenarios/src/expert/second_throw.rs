@@ -33,6 +33,9 @@ pub struct SecondThrow {
     /// fetch turns the jaws, and the turn slid off their tips on the way: session 31). Not with
     /// `left_keeps_tail`.
     pub assist_presents: bool,
+    /// The left's jaw centre stops this far short of the presented tail, m; `None`: as the first
+    /// throw.
+    pub tail_take_short_m: Option<f64>,
     /// After winding, the right gives this much thread back towards the left's jaws, m; `None`: as
     /// the first throw.
     pub loosen_m: Option<f64>,
@@ -73,6 +76,7 @@ impl Default for SecondThrow {
             left_fetches: None,
             assist_presents: false,
             left_keeps_tail: false,
+            tail_take_short_m: None,
             loosen_m: None,
             draw_back_m: None,
             right_follows_draw: None,
@@ -101,6 +105,7 @@ impl SecondThrow {
             } else {
                 self.left_fetches.clone().or_else(|| first.left_fetches.clone())
             },
+            tail_take_short_m: self.tail_take_short_m.unwrap_or(first.tail_take_short_m),
             loosen_m: self.loosen_m.unwrap_or(first.loosen_m),
             draw_back_m: self.draw_back_m.unwrap_or(first.draw_back_m),
             right_follows_draw: self.right_follows_draw.unwrap_or(first.right_follows_draw),
@@ -176,6 +181,7 @@ mod tests {
         );
         let own = SecondThrow {
             loosen_m: Some(0.006),
+            tail_take_short_m: Some(0.0045),
             draw_back_m: Some(0.008),
             right_follows_draw: Some(0.0),
             right_draws_to_m: Some([0.005, -0.015, 0.01]),
@@ -191,5 +197,6 @@ mod tests {
         );
         assert_eq!((own.run_down_force_n, own.winding_lead_rad), (Some(2.5), -1.5));
         assert_eq!((same.loosen_m, own.loosen_m), (first.loosen_m, 0.006));
+        assert_eq!((same.tail_take_short_m, own.tail_take_short_m), (first.tail_take_short_m, 0.0045));
     }
 }
