@@ -248,3 +248,74 @@ fn fetching_the_tail_as_one_body_the_right_turns_with_the_left_jaws() {
     println!("following the shift: {before:.3} rad before, {after:.3} after");
     assert!((before - after).abs() > 0.2, "{before} rad before the turn, {after} rad after");
 }
+
+#[test]
+fn the_draw_and_the_run_down_go_as_the_geometry_says() {
+    use knotlab_hw::skill::ForceAction;
+    let world = SimWorld::new(scene(), Rig::shipped().expect("the shipped rig")).expect("the scene builds");
+    let plan = |geometry: &TieGeometry| plan_instrument_tie(&world, geometry, &Variation::none());
+    let shipped = plan(&TieGeometry::default());
+    let end_s = |skill: &knotlab_hw::skill::Skill| {
+        skill.tracks.iter().filter_map(|t| t.poses.last()).map(|k| k.time_s).fold(0.0, f64::max)
+    };
+
+    // A run-down force: each pulling arm stops where its gauge reads it and holds to its track's end.
+    let stopping = plan(&TieGeometry { run_down_force_n: Some(2.5), ..TieGeometry::default() });
+    for arm in [ArmName::Left, ArmName::Right] {
+        let named = |skill: &knotlab_hw::skill::Skill, name: &str| {
+            let track = skill.track(arm).expect("the arm pulls");
+            track.events.iter().filter(|e| e.name == name).cloned().collect::<Vec<_>>()
+        };
+        assert!(named(&shipped, "run-down force").is_empty(), "{arm}: none unless asked");
+        let stop = named(&stopping, "run-down force");
+        assert_eq!(stop.len(), 1, "{arm}: one run-down stop");
+        assert_eq!((stop[0].threshold_n, stop[0].action), (2.5, ForceAction::Hold));
+        let set = &named(&stopping, "set force")[0];
+        assert!(stop[0].from_s < set.from_s, "{arm}: the stop starts with the run-down, before the pulls");
+        let last_key_s = stopping.track(arm).and_then(|t| t.poses.last()).map(|k| k.time_s);
+        assert_eq!(Some(stop[0].until_s), last_key_s, "{arm}: held to the end");
+    }
+
+    // The right drawing to a point of the stitch frame: its jaw centre goes there (its tip within the
+    // jaw-centre offset of it); the shipped right stays where it wound.
+    let point = [0.02, -0.02, 0.012];
+    let world_point = world.tissue.world_from_tissue * nalgebra::Point3::from(Vector3::from(point));
+    let nearest_m = |skill: &knotlab_hw::skill::Skill| {
+        let right = skill.track(ArmName::Right).expect("the right");
+        right
+            .poses
+            .iter()
+            .map(|k| (Vector3::from(k.world_position_m) - world_point.coords).norm())
+            .fold(f64::INFINITY, f64::min)
+    };
+    let drawing = plan(&TieGeometry { right_draws_to_m: Some(point), ..TieGeometry::default() });
+    let offset_m = knotlab_sim::world::JAW_CENTRE_OFFSET_M;
+    assert!(nearest_m(&drawing) <= offset_m + 1e-3, "{} m", nearest_m(&drawing));
+    assert!(nearest_m(&shipped) > offset_m + 5e-3, "{} m", nearest_m(&shipped));
+
+    // A presented tail taken short: where the left's jaws start closing on it, they are that much
+    // further back along themselves than taken at their centre.
+    let closing_on_tail_m = |take_short_m: f64| {
+        let geometry =
+            TieGeometry { left_fetches: None, tail_take_short_m: take_short_m, ..TieGeometry::default() };
+        let skill = plan(&geometry);
+        let left = skill.track(ArmName::Left).expect("the left");
+        // The jaw's closings: the second is on the tail (the first on the winding).
+        let starts: Vec<f64> = left
+            .jaw
+            .windows(2)
+            .filter(|w| w[1].jaw_rad == 0.0 && w[0].jaw_rad > 0.0)
+            .map(|w| w[0].time_s)
+            .collect();
+        assert!(starts.len() >= 2, "{:?}", left.jaw);
+        let target = left.target_at(starts[1]).expect("a target");
+        target.world_position_m
+    };
+    let moved_m = (closing_on_tail_m(0.004) - closing_on_tail_m(0.0)).norm();
+    assert!((moved_m - 0.004).abs() < 1e-4, "{moved_m} m");
+
+    // A slower draw lengthens the plan by the difference.
+    let slow = plan(&TieGeometry { draw_s: 4.0, ..TieGeometry::default() });
+    let longer_s = end_s(&slow) - end_s(&shipped);
+    assert!((2.7..3.5).contains(&longer_s), "{longer_s} s longer for a 2.8 s slower draw");
+}
