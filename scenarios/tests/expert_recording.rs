@@ -319,3 +319,46 @@ fn the_draw_and_the_run_down_go_as_the_geometry_says() {
     let longer_s = end_s(&slow) - end_s(&shipped);
     assert!((2.7..3.5).contains(&longer_s), "{longer_s} s longer for a 2.8 s slower draw");
 }
+
+#[test]
+fn for_the_second_throw_the_assist_takes_the_tail_near_its_end_and_draws_it_where_told() {
+    use knotlab_scenarios::expert::{SecondThrow, plan_second_throw};
+    let world = SimWorld::new(scene(), Rig::shipped().expect("the shipped rig")).expect("the scene builds");
+    let line = world.thread.centreline(&world.physics);
+    // 6 mm of thread back from the tail's free end (the last point of the centreline).
+    let mut from_end_m = 0.006;
+    let mut expected = None;
+    for at in (1..line.len()).rev() {
+        let step = line[at] - line[at - 1];
+        if from_end_m <= step.norm() {
+            expected = Some(line[at] - step.normalize() * from_end_m);
+            break;
+        }
+        from_end_m -= step.norm();
+    }
+    let expected = expected.expect("a tail longer than 6 mm");
+    let held_to = [0.0, 0.05, 0.04];
+    let held_to_world = world.tissue.world_from_tissue * nalgebra::Point3::from(Vector3::from(held_to));
+    let second = SecondThrow {
+        tail_hold_from_end_m: Some(0.006),
+        tail_held_to_m: Some(held_to),
+        assist_presents: true,
+        ..SecondThrow::default()
+    };
+    let geometry = TieGeometry { second_throw: Some(second), ..TieGeometry::default() };
+    let skill = plan_second_throw(&world, &geometry, &Variation::none()).expect("a second throw");
+    let assist = skill.track(ArmName::Assist).expect("the assist");
+    let offset_m = knotlab_sim::world::JAW_CENTRE_OFFSET_M;
+    let first_within = |point: &Vector3<f64>| {
+        assist.poses.iter().find(|k| (Vector3::from(k.world_position_m) - point).norm() <= offset_m + 1e-3)
+    };
+    let took = first_within(&expected).expect("the assist's jaws go to the tail 6 mm from its end");
+    let drew = first_within(&held_to_world.coords).expect("then to where the tail is drawn");
+    assert!(drew.time_s > took.time_s, "drawn after it is taken: {} s, {} s", took.time_s, drew.time_s);
+    // The assist's jaws close on it before the left opens, and the draw starts once the left is open.
+    let closed_s = assist.jaw.iter().find(|k| k.jaw_rad == 0.0).map(|k| k.time_s).expect("closes");
+    let left = skill.track(ArmName::Left).expect("the left");
+    let opened_s = left.jaw.iter().find(|k| k.jaw_rad > 0.0).map(|k| k.time_s).expect("the left opens");
+    assert!(took.time_s < closed_s && closed_s < opened_s, "{} s, {closed_s} s, {opened_s} s", took.time_s);
+    assert!(drew.time_s > opened_s, "{} s, {opened_s} s", drew.time_s);
+}

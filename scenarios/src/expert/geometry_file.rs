@@ -131,6 +131,24 @@ fn range_problems(g: &TieGeometry) -> Vec<(String, String)> {
                 "cannot be set with left_keeps_tail: the left holds the tail already".to_owned(),
             ));
         }
+        if let Some(v) = s.tail_hold_from_end_m {
+            c.range("second_throw.tail_hold_from_end_m", v, 0.0, 1.0);
+        }
+        if s.left_keeps_tail && s.tail_hold_from_end_m.is_some() {
+            c.0.push((
+                "second_throw.tail_hold_from_end_m".to_owned(),
+                "cannot be set with left_keeps_tail: the assist takes no tail".to_owned(),
+            ));
+        }
+        if let Some(p) = &s.tail_held_to_m {
+            c.point("second_throw.tail_held_to_m", p);
+            if s.tail_hold_from_end_m.is_none() {
+                c.0.push((
+                    "second_throw.tail_held_to_m".to_owned(),
+                    "needs tail_hold_from_end_m: the assist draws the tail by its end".to_owned(),
+                ));
+            }
+        }
         if let Some(d) = &s.left_jaw_direction {
             c.direction("second_throw.left_jaw_direction", d);
         }
@@ -141,6 +159,12 @@ fn range_problems(g: &TieGeometry) -> Vec<(String, String)> {
         if let Some(v) = s.winding_lead_rad {
             let tau = std::f64::consts::TAU;
             c.range("second_throw.winding_lead_rad", v, -tau, tau);
+        }
+        if let Some(v) = s.winding_radius_m {
+            c.range("second_throw.winding_radius_m", v, 0.001, 0.1);
+        }
+        if let Some(v) = s.winding_behind_m {
+            c.range("second_throw.winding_behind_m", v, -0.1, 0.1);
         }
         if let Some(v) = s.tail_take_short_m {
             c.range("second_throw.tail_take_short_m", v, -0.1, 0.1);
@@ -247,6 +271,8 @@ mod tests {
              left_jaw_direction = [0.0, 0.0, 0.0]\nwinding_lead_rad = 7.0\nloosen_m = 0.5\ntail_take_short_m = 0.5\ndraw_back_m = 0.5\n\
              right_follows_draw = -5.0\nright_draws_to_m = [0.3, 0.0, 0.0]\ndraw_s = 100.0\n\
              run_down_force_n = 0.0\nassist_presents = true\nleft_keeps_tail = true\n\
+             tail_hold_from_end_m = -0.01\ntail_held_to_m = [0.0, 0.5, 0.0]\n\
+             winding_radius_m = 0.0\nwinding_behind_m = 0.5\n\
              [second_throw.left_fetches]\nalong_tail = 2.0\n\
              jaw_direction = [0.0, 0.0, -1.0]\napproach_m = 0.01\nstop_short_m = 0.0\n",
             "bad.toml",
@@ -271,6 +297,10 @@ mod tests {
             "second_throw.draw_s",
             "second_throw.run_down_force_n",
             "second_throw.left_fetches.along_tail",
+            "second_throw.tail_hold_from_end_m",
+            "second_throw.tail_held_to_m.y",
+            "second_throw.winding_radius_m",
+            "second_throw.winding_behind_m",
         ] {
             assert!(keys.contains(&key), "{key} not named: {problems:?}");
         }

@@ -18,7 +18,7 @@ use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
 use super::motion::{Follow, Path, TrackBuilder, Tremor};
-use super::second_throw::{SecondThrow, tail_between_knot_and_left};
+use super::second_throw::{SecondThrow, tail_between_knot_and_left, tail_from_its_end};
 
 /// Where the expert puts things, in the stitch frame (m), and how hard it pulls.
 #[derive(Clone, Debug, PartialEq, serde::Deserialize, serde::Serialize)]
@@ -267,9 +267,18 @@ enum Stage {
     /// letting go (a second throw follows).
     First { keep_hold: bool },
     /// The second, after the first: the left holds the tail and the right the long end, pulled apart;
-    /// the assist first takes the tail this fraction of the way from the knot to the left's jaws,
-    /// unless the left keeps it (`tail_hold_along` `None`).
-    Second { tail_hold_along: Option<f64> },
+    /// the assist first takes the tail, unless the left keeps it (`tail_hold` `None`).
+    Second { tail_hold: Option<TailHold> },
+}
+
+/// Where the assist takes the tail from the left before the second throw.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum TailHold {
+    /// This fraction of the way from the knot to the left's jaws.
+    Along(f64),
+    /// This far from the tail's free end, then drawn to `to_m` (stitch frame) once the left has let
+    /// go.
+    FromEnd { from_end_m: f64, to_m: Option<[f64; 3]> },
 }
 
 /// The plan as a skill, for the world as it stands (its start condition): the first throw, and all
@@ -283,8 +292,12 @@ pub fn plan_instrument_tie(world: &SimWorld, geometry: &TieGeometry, variation: 
 pub fn plan_second_throw(world: &SimWorld, geometry: &TieGeometry, variation: &Variation) -> Option<Skill> {
     let second = geometry.second_throw.as_ref()?;
     let throw = second.applied_to(geometry);
-    let tail_hold_along = (!second.left_keeps_tail).then_some(second.tail_hold_along);
-    Some(plan_throw(world, &throw, variation, Stage::Second { tail_hold_along }))
+    let tail_hold = match (second.left_keeps_tail, second.tail_hold_from_end_m) {
+        (true, _) => None,
+        (false, Some(from_end_m)) => Some(TailHold::FromEnd { from_end_m, to_m: second.tail_held_to_m }),
+        (false, None) => Some(TailHold::Along(second.tail_hold_along)),
+    };
+    Some(plan_throw(world, &throw, variation, Stage::Second { tail_hold }))
 }
 
 fn plan_throw(world: &SimWorld, geometry: &TieGeometry, variation: &Variation, stage: Stage) -> Skill {
@@ -307,19 +320,22 @@ fn plan_throw(world: &SimWorld, geometry: &TieGeometry, variation: &Variation, s
         b
     };
     let second = matches!(stage, Stage::Second { .. });
-    let left_keeps_tail = matches!(stage, Stage::Second { tail_hold_along: None });
+    let left_keeps_tail = matches!(stage, Stage::Second { tail_hold: None });
     let mut left = builder(ArmName::Left, if second { 0.0 } else { open }, &variation.tremor[0]);
     let mut right = builder(ArmName::Right, 0.0, &variation.tremor[1]);
     let mut assist = builder(ArmName::Assist, if second { open } else { 0.0 }, &variation.tremor[2]);
     let pause = &variation.pauses_s;
-    if let Stage::Second { tail_hold_along } = stage {
+    if let Stage::Second { tail_hold } = stage {
         // Every instrument goes on as it stands (the first throw left the jaws pointing their ways).
         for track in [&mut left, &mut right, &mut assist] {
             track.hold_as_it_stands();
         }
         // The assist takes the tail between the knot and the left's jaws (the tail between its open
         // jaws, along their hinge), then the left lets go of it.
-        let taken = tail_hold_along.and_then(|along| tail_between_knot_and_left(world, along));
+        let taken = tail_hold.and_then(|hold| match hold {
+            TailHold::Along(along) => tail_between_knot_and_left(world, along),
+            TailHold::FromEnd { from_end_m, .. } => tail_from_its_end(world, from_end_m),
+        });
         if let Some((tail_m, tail_dir)) = taken {
             let trocar_m = trocar_of(&world.config, ArmName::Assist);
             let jaws = (tail_m - trocar_m).normalize();
@@ -333,9 +349,15 @@ fn plan_throw(world: &SimWorld, geometry: &TieGeometry, variation: &Variation, s
             assist.wait_until(assist.time_s() + d(0.3) + 0.1);
         }
         left.wait_until(assist.time_s() + pause[5]);
-        if tail_hold_along.is_some() {
+        if tail_hold.is_some() {
             left.jaw(open, d(0.2));
             left.wait_until(left.time_s() + d(0.2) + pause[0]);
+        }
+        if let Some(TailHold::FromEnd { to_m: Some(to_m), .. }) = tail_hold {
+            // The assist draws the tail by its end to where the left will take it, while the left
+            // goes to the winding point.
+            assist.wait_until(left.time_s());
+            assist.go(Path::To(at(to_m)), d(1.5));
         }
         right.wait_until(left.time_s());
         assist.wait_until(left.time_s());

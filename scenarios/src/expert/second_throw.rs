@@ -17,6 +17,13 @@ use super::plan::{LeftFetch, TieGeometry};
 pub struct SecondThrow {
     /// The assist takes the tail this fraction of the way from the knot to the left's jaws.
     pub tail_hold_along: f64,
+    /// ... or, if set, this far (along the thread) from the tail's free end, m: the left then takes
+    /// the tail next to the assist's jaws, near its end, so that only a short free end has to pass
+    /// through the turn as the left draws back (taken mid-tail, the turn closes round a bight of it).
+    pub tail_hold_from_end_m: Option<f64>,
+    /// Once the left has let go, the assist draws the tail it holds to here (stitch frame); `None`:
+    /// it stays where it took it.
+    pub tail_held_to_m: Option<[f64; 3]>,
     /// The left's jaw centre while the long end is wound round them.
     pub winding_point_m: [f64; 3],
     /// Where the left's jaws point while the long end is wound round them (stitch frame); `None`: as
@@ -52,6 +59,11 @@ pub struct SecondThrow {
     pub run_down_force_n: Option<f64>,
     /// The winding's first move (picks the sense of the turn).
     pub winding_towards: [f64; 3],
+    /// The right's jaws' distance from the left's jaw axis while winding, m; `None`: as the first
+    /// throw. The long end left between the knot and the needle must reach round the circle.
+    pub winding_radius_m: Option<f64>,
+    /// The winding circles this far behind the left's jaw centre, m; `None`: as the first throw.
+    pub winding_behind_m: Option<f64>,
     /// Where the winding starts (see [`TieGeometry::winding_lead_rad`]); `None`: as the first throw.
     pub winding_lead_rad: Option<f64>,
     /// Turns of the winding.
@@ -71,6 +83,8 @@ impl Default for SecondThrow {
         let first = TieGeometry::default();
         Self {
             tail_hold_along: 0.6,
+            tail_hold_from_end_m: None,
+            tail_held_to_m: None,
             winding_point_m: first.winding_point_m,
             left_jaw_direction: None,
             left_fetches: None,
@@ -84,6 +98,8 @@ impl Default for SecondThrow {
             draw_s: None,
             run_down_force_n: None,
             winding_towards: [0.0, 0.0, -1.0],
+            winding_radius_m: None,
+            winding_behind_m: None,
             winding_lead_rad: None,
             winding_turns: 1.0,
             left_run_down_to_m: first.left_run_down_to_m,
@@ -113,6 +129,8 @@ impl SecondThrow {
             draw_s: self.draw_s.unwrap_or(first.draw_s),
             run_down_force_n: self.run_down_force_n.or(first.run_down_force_n),
             winding_towards: self.winding_towards,
+            winding_radius_m: self.winding_radius_m.unwrap_or(first.winding_radius_m),
+            winding_behind_m: self.winding_behind_m.unwrap_or(first.winding_behind_m),
             winding_lead_rad: self.winding_lead_rad.unwrap_or(first.winding_lead_rad),
             winding_turns: self.winding_turns,
             left_run_down_to_m: self.left_run_down_to_m,
@@ -142,6 +160,24 @@ pub fn tail_between_knot_and_left(world: &SimWorld, along: f64) -> Option<(Vecto
     let point = 0.5 * (line[at] + line[at + 1]);
     let direction = (line[at + 1] - line[at]).try_normalize(1e-12)?;
     Some((point, direction))
+}
+
+/// Where the tail lies `from_end_m` of thread from its free end, and which way it runs there (towards
+/// the end), world frame; `None` if the stitch holds no thread or the tail is shorter than that.
+pub fn tail_from_its_end(world: &SimWorld, from_end_m: f64) -> Option<(Vector3<f64>, Vector3<f64>)> {
+    let inside = world.stitch.segments_inside()?;
+    let line = world.thread.centreline(&world.physics);
+    let mut left_m = from_end_m;
+    for at in (*inside.end() + 1..line.len() - 1).rev() {
+        let step = line[at + 1] - line[at];
+        let length_m = step.norm();
+        if left_m <= length_m {
+            let direction = step.try_normalize(1e-12)?;
+            return Some((line[at + 1] - direction * left_m, direction));
+        }
+        left_m -= length_m;
+    }
+    None
 }
 
 #[cfg(test)]
@@ -198,5 +234,16 @@ mod tests {
         assert_eq!((own.run_down_force_n, own.winding_lead_rad), (Some(2.5), -1.5));
         assert_eq!((same.loosen_m, own.loosen_m), (first.loosen_m, 0.006));
         assert_eq!((same.tail_take_short_m, own.tail_take_short_m), (first.tail_take_short_m, 0.0045));
+        let small = SecondThrow {
+            winding_radius_m: Some(0.01),
+            winding_behind_m: Some(0.003),
+            ..SecondThrow::default()
+        }
+        .applied_to(&first);
+        assert_eq!(
+            (same.winding_radius_m, same.winding_behind_m),
+            (first.winding_radius_m, first.winding_behind_m)
+        );
+        assert_eq!((small.winding_radius_m, small.winding_behind_m), (0.01, 0.003));
     }
 }

@@ -1,0 +1,66 @@
+//! The expert's second throw round empty jaws, the tail taken by its end (`[second_throw]
+//! tail_hold_from_end_m`, `scenarios/experts/two-throws-tail-end.toml`; issue 6, session 33): after the
+//! first throw the assist takes the tail near its free end, the left lets go of it, and the long end
+//! is wound once round the left's open jaws. (Not yet a throw: the presented tail is pushed out of
+//! the closing jaws; see the README.)
+
+use knotlab_scenarios::expert::{RecordOptions, TieGeometry, demonstrate_with, load_tie_geometry};
+use knotlab_sim::scene::parse_scene;
+
+fn expert(name: &str) -> TieGeometry {
+    let file = format!("{}/experts/{name}", env!("CARGO_MANIFEST_DIR"));
+    load_tie_geometry(std::path::Path::new(&file)).expect("the expert file")
+}
+
+#[test]
+fn the_tail_end_file_ties_its_first_throw_as_coils_on_the_left() {
+    let file = expert("two-throws-tail-end.toml");
+    let second = file.second_throw.clone().expect("a second throw");
+    assert_eq!(second.tail_hold_from_end_m, Some(0.006));
+    assert!(!second.left_keeps_tail && second.assist_presents);
+    assert_eq!(TieGeometry { second_throw: None, ..file }, expert("coils-on-the-left.toml"));
+}
+
+#[test]
+fn the_assist_takes_the_tail_by_its_end_and_the_turn_lies_on_the_empty_jaws() {
+    let scene =
+        parse_scene(include_str!("../short-suture-friction-0.5.toml"), "short-suture-friction-0.5.toml")
+            .expect("the two-throw scene");
+    // Seed 1: the first throw ends at 27 s; the assist takes the tail's end, the left lets go, and
+    // the turn is wound by 40 s.
+    let options = RecordOptions {
+        cycles_per_sample: 10,
+        snapshot_times_s: vec![40.0],
+        stop_after_s: Some(40.5),
+        ..RecordOptions::default()
+    };
+    let run = demonstrate_with(
+        scene,
+        "scenarios/short-suture-friction-0.5.toml",
+        1,
+        true,
+        &expert("two-throws-tail-end.toml"),
+        &options,
+        None,
+    )
+    .expect("records");
+    assert_eq!(run.fault, None);
+    let segments = run.final_scene.thread_m.len().saturating_sub(1);
+    let time_of =
+        |e: &String| e.split("time_s: ").nth(1).and_then(|t| t.trim_end_matches(" }").parse::<f64>().ok());
+    // The assist's second take is within two segments of the tail's free end, after the first throw.
+    let takes: Vec<&String> = run.events.iter().filter(|e| e.starts_with("Grasped { arm: Assist")).collect();
+    assert_eq!(takes.len(), 2, "at the start and for the second throw: {:?}", run.events);
+    let segment = takes[1].split("segment: ").nth(1).and_then(|s| s.split(',').next()?.parse::<usize>().ok());
+    assert!(segment.is_some_and(|s| s + 2 >= segments - 1), "{segments} segments: {}", takes[1]);
+    assert!(time_of(takes[1]) > Some(20.0), "{}", takes[1]);
+    // ... and then the left lets go of the tail.
+    let left_release = run.events.iter().find(|e| e.starts_with("Released { arm: Left")).expect("lets go");
+    assert!(time_of(left_release) > time_of(takes[1]), "{left_release} after {}", takes[1]);
+    // The turn lies on the left's jaws: the long end (the needle's side) touches both.
+    let snapshot = run.snapshots.first().expect("the snapshot at 40 s");
+    let on = |link: &str| {
+        snapshot.contacts.iter().filter(|(segment, l)| l == link && *segment < segments / 2).count()
+    };
+    assert!(on("left_jaw_1") >= 3 && on("left_jaw_2") >= 3, "{:?}", snapshot.contacts);
+}
