@@ -85,14 +85,63 @@ impl Grasp {
         let body = thread.segments[segment];
         let jaw_pose = *physics.bodies[jaw_body].position();
         let segment_pose = *physics.bodies[body].position();
-        // Hold the segment at its current pose relative to the jaws.
-        let jaw_from_segment = jaw_pose.inverse() * segment_pose;
+        // Hold the segment where it is relative to the jaws, but pressed between their faces: on their
+        // line across the opening (the carrier's x; they turn about its y and point along its z).
+        // (Only across the segment: the faces press it sideways, they do not slide it along itself.)
+        let mut jaw_from_segment = jaw_pose.inverse() * segment_pose;
+        if !on_needle {
+            let along = jaw_from_segment.rotation * Vector::X;
+            let off = Vector::new(jaw_from_segment.translation.x, 0.0, 0.0);
+            jaw_from_segment.translation -= off - along * along.dot(off);
+        }
         let joint = FixedJointBuilder::new()
             .local_frame1(jaw_from_segment)
             .local_frame2(Pose::IDENTITY)
             .contacts_enabled(false);
         let handle = physics.impulse_joints.insert(jaw_body, body, joint, true);
         Some(Self { segment, on_needle, joint: handle })
+    }
+
+    /// Whether jaws opened `jaw_rad` (between them; each turns half of it about the hinge) squeeze
+    /// the thread segment nearest their line, if one is within reach of it: where that segment
+    /// passes, the room between the jaws' faces (capsules of `jaw_radius_m`) is no wider than the
+    /// thread (`thread_radius_m`). Real jaws clamp the thread then, long before they are shut; rigid capsules closing on
+    /// past that point squeeze it out sideways instead.
+    pub fn squeezes(
+        physics: &Physics,
+        thread: &Thread,
+        world_from_tip: &IsometryMatrix3<f64>,
+        jaw_offset_m: f64,
+        jaw_rad: f64,
+        jaw_radius_m: f64,
+        thread_radius_m: f64,
+    ) -> bool {
+        let hinge = (world_from_tip * nalgebra::Point3::new(0.0, 0.0, -2.0 * jaw_offset_m)).coords;
+        let tip = world_from_tip.translation.vector;
+        let reach_m = crate::world::GRASP_REACH_M;
+        let nearest = thread
+            .capsules(physics, 0.0)
+            .into_iter()
+            .map(|c| (segment_distance(&c.a_m, &c.b_m, &hinge, &tip), c))
+            .min_by(|a, b| a.0.total_cmp(&b.0));
+        let Some((distance_m, capsule)) = nearest else { return false };
+        if distance_m > reach_m {
+            return false;
+        }
+        // Where along the jaws it passes: its point nearest their line, measured from the hinge.
+        let axis = tip - hinge;
+        let length_m = axis.norm();
+        let along = |p: &Vector3<f64>| (p - hinge).dot(&axis) / length_m;
+        let points = (0..=8).map(|i| capsule.a_m + (capsule.b_m - capsule.a_m) * (i as f64 / 8.0));
+        let nearest_point = points
+            .min_by(|p, q| {
+                let off = |x: &Vector3<f64>| (x - hinge - axis * (along(x) / length_m)).norm();
+                off(p).total_cmp(&off(q))
+            })
+            .unwrap_or(capsule.a_m);
+        let z_m = along(&nearest_point).clamp(0.0, length_m);
+        let room_m = z_m * (0.5 * jaw_rad).sin() - jaw_radius_m;
+        room_m <= thread_radius_m
     }
 
     /// The force the grasp constraint transmitted in the last step, N.

@@ -76,6 +76,8 @@ pub struct SimArm {
     /// Jaws that closed on nothing stay empty until they reopen: what later touches closed jaws is
     /// not grasped (and collides with them).
     pub closed_empty: bool,
+    /// The jaw command when the grasp took hold, rad: told to open past it, the jaws let go.
+    pub grasped_at_jaw_rad: f64,
     /// Force on the instrument from contacts and grasps, as the strain gauges read it (filtered,
     /// with noise), world frame, N.
     pub force_n: Vector3<f64>,
@@ -212,6 +214,7 @@ impl SimWorld {
                     grasp: None,
                     slipped: false,
                     closed_empty: false,
+                    grasped_at_jaw_rad: 0.0,
                     force_n: Vector3::zeros(),
                     filtered_force_n: Vector3::zeros(),
                     instrument_bodies: Vec::new(),
@@ -530,9 +533,18 @@ impl SimWorld {
             if !name.carries_instrument() {
                 continue;
             }
-            let closed = self.arms[a].actual().tool.jaw_rad < self.jaw_closed_rad;
-            let commanded_closed = self.arms[a].command.tool.jaw_rad < self.jaw_closed_rad;
-            if !commanded_closed {
+            let actual_rad = self.arms[a].actual().tool.jaw_rad;
+            let command_rad = self.arms[a].command.tool.jaw_rad;
+            let closed = actual_rad < self.jaw_closed_rad;
+            // Told to close, or closing now (the command ramps down ahead of the jaws).
+            let closing = command_rad < actual_rad - 1e-3;
+            // A grasp holds until the jaws are told to open past where they took it (at least to
+            // the closed threshold).
+            let let_go_rad = match self.arms[a].grasp {
+                Some(_) => self.jaw_closed_rad.max(self.arms[a].grasped_at_jaw_rad + 1e-3),
+                None => self.jaw_closed_rad,
+            };
+            if command_rad >= let_go_rad && !closing {
                 if let Some(grasp) = self.arms[a].grasp.take() {
                     grasp.release(&mut self.physics);
                     self.events.push(GraspEvent::Released { arm: name, time_s: self.time_s });
@@ -541,13 +553,44 @@ impl SimWorld {
                 self.arms[a].closed_empty = false;
                 continue;
             }
-            if !closed || self.arms[a].grasp.is_some() || self.arms[a].slipped || self.arms[a].closed_empty {
+            if self.arms[a].grasp.is_some() || self.arms[a].slipped || self.arms[a].closed_empty {
                 continue;
             }
-            if !self.try_grasp(name, poses) {
+            if !closed {
+                // Closing: the jaws clamp the thread once their faces squeeze it.
+                if closing && self.jaws_squeeze_thread(a, poses) && self.try_grasp(name, poses) {
+                    self.arms[a].grasped_at_jaw_rad = command_rad;
+                }
+                continue;
+            }
+            if self.try_grasp(name, poses) {
+                self.arms[a].grasped_at_jaw_rad = command_rad;
+            } else {
                 self.arms[a].closed_empty = true;
             }
         }
+    }
+
+    /// Whether arm `a`'s closing jaws squeeze the thread between them ([`Grasp::squeezes`]).
+    fn jaws_squeeze_thread(&self, a: usize, poses: &[IsometryMatrix3<f64>]) -> bool {
+        let rig_arm = self.rig.arm(self.arms[a].name);
+        // The jaws' radius: their capsules', from the robot model.
+        let jaw_radius_m = self.rig.tree.links.iter().filter(|l| l.name.ends_with("_jaw_1")).find_map(|l| {
+            l.collisions.iter().find_map(|c| match c.shape {
+                knotlab_hw::rig::Shape::Capsule { radius_m, .. } => Some(radius_m),
+                _ => None,
+            })
+        });
+        let Some(jaw_radius_m) = jaw_radius_m else { return false };
+        Grasp::squeezes(
+            &self.physics,
+            &self.thread,
+            &poses[rig_arm.tip_link],
+            JAW_CENTRE_OFFSET_M,
+            self.arms[a].actual().tool.jaw_rad,
+            jaw_radius_m,
+            self.config.thread.radius_m,
+        )
     }
 
     /// Closes `arm`'s grasp on the thread or needle between its jaws, if any; true when it holds.
