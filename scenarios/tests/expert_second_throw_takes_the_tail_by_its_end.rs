@@ -1,9 +1,11 @@
 //! The expert's second throw round empty jaws, the tail taken by its end (`[second_throw]
 //! tail_hold_from_end_m`, `scenarios/experts/two-throws-tail-end.toml`; issue 6, session 33): after the
 //! first throw the assist takes the tail near its free end, the left lets go of it, and the long end
-//! is wound once round the left's open jaws. (Not yet a throw: the presented tail is pushed out of
-//! the closing jaws; see the README.)
+//! is wound once round the left's open jaws, the left takes the presented tail and draws it back, and
+//! the turn lies round the tail's standing part. (Not yet a knot: in the pulls the turn comes off over
+//! the tail's free end; see the README.)
 
+use knotlab_scenarios::expert::diagnose::turns_about;
 use knotlab_scenarios::expert::{RecordOptions, TieGeometry, demonstrate_with, load_tie_geometry};
 use knotlab_sim::scene::parse_scene;
 
@@ -22,16 +24,16 @@ fn the_tail_end_file_ties_its_first_throw_as_coils_on_the_left() {
 }
 
 #[test]
-fn the_assist_takes_the_tail_by_its_end_and_the_turn_lies_on_the_empty_jaws() {
+fn the_assist_takes_the_tail_by_its_end_and_the_turn_goes_from_the_empty_jaws_onto_the_tail() {
     let scene =
         parse_scene(include_str!("../short-suture-friction-0.5.toml"), "short-suture-friction-0.5.toml")
             .expect("the two-throw scene");
-    // Seed 1: the first throw ends at 27 s; the assist takes the tail's end, the left lets go, and
-    // the turn is wound by 40 s.
+    // Seed 1: the first throw ends at 27 s; the assist takes the tail's end, the left lets go, the
+    // turn is wound by 40 s, the left takes the presented tail at 42.8 s and draws it back by 46 s.
     let options = RecordOptions {
         cycles_per_sample: 10,
-        snapshot_times_s: vec![40.0],
-        stop_after_s: Some(40.5),
+        snapshot_times_s: vec![40.0, 47.0],
+        stop_after_s: Some(47.5),
         ..RecordOptions::default()
     };
     let run = demonstrate_with(
@@ -63,4 +65,19 @@ fn the_assist_takes_the_tail_by_its_end_and_the_turn_lies_on_the_empty_jaws() {
         snapshot.contacts.iter().filter(|(segment, l)| l == link && *segment < segments / 2).count()
     };
     assert!(on("left_jaw_1") >= 3 && on("left_jaw_2") >= 3, "{:?}", snapshot.contacts);
+    // The left takes the presented tail, near where the assist holds it.
+    let left_takes: Vec<&String> =
+        run.events.iter().filter(|e| e.starts_with("Grasped { arm: Left")).collect();
+    assert_eq!(left_takes.len(), 2, "the first throw's take and the second's: {:?}", run.events);
+    assert!(time_of(left_takes[1]) > time_of(left_release), "{}", left_takes[1]);
+    // Drawn back, the turn lies round the tail's standing part: the long end (the 22 segments next to
+    // the needle) winds about the line from the tail near the knot to where the left holds it.
+    let drawn = run.snapshots.get(1).expect("the snapshot at 47 s");
+    let held =
+        left_takes[1].split("segment: ").nth(1).and_then(|s| s.split(',').next()?.parse::<usize>().ok());
+    let held = held.expect("a segment");
+    let line = &drawn.centreline_m;
+    let standing_from = held - 9;
+    let turns = turns_about(&line[..=22], &line[standing_from], &(line[held] - line[standing_from]));
+    assert!(turns.abs() > 0.8, "{turns} turns round the tail's standing part at 47 s");
 }

@@ -160,6 +160,9 @@ fn range_problems(g: &TieGeometry) -> Vec<(String, String)> {
             let tau = std::f64::consts::TAU;
             c.range("second_throw.winding_lead_rad", v, -tau, tau);
         }
+        if let Some(v) = s.take_tail_jaw_rad {
+            c.range("second_throw.take_tail_jaw_rad", v, 0.0, 1.6);
+        }
         if let Some(v) = s.winding_radius_m {
             c.range("second_throw.winding_radius_m", v, 0.001, 0.1);
         }
@@ -272,7 +275,7 @@ mod tests {
              right_follows_draw = -5.0\nright_draws_to_m = [0.3, 0.0, 0.0]\ndraw_s = 100.0\n\
              run_down_force_n = 0.0\nassist_presents = true\nleft_keeps_tail = true\n\
              tail_hold_from_end_m = -0.01\ntail_held_to_m = [0.0, 0.5, 0.0]\n\
-             winding_radius_m = 0.0\nwinding_behind_m = 0.5\n\
+             winding_radius_m = 0.0\nwinding_behind_m = 0.5\ntake_tail_jaw_rad = 2.0\n\
              [second_throw.left_fetches]\nalong_tail = 2.0\n\
              jaw_direction = [0.0, 0.0, -1.0]\napproach_m = 0.01\nstop_short_m = 0.0\n",
             "bad.toml",
@@ -301,6 +304,7 @@ mod tests {
             "second_throw.tail_held_to_m.y",
             "second_throw.winding_radius_m",
             "second_throw.winding_behind_m",
+            "second_throw.take_tail_jaw_rad",
         ] {
             assert!(keys.contains(&key), "{key} not named: {problems:?}");
         }

@@ -43,6 +43,10 @@ pub struct SecondThrow {
     /// The left's jaw centre stops this far short of the presented tail, m; `None`: as the first
     /// throw.
     pub tail_take_short_m: Option<f64>,
+    /// The left opens its jaws this far to take the tail, rad; `None`: as the first throw. Wider, the
+    /// jaws' tips take a tail presented further off their line (the tips of jaws opened 0.6 rad
+    /// stand 3 mm either side of it).
+    pub take_tail_jaw_rad: Option<f64>,
     /// After winding, the right gives this much thread back towards the left's jaws, m; `None`: as
     /// the first throw.
     pub loosen_m: Option<f64>,
@@ -91,6 +95,7 @@ impl Default for SecondThrow {
             assist_presents: false,
             left_keeps_tail: false,
             tail_take_short_m: None,
+            take_tail_jaw_rad: None,
             loosen_m: None,
             draw_back_m: None,
             right_follows_draw: None,
@@ -122,6 +127,7 @@ impl SecondThrow {
                 self.left_fetches.clone().or_else(|| first.left_fetches.clone())
             },
             tail_take_short_m: self.tail_take_short_m.unwrap_or(first.tail_take_short_m),
+            take_tail_jaw_rad: self.take_tail_jaw_rad.unwrap_or(first.take_tail_jaw_rad),
             loosen_m: self.loosen_m.unwrap_or(first.loosen_m),
             draw_back_m: self.draw_back_m.unwrap_or(first.draw_back_m),
             right_follows_draw: self.right_follows_draw.unwrap_or(first.right_follows_draw),
@@ -237,6 +243,7 @@ mod tests {
         let small = SecondThrow {
             winding_radius_m: Some(0.01),
             winding_behind_m: Some(0.003),
+            take_tail_jaw_rad: Some(0.9),
             ..SecondThrow::default()
         }
         .applied_to(&first);
@@ -245,5 +252,6 @@ mod tests {
             (first.winding_radius_m, first.winding_behind_m)
         );
         assert_eq!((small.winding_radius_m, small.winding_behind_m), (0.01, 0.003));
+        assert_eq!((same.take_tail_jaw_rad, small.take_tail_jaw_rad), (first.take_tail_jaw_rad, 0.9));
     }
 }
