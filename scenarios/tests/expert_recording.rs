@@ -362,3 +362,49 @@ fn for_the_second_throw_the_assist_takes_the_tail_near_its_end_and_draws_it_wher
     assert!(took.time_s < closed_s && closed_s < opened_s, "{} s, {closed_s} s, {opened_s} s", took.time_s);
     assert!(drew.time_s > opened_s, "{} s, {opened_s} s", drew.time_s);
 }
+
+#[test]
+fn the_assist_offers_the_tail_end_beside_the_left_jaws_along_their_hinge() {
+    use knotlab_hw::skill::Orientation;
+    use knotlab_scenarios::expert::{SecondThrow, plan_second_throw};
+    let world = SimWorld::new(scene(), Rig::shipped().expect("the shipped rig")).expect("the scene builds");
+    let winding_point = [0.0, -0.01, 0.028];
+    let second = SecondThrow {
+        tail_hold_from_end_m: Some(0.006),
+        assist_presents: true,
+        tail_end_offered_m: Some(0.008),
+        winding_point_m: winding_point,
+        left_jaw_direction: Some([1.0, 0.0, 0.0]),
+        ..SecondThrow::default()
+    };
+    let geometry = TieGeometry { second_throw: Some(second), ..TieGeometry::default() };
+    let skill = plan_second_throw(&world, &geometry, &Variation::none()).expect("a second throw");
+    // The point ahead of the left's jaws where the tail is to be taken.
+    let world_from_stitch = world.tissue.world_from_tissue;
+    let jaws = world_from_stitch.rotation * Vector3::x();
+    let tail_point = (world_from_stitch * nalgebra::Point3::from(Vector3::from(winding_point))).coords
+        + jaws * geometry.tail_ahead_m;
+    // Where the assist holds still as the left closes on the tail (the left's last closing).
+    let left = skill.track(ArmName::Left).expect("the left");
+    let closing_s = left
+        .jaw
+        .windows(2)
+        .rev()
+        .find(|w| w[1].jaw_rad == 0.0 && w[0].jaw_rad > 0.0)
+        .map(|w| w[0].time_s)
+        .expect("the left closes on the tail");
+    let assist = skill.track(ArmName::Assist).expect("the assist");
+    let pose = assist.poses.iter().rev().find(|k| k.time_s <= closing_s).expect("a pose");
+    let Orientation::Frame { quaternion_xyzw: [x, y, z, w] } = pose.orientation else {
+        panic!("the assist holds a whole frame: {:?}", pose.orientation)
+    };
+    let rotation = nalgebra::UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(w, x, y, z));
+    let jaw_centre = Vector3::from(pose.world_position_m)
+        - rotation * Vector3::z() * knotlab_sim::world::JAW_CENTRE_OFFSET_M;
+    let beside = jaw_centre - tail_point;
+    assert!((beside.norm() - 0.008).abs() < 1e-3, "{} m from the take point", beside.norm());
+    assert!(beside.dot(&jaws).abs() < 1e-3, "beside the left's jaws, not ahead: {beside:?}");
+    // Its hinge (the tip frame's y) runs along that offset, so the thread crosses the left's jaws.
+    let hinge = rotation * Vector3::y();
+    assert!(hinge.dot(&beside.normalize()) > 0.99, "{hinge:?} {beside:?}");
+}

@@ -105,8 +105,8 @@ impl Grasp {
     /// Whether jaws opened `jaw_rad` (between them; each turns half of it about the hinge) squeeze
     /// the thread segment nearest their line, if one is within reach of it: where that segment
     /// passes, the room between the jaws' faces (capsules of `jaw_radius_m`) is no wider than the
-    /// thread (`thread_radius_m`). Real jaws clamp the thread then, long before they are shut; rigid capsules closing on
-    /// past that point squeeze it out sideways instead.
+    /// thread (`thread_radius_m`). Real jaws clamp the thread then, long before they are shut;
+    /// rigid capsules closing on past that point squeeze it along or out sideways instead.
     pub fn squeezes(
         physics: &Physics,
         thread: &Thread,

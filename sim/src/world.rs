@@ -575,7 +575,8 @@ impl SimWorld {
     fn jaws_squeeze_thread(&self, a: usize, poses: &[IsometryMatrix3<f64>]) -> bool {
         let rig_arm = self.rig.arm(self.arms[a].name);
         // The jaws' radius: their capsules', from the robot model.
-        let jaw_radius_m = self.rig.tree.links.iter().filter(|l| l.name.ends_with("_jaw_1")).find_map(|l| {
+        let jaw_link = format!("{}_jaw_1", self.arms[a].name.as_str());
+        let jaw_radius_m = self.rig.tree.links.iter().filter(|l| l.name == jaw_link).find_map(|l| {
             l.collisions.iter().find_map(|c| match c.shape {
                 knotlab_hw::rig::Shape::Capsule { radius_m, .. } => Some(radius_m),
                 _ => None,

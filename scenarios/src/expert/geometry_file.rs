@@ -114,6 +114,9 @@ fn range_problems(g: &TieGeometry) -> Vec<(String, String)> {
         c.point("right_draws_to_m", p);
     }
     c.range("draw_s", g.draw_s, 0.1, 60.0);
+    if let Some(v) = g.tail_end_offered_m {
+        c.range("tail_end_offered_m", v, 0.0, 0.05);
+    }
     if let Some(f) = g.run_down_force_n {
         c.range("run_down_force_n", f, 0.01, 10.0);
     }
@@ -159,6 +162,9 @@ fn range_problems(g: &TieGeometry) -> Vec<(String, String)> {
         if let Some(v) = s.winding_lead_rad {
             let tau = std::f64::consts::TAU;
             c.range("second_throw.winding_lead_rad", v, -tau, tau);
+        }
+        if let Some(v) = s.tail_end_offered_m {
+            c.range("second_throw.tail_end_offered_m", v, 0.0, 0.05);
         }
         if let Some(v) = s.take_tail_jaw_rad {
             c.range("second_throw.take_tail_jaw_rad", v, 0.0, 1.6);
@@ -275,7 +281,7 @@ mod tests {
              right_follows_draw = -5.0\nright_draws_to_m = [0.3, 0.0, 0.0]\ndraw_s = 100.0\n\
              run_down_force_n = 0.0\nassist_presents = true\nleft_keeps_tail = true\n\
              tail_hold_from_end_m = -0.01\ntail_held_to_m = [0.0, 0.5, 0.0]\n\
-             winding_radius_m = 0.0\nwinding_behind_m = 0.5\ntake_tail_jaw_rad = 2.0\n\
+             winding_radius_m = 0.0\nwinding_behind_m = 0.5\ntake_tail_jaw_rad = 2.0\ntail_end_offered_m = 0.1\n\
              [second_throw.left_fetches]\nalong_tail = 2.0\n\
              jaw_direction = [0.0, 0.0, -1.0]\napproach_m = 0.01\nstop_short_m = 0.0\n",
             "bad.toml",
@@ -305,6 +311,7 @@ mod tests {
             "second_throw.winding_radius_m",
             "second_throw.winding_behind_m",
             "second_throw.take_tail_jaw_rad",
+            "second_throw.tail_end_offered_m",
         ] {
             assert!(keys.contains(&key), "{key} not named: {problems:?}");
         }

@@ -58,6 +58,11 @@ pub struct TieGeometry {
     /// thread room between them only in their front 3.6 mm (capsules 3 mm thick), so a tail at the
     /// jaw centre is pinched by both and squeezed out as they close.
     pub tail_take_short_m: f64,
+    /// If set, the assist, holding the tail near its end, offers it across the left's open jaws
+    /// instead of swinging it taut: its jaw centre this far beside the point ahead of the left's
+    /// jaws, along their hinge, its own hinge along theirs, so that the thread runs from its jaws
+    /// between the left's, m. The left then takes the tail that close to the assist's grip.
+    pub tail_end_offered_m: Option<f64>,
     /// If not empty, the assist takes the tail along these points (stitch frame) instead of the swing.
     pub tail_via_m: Vec<[f64; 3]>,
     /// Where the assist's jaws point along the tail's route (stitch frame); `None`: along its shaft.
@@ -156,6 +161,7 @@ impl Default for TieGeometry {
             winding_jaw_rad: 0.0,
             tail_ahead_m: 0.012,
             tail_take_short_m: 0.0,
+            tail_end_offered_m: None,
             tail_beyond_m: 0.008,
             tail_tension_m: 0.003,
             take_tail_jaw_rad: 0.8,
@@ -507,7 +513,25 @@ fn plan_throw(world: &SimWorld, geometry: &TieGeometry, variation: &Variation, s
             .max((tail_point - entry).norm() + geometry.tail_beyond_m);
         let outward = (assist.position_m() - entry).normalize();
         let towards = (tail_point - entry).normalize();
-        if !geometry.tail_via_m.is_empty() {
+        if let Some(offered_m) = geometry.tail_end_offered_m {
+            // Beside the point ahead of the left's jaws along their hinge, on the side away from the
+            // knot; the assist's hinge along the left's, towards the tail's end (it took the tail with
+            // its hinge that way), so the rest of the tail runs from its jaws through the left's.
+            let side = if (tail_point + hinge.into_inner() * offered_m - entry).norm()
+                >= (tail_point - hinge.into_inner() * offered_m - entry).norm()
+            {
+                hinge.into_inner()
+            } else {
+                -hinge.into_inner()
+            };
+            let offer_m = tail_point + side * offered_m;
+            let shaft = (offer_m - trocar_of(&world.config, ArmName::Assist)).normalize();
+            let assist_jaws = (shaft - side * shaft.dot(&side)).try_normalize(1e-9).unwrap_or(shaft);
+            let frame =
+                nalgebra::Rotation3::from_basis_unchecked(&[side.cross(&assist_jaws), side, assist_jaws]);
+            assist.go_framing(Path::To(offer_m - assist_jaws * TAKE_APPROACH_M), d(1.5), frame);
+            assist.go(Path::To(offer_m), d(0.8));
+        } else if !geometry.tail_via_m.is_empty() {
             // A route given in the stitch frame, then up to the hold.
             for p in &geometry.tail_via_m {
                 match geometry.assist_jaw_direction {

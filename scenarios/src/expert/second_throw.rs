@@ -43,6 +43,10 @@ pub struct SecondThrow {
     /// The left's jaw centre stops this far short of the presented tail, m; `None`: as the first
     /// throw.
     pub tail_take_short_m: Option<f64>,
+    /// With `assist_presents`: the assist offers the tail's end across the left's jaws, its jaw
+    /// centre this far beside them ([`TieGeometry::tail_end_offered_m`]), m; `None`: as the first
+    /// throw.
+    pub tail_end_offered_m: Option<f64>,
     /// The left opens its jaws this far to take the tail, rad; `None`: as the first throw. Wider, the
     /// jaws' tips take a tail presented further off their line (the tips of jaws opened 0.6 rad
     /// stand 3 mm either side of it).
@@ -95,6 +99,7 @@ impl Default for SecondThrow {
             assist_presents: false,
             left_keeps_tail: false,
             tail_take_short_m: None,
+            tail_end_offered_m: None,
             take_tail_jaw_rad: None,
             loosen_m: None,
             draw_back_m: None,
@@ -128,6 +133,7 @@ impl SecondThrow {
             },
             tail_take_short_m: self.tail_take_short_m.unwrap_or(first.tail_take_short_m),
             take_tail_jaw_rad: self.take_tail_jaw_rad.unwrap_or(first.take_tail_jaw_rad),
+            tail_end_offered_m: self.tail_end_offered_m.or(first.tail_end_offered_m),
             loosen_m: self.loosen_m.unwrap_or(first.loosen_m),
             draw_back_m: self.draw_back_m.unwrap_or(first.draw_back_m),
             right_follows_draw: self.right_follows_draw.unwrap_or(first.right_follows_draw),
@@ -244,6 +250,7 @@ mod tests {
             winding_radius_m: Some(0.01),
             winding_behind_m: Some(0.003),
             take_tail_jaw_rad: Some(0.9),
+            tail_end_offered_m: Some(0.008),
             ..SecondThrow::default()
         }
         .applied_to(&first);
@@ -253,5 +260,9 @@ mod tests {
         );
         assert_eq!((small.winding_radius_m, small.winding_behind_m), (0.01, 0.003));
         assert_eq!((same.take_tail_jaw_rad, small.take_tail_jaw_rad), (first.take_tail_jaw_rad, 0.9));
+        assert_eq!(
+            (same.tail_end_offered_m, small.tail_end_offered_m),
+            (first.tail_end_offered_m, Some(0.008))
+        );
     }
 }
