@@ -336,8 +336,8 @@ fn plan_throw(world: &SimWorld, geometry: &TieGeometry, variation: &Variation, s
         for track in [&mut left, &mut right, &mut assist] {
             track.hold_as_it_stands();
         }
-        // The assist takes the tail between the knot and the left's jaws (the tail between its open
-        // jaws, along their hinge), then the left lets go of it.
+        // The assist takes the tail between the knot and the left's jaws, or near its free end (the
+        // tail between its open jaws, along their hinge), then the left lets go of it.
         let taken = tail_hold.and_then(|hold| match hold {
             TailHold::Along(along) => tail_between_knot_and_left(world, along),
             TailHold::FromEnd { from_end_m, .. } => tail_from_its_end(world, from_end_m),
