@@ -2,6 +2,8 @@
 //! human-like variation, and a recorded run is a valid demonstration (100 Hz, every instrument, the
 //! grasps seen) that survives writing and loading unchanged.
 
+mod common;
+
 use knotlab_hw::rig::{ArmName, Rig};
 use knotlab_learner::demonstration::{GraspState, load_demonstration, write_demonstration};
 use knotlab_scenarios::expert::{RecordOptions, TieGeometry, Variation, demonstrate, plan_instrument_tie};
@@ -15,8 +17,7 @@ fn scene() -> knotlab_sim::scene::SceneConfig {
 
 /// The experimental expert file `experts/coils-on-the-left.toml`.
 fn coils_on_the_left() -> TieGeometry {
-    let file = concat!(env!("CARGO_MANIFEST_DIR"), "/experts/coils-on-the-left.toml");
-    knotlab_scenarios::expert::load_tie_geometry(std::path::Path::new(file)).expect("the file")
+    common::expert("coils-on-the-left.toml")
 }
 
 #[test]

@@ -4,13 +4,10 @@
 //! (Not yet a throw: drawn off the jaws' tips, the turn catches on the right's jaws instead of the
 //! tail; see the README.)
 
-use knotlab_scenarios::expert::{RecordOptions, TieGeometry, demonstrate_with, load_tie_geometry};
-use knotlab_sim::scene::parse_scene;
+mod common;
 
-fn expert(name: &str) -> TieGeometry {
-    let file = format!("{}/experts/{name}", env!("CARGO_MANIFEST_DIR"));
-    load_tie_geometry(std::path::Path::new(&file)).expect("the expert file")
-}
+use common::{event_time_s, expert, two_throw_scene};
+use knotlab_scenarios::expert::{RecordOptions, TieGeometry, demonstrate_with};
 
 #[test]
 fn the_two_throw_file_ties_its_first_throw_as_coils_on_the_left() {
@@ -22,9 +19,7 @@ fn the_two_throw_file_ties_its_first_throw_as_coils_on_the_left() {
 
 #[test]
 fn the_second_turn_is_wound_round_the_jaws_that_hold_the_tail() {
-    let scene =
-        parse_scene(include_str!("../short-suture-friction-0.5.toml"), "short-suture-friction-0.5.toml")
-            .expect("the two-throw scene");
+    let scene = two_throw_scene();
     // Seed 0: the first throw ends at 28 s, the second turn is wound by 38 s and drawn at 41-45 s.
     let options = RecordOptions {
         cycles_per_sample: 10,
@@ -45,9 +40,7 @@ fn the_second_turn_is_wound_round_the_jaws_that_hold_the_tail() {
     assert_eq!(run.fault, None);
     // The left took the tail once, in the first throw, and holds it on: no hand-over (the jaws all
     // open as the run stops).
-    let before_stop = |e: &&String| {
-        e.split("time_s: ").nth(1).and_then(|t| t.trim_end_matches(" }").parse::<f64>().ok()) < Some(40.4)
-    };
+    let before_stop = |e: &&String| event_time_s(e) < Some(40.4);
     let left_events: Vec<&String> =
         run.events.iter().filter(|e| e.contains("arm: Left")).filter(before_stop).collect();
     assert_eq!(left_events.len(), 1, "one take, no release: {:?}", run.events);

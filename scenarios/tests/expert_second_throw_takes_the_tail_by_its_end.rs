@@ -5,14 +5,11 @@
 //! the turn lies round the tail's standing part. (Not yet a knot: in the pulls the turn comes off over
 //! the tail's free end; see the README.)
 
-use knotlab_scenarios::expert::diagnose::turns_about;
-use knotlab_scenarios::expert::{RecordOptions, TieGeometry, demonstrate_with, load_tie_geometry};
-use knotlab_sim::scene::parse_scene;
+mod common;
 
-fn expert(name: &str) -> TieGeometry {
-    let file = format!("{}/experts/{name}", env!("CARGO_MANIFEST_DIR"));
-    load_tie_geometry(std::path::Path::new(&file)).expect("the expert file")
-}
+use common::{event_segment, event_time_s, expert, two_throw_scene};
+use knotlab_scenarios::expert::diagnose::turns_about;
+use knotlab_scenarios::expert::{RecordOptions, TieGeometry, demonstrate_with};
 
 #[test]
 fn the_tail_end_file_ties_its_first_throw_as_coils_on_the_left() {
@@ -25,9 +22,7 @@ fn the_tail_end_file_ties_its_first_throw_as_coils_on_the_left() {
 
 #[test]
 fn the_assist_takes_the_tail_by_its_end_and_the_turn_goes_from_the_empty_jaws_onto_the_tail() {
-    let scene =
-        parse_scene(include_str!("../short-suture-friction-0.5.toml"), "short-suture-friction-0.5.toml")
-            .expect("the two-throw scene");
+    let scene = two_throw_scene();
     // Seed 1: the first throw ends at 27 s; the assist takes the tail's end, the left lets go, the
     // turn is wound by 40 s, the left takes the presented tail at 42.8 s and draws it back by 46 s.
     let options = RecordOptions {
@@ -48,12 +43,11 @@ fn the_assist_takes_the_tail_by_its_end_and_the_turn_goes_from_the_empty_jaws_on
     .expect("records");
     assert_eq!(run.fault, None);
     let segments = run.final_scene.thread_m.len().saturating_sub(1);
-    let time_of =
-        |e: &String| e.split("time_s: ").nth(1).and_then(|t| t.trim_end_matches(" }").parse::<f64>().ok());
+    let time_of = |e: &String| event_time_s(e);
     // The assist's second take is within two segments of the tail's free end, after the first throw.
     let takes: Vec<&String> = run.events.iter().filter(|e| e.starts_with("Grasped { arm: Assist")).collect();
     assert_eq!(takes.len(), 2, "at the start and for the second throw: {:?}", run.events);
-    let segment = takes[1].split("segment: ").nth(1).and_then(|s| s.split(',').next()?.parse::<usize>().ok());
+    let segment = event_segment(takes[1]);
     assert!(segment.is_some_and(|s| s + 2 >= segments - 1), "{segments} segments: {}", takes[1]);
     assert!(time_of(takes[1]) > Some(20.0), "{}", takes[1]);
     // ... and then the left lets go of the tail.
@@ -65,7 +59,7 @@ fn the_assist_takes_the_tail_by_its_end_and_the_turn_goes_from_the_empty_jaws_on
         snapshot.contacts.iter().filter(|(segment, l)| l == link && *segment < segments / 2).count()
     };
     assert!(on("left_jaw_1") >= 3 && on("left_jaw_2") >= 3, "{:?}", snapshot.contacts);
-    // The left takes the presented tail, near where the assist holds it.
+    // The left takes the presented tail, after letting go of it.
     let left_takes: Vec<&String> =
         run.events.iter().filter(|e| e.starts_with("Grasped { arm: Left")).collect();
     assert_eq!(left_takes.len(), 2, "the first throw's take and the second's: {:?}", run.events);
@@ -73,9 +67,7 @@ fn the_assist_takes_the_tail_by_its_end_and_the_turn_goes_from_the_empty_jaws_on
     // Drawn back, the turn lies round the tail's standing part: the long end (the 22 segments next to
     // the needle) winds about the line from the tail near the knot to where the left holds it.
     let drawn = run.snapshots.get(1).expect("the snapshot at 47 s");
-    let held =
-        left_takes[1].split("segment: ").nth(1).and_then(|s| s.split(',').next()?.parse::<usize>().ok());
-    let held = held.expect("a segment");
+    let held = event_segment(left_takes[1]).expect("a segment");
     let line = &drawn.centreline_m;
     let standing_from = held - 9;
     let turns = turns_about(&line[..=22], &line[standing_from], &(line[held] - line[standing_from]));

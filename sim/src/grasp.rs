@@ -51,6 +51,13 @@ pub struct Grasp {
     pub joint: ImpulseJointHandle,
 }
 
+/// The jaws' line, from their hinge (twice `jaw_offset_m` behind the tip) to the tip, world frame:
+/// what lies near it lies between the jaws.
+pub fn jaw_line_m(world_from_tip: &IsometryMatrix3<f64>, jaw_offset_m: f64) -> (Vector3<f64>, Vector3<f64>) {
+    let hinge = (world_from_tip * nalgebra::Point3::new(0.0, 0.0, -2.0 * jaw_offset_m)).coords;
+    (hinge, world_from_tip.translation.vector)
+}
+
 impl Grasp {
     /// Attaches the thread segment or the needle that passes nearest the jaws' line (from their hinge,
     /// twice `jaw_offset_m` behind the tip, to the tip), if it comes within reach of it: what lies
@@ -64,8 +71,7 @@ impl Grasp {
         world_from_tip: &IsometryMatrix3<f64>,
         jaw_offset_m: f64,
     ) -> Option<Self> {
-        let hinge = (world_from_tip * nalgebra::Point3::new(0.0, 0.0, -2.0 * jaw_offset_m)).coords;
-        let tip = world_from_tip.translation.vector;
+        let (hinge, tip) = jaw_line_m(world_from_tip, jaw_offset_m);
         let reach_m = crate::world::GRASP_REACH_M;
         // (segment, on the needle, how far beyond reach of the jaws' line it passes)
         let segments = thread
@@ -116,8 +122,7 @@ impl Grasp {
         jaw_radius_m: f64,
         thread_radius_m: f64,
     ) -> bool {
-        let hinge = (world_from_tip * nalgebra::Point3::new(0.0, 0.0, -2.0 * jaw_offset_m)).coords;
-        let tip = world_from_tip.translation.vector;
+        let (hinge, tip) = jaw_line_m(world_from_tip, jaw_offset_m);
         let reach_m = crate::world::GRASP_REACH_M;
         let nearest = thread
             .capsules(physics, 0.0)

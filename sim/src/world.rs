@@ -448,8 +448,7 @@ impl SimWorld {
             if closing && arm.grasp.is_none() && !arm.closed_empty {
                 // What passes between the closing jaws (near their line), as the grasp will judge it.
                 let tip = poses[self.rig.arm(arm.name).tip_link];
-                let hinge = (tip * Point3::new(0.0, 0.0, -2.0 * JAW_CENTRE_OFFSET_M)).coords;
-                let end = tip.translation.vector;
+                let (hinge, end) = crate::grasp::jaw_line_m(&tip, JAW_CENTRE_OFFSET_M);
                 for (i, c) in self.thread.capsules(&self.physics, 0.0).iter().enumerate() {
                     if knotlab_hw::geometry::segment_distance(&c.a_m, &c.b_m, &hinge, &end) < reach {
                         near.push(i);

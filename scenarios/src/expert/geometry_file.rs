@@ -116,6 +116,12 @@ fn range_problems(g: &TieGeometry) -> Vec<(String, String)> {
     c.range("draw_s", g.draw_s, 0.1, 60.0);
     if let Some(v) = g.tail_end_offered_m {
         c.range("tail_end_offered_m", v, 0.0, 0.05);
+        if g.left_fetches.is_some() {
+            c.0.push((
+                "tail_end_offered_m".to_owned(),
+                "cannot be set with left_fetches: the left fetches the tail, nothing is offered".to_owned(),
+            ));
+        }
     }
     if let Some(f) = g.run_down_force_n {
         c.range("run_down_force_n", f, 0.01, 10.0);
@@ -165,6 +171,15 @@ fn range_problems(g: &TieGeometry) -> Vec<(String, String)> {
         }
         if let Some(v) = s.tail_end_offered_m {
             c.range("second_throw.tail_end_offered_m", v, 0.0, 0.05);
+            // Offered only where the assist presents the tail: not when the left fetches it or keeps it.
+            let fetched = !s.assist_presents && (s.left_fetches.is_some() || g.left_fetches.is_some());
+            if s.left_keeps_tail || fetched {
+                c.0.push((
+                    "second_throw.tail_end_offered_m".to_owned(),
+                    "needs the tail presented (assist_presents, or no left_fetches): nothing is offered otherwise"
+                        .to_owned(),
+                ));
+            }
         }
         if let Some(v) = s.take_tail_jaw_rad {
             c.range("second_throw.take_tail_jaw_rad", v, 0.0, 1.6);
@@ -275,7 +290,7 @@ mod tests {
         };
         assert_eq!(problems[0].0, "second_throw.tail_hold_along", "{problems:?}");
         let Err(GeometryFileError::Invalid { problems, .. }) = parse_tie_geometry(
-            "tail_pull_force_n = 0.0\nright_jaws_across_winding = 1.5\ndraw_s = 0.0\n\
+            "tail_pull_force_n = 0.0\nright_jaws_across_winding = 1.5\ndraw_s = 0.0\ntail_end_offered_m = 0.01\n\
              run_down_force_n = -1.0\nright_draws_to_m = [0.0, 0.0, 0.3]\n[second_throw]\n\
              left_jaw_direction = [0.0, 0.0, 0.0]\nwinding_lead_rad = 7.0\nloosen_m = 0.5\ntail_take_short_m = 0.5\ndraw_back_m = 0.5\n\
              right_follows_draw = -5.0\nright_draws_to_m = [0.3, 0.0, 0.0]\ndraw_s = 100.0\n\
@@ -312,6 +327,7 @@ mod tests {
             "second_throw.winding_behind_m",
             "second_throw.take_tail_jaw_rad",
             "second_throw.tail_end_offered_m",
+            "tail_end_offered_m",
         ] {
             assert!(keys.contains(&key), "{key} not named: {problems:?}");
         }
