@@ -1,0 +1,31 @@
+//! Every expert file shipped under `scenarios/experts/` loads: work-in-progress recipes that no run
+//! test pins (say `two-throws-drawn-ahead.toml`) are still read through the same checks (keys,
+//! ranges, combinations) as the ones that are, so a renamed or re-ranged key cannot leave one behind.
+
+use knotlab_scenarios::expert::load_tie_geometry;
+
+#[test]
+fn every_expert_file_loads() {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("experts");
+    let mut names = Vec::new();
+    for entry in std::fs::read_dir(&dir).expect("scenarios/experts") {
+        let path = entry.expect("a directory entry").path();
+        if path.extension().is_some_and(|e| e == "toml") {
+            if let Err(e) = load_tie_geometry(&path) {
+                panic!("{} does not load: {e}", path.display());
+            }
+            names.push(path.file_name().unwrap().to_string_lossy().into_owned());
+        }
+    }
+    names.sort();
+    // The shipped plan's listing and the second-throw recipes are all there.
+    for expected in ["instrument-tie.toml", "two-throws-tail-end.toml", "two-throws-drawn-ahead.toml"] {
+        assert!(names.iter().any(|n| n == expected), "{expected} missing from {names:?}");
+    }
+    // The drawn-ahead recipe is the tail-end one with the right drawing the turn off ahead.
+    let ahead = load_tie_geometry(&dir.join("two-throws-drawn-ahead.toml")).unwrap();
+    let second = ahead.second_throw.expect("a second throw");
+    assert_eq!(second.tail_hold_from_end_m, Some(0.004));
+    assert_eq!(second.tail_end_offered_m, Some(0.005));
+    assert_eq!(second.right_draws_to_m, Some([0.035, -0.015, 0.02]));
+}
