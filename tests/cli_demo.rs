@@ -116,6 +116,25 @@ fn snapshots_zoom_to_the_half_width_asked_for() {
         let (code, stdout, err) = knotlab(&["knot", "classify", csv.to_str().unwrap()]);
         assert_eq!(code, 0, "{stdout}{err}");
         assert!(stdout.contains("unknot"), "no knot yet at 0.2 s: {stdout}");
+        // The same snapshot with the tail drawn back along the left's jaws (issue 6's what-if).
+        let (code, stdout, err) = knotlab(&[
+            "knot",
+            "draw-through",
+            out.to_str().unwrap(),
+            "--at",
+            "0.2",
+            "--grip",
+            "70",
+            "--json",
+        ]);
+        assert_eq!(code, 0, "{stdout}{err}");
+        let report: serde_json::Value = serde_json::from_str(&stdout).expect("JSON");
+        assert_eq!(report["as_it_lies"], "unknot", "{stdout}");
+        assert!(report["drawn_through"].is_string(), "{stdout}");
+        let (code, stdout, err) =
+            knotlab(&["knot", "draw-through", out.to_str().unwrap(), "--at", "0.2", "--grip", "81"]);
+        assert_eq!(code, 1, "{stdout}{err}");
+        assert!(err.contains("grip point 81 is not on the thread"), "{err}");
     }
     assert_ne!(pictures[0], pictures[1], "a narrower view draws a different picture");
     for bad in ["0", "-0.1", "2", "wide"] {

@@ -1,4 +1,5 @@
-//! `knotlab knot`: which knot a thread's centreline holds, where it sits, whether it is down.
+//! `knotlab knot`: which knot a thread's centreline holds, where it sits, whether it is down; and which
+//! knot a draw of the tail back through the left's jaws would make (`draw-through`).
 
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -8,8 +9,10 @@ use clap::Subcommand;
 use nalgebra::Vector3;
 use serde::Serialize;
 
+use knotlab_hw::rig::ArmName;
+use knotlab_learner::demonstration::load_demonstration;
 use knotlab_sim::knot::{
-    Classification, DownLimits, KnotPlacement, KnotType, TissueSurface, classify, read_points,
+    Classification, DownLimits, KnotPlacement, KnotType, TissueSurface, classify, drawn_through, read_points,
 };
 
 use super::numbers::parse_vector3;
@@ -35,6 +38,27 @@ pub enum KnotCommand {
         /// The stitch point x,y,z (m), where the knot should sit.
         #[arg(long, allow_hyphen_values = true, value_parser = parse_vector3, requires_all = ["tissue_point", "tissue_normal"])]
         stitch: Option<Vector3<f64>>,
+    },
+    /// Which knot the thread of a `knotlab demo --snapshots` run would hold if the left drew the tail
+    /// straight back along its jaws from where it holds it, the rest of the tail following: a throw
+    /// checked before any physics. Reads DIR/centreline-T.csv (T as written, three decimals) and the
+    /// left's pose at T from the demonstration in DIR.
+    DrawThrough {
+        /// The run's directory (a demonstration with snapshots).
+        dir: PathBuf,
+        /// The snapshot's time, s.
+        #[arg(long)]
+        at: f64,
+        /// The tail segment the left holds (the `segment` of its `Grasped` event); the tail is
+        /// replaced from this segment's first point on.
+        #[arg(long)]
+        grip: usize,
+        /// How far back along the jaws the tail is drawn, m.
+        #[arg(long, default_value_t = 0.045)]
+        length_m: f64,
+        /// Print JSON instead of text.
+        #[arg(long)]
+        json: bool,
     },
 }
 
@@ -63,7 +87,71 @@ pub fn run(command: KnotCommand, out: &mut Output) -> anyhow::Result<ExitCode> {
                 Err(error) => Err(error),
             }
         }
+        KnotCommand::DrawThrough { dir, at, grip, length_m, json } => {
+            let report = draw_through_report(&dir, at, grip, length_m)?;
+            if json {
+                print_json(out, &report)?;
+            } else {
+                outln!(
+                    out,
+                    "{} at {:.3} s: {} as it lies; {} with the tail drawn {:.3} m back along the left's jaws from point {}",
+                    report.dir,
+                    report.at_s,
+                    report.as_it_lies,
+                    report.drawn_through,
+                    report.length_m,
+                    report.grip
+                );
+            }
+            Ok(ExitCode::SUCCESS)
+        }
     }
+}
+
+#[derive(Serialize)]
+struct DrawThroughReport {
+    dir: String,
+    at_s: f64,
+    grip: usize,
+    length_m: f64,
+    as_it_lies: KnotType,
+    drawn_through: KnotType,
+    drawn_determinant: Option<u64>,
+    drawn_writhe: i32,
+}
+
+fn draw_through_report(
+    dir: &Path,
+    at_s: f64,
+    grip: usize,
+    length_m: f64,
+) -> anyhow::Result<DrawThroughReport> {
+    let file = dir.join(format!("centreline-{at_s:.3}s.csv"));
+    let points = read_points(&file)?;
+    let demo = load_demonstration(dir).with_context(|| format!("{}", dir.display()))?;
+    let left = demo
+        .instrument(ArmName::Left)
+        .with_context(|| format!("{}: no left instrument in the demonstration", dir.display()))?;
+    let sample = left
+        .samples
+        .iter()
+        .min_by(|a, b| (a.time_s - at_s).abs().total_cmp(&(b.time_s - at_s).abs()))
+        .with_context(|| format!("{}: the left has no samples", dir.display()))?;
+    let jaws = sample.world_from_tip() * Vector3::z_axis();
+    let drawn = drawn_through(&points, grip, &sample.position_m, &jaws, length_m, 0.003)
+        .with_context(|| format!("{}: --grip/--length-m", file.display()))?;
+    let as_it_lies = classify(&points).with_context(|| file.display().to_string())?;
+    let through = classify(&drawn).with_context(|| format!("{} drawn through", file.display()))?;
+    Ok(DrawThroughReport {
+        dir: dir.display().to_string(),
+        at_s,
+        grip,
+        length_m,
+        as_it_lies: as_it_lies.knot,
+        drawn_through: through.knot,
+        drawn_determinant: through.determinant,
+        drawn_writhe: through.writhe,
+    })
 }
 
 #[derive(Serialize)]

@@ -51,12 +51,12 @@ pub enum LineProblem {
 #[derive(Debug, Error)]
 pub enum CsvError {
     /// The file could not be read.
-    #[error("{path}: cannot read: {source}")]
+    #[error("{path}: cannot read: {reason}")]
     Io {
         /// The file.
         path: String,
-        /// Why.
-        source: std::io::Error,
+        /// Why (in the message, not a `source`: said once).
+        reason: std::io::Error,
     },
     /// A line is malformed.
     #[error("{path}: line {line}: {problem}")]
@@ -117,7 +117,7 @@ pub fn parse_points(text: &str) -> Result<Vec<Vector3<f64>>, (usize, LineProblem
 /// Reads a centreline file.
 pub fn read_points(path: &Path) -> Result<Vec<Vector3<f64>>, CsvError> {
     let name = path.display().to_string();
-    let text = std::fs::read_to_string(path).map_err(|source| CsvError::Io { path: name.clone(), source })?;
+    let text = std::fs::read_to_string(path).map_err(|reason| CsvError::Io { path: name.clone(), reason })?;
     parse_points(&text).map_err(|(line, problem)| CsvError::Line { path: name, line, problem })
 }
 

@@ -29,6 +29,24 @@ pub enum KnotError {
         /// Index of the point it repeats (`index - 1`).
         previous: usize,
     },
+    /// A grip point that is not on the thread's tail side (`1..count`).
+    #[error("grip point {grip} is not on the thread: it has {count} points and the grip must be 1 to {}", count.saturating_sub(1))]
+    GripOutOfRange {
+        /// The grip point as given.
+        grip: usize,
+        /// How many points the thread has.
+        count: usize,
+    },
+    /// A draw's length or step that is not finite and positive (or a length under one step).
+    #[error(
+        "a draw needs a finite length of at least one step and a positive step: got {length_m} m in steps of {step_m} m"
+    )]
+    BadDraw {
+        /// The length as given, m.
+        length_m: f64,
+        /// The step as given, m.
+        step_m: f64,
+    },
     /// A tissue surface's normal is zero or not finite.
     #[error("the tissue surface's normal {normal:?} is zero or not finite")]
     BadNormal {

@@ -6,7 +6,8 @@
 //! crossings ([`crossings`]), write the signed Gauss code ([`gauss_code`]), simplify it ([`reduce`]),
 //! compute the determinant and writhe ([`invariants`]), name the knot and vote ([`classify`]). Then
 //! where the knot sits ([`tightness`]), how slack the loop's legs lie ([`legs`]) and the trial's
-//! outcome ([`verdict`]). Centrelines come from the simulator or from a CSV file ([`csv`]).
+//! outcome ([`verdict`]). Centrelines come from the simulator or from a CSV file ([`csv`]); [`draw_through`]
+//! asks which knot a draw of the tail back along the jaws would make.
 //!
 //! ```
 //! use knotlab_sim::knot::{KnotType, classify};
@@ -30,6 +31,7 @@ pub mod classify;
 pub mod closure;
 pub mod crossings;
 pub mod csv;
+pub mod draw_through;
 pub mod error;
 pub mod gauss_code;
 pub mod invariants;
@@ -42,6 +44,7 @@ pub mod verdict;
 pub use centreline::validate;
 pub use classify::{Classification, DirectionVote, KnotType, classify};
 pub use csv::{CsvError, LineProblem, read_points};
+pub use draw_through::drawn_through;
 pub use error::KnotError;
 pub use tightness::{DownLimits, KnotPlacement, KnotSpan, TissueSurface};
 pub use verdict::{FailureMode, StitchSite, Verdict, judge};
