@@ -322,6 +322,36 @@ fn the_draw_and_the_run_down_go_as_the_geometry_says() {
 }
 
 #[test]
+fn before_the_draw_the_right_carries_the_long_end_through_the_points_given() {
+    let world = SimWorld::new(scene(), Rig::shipped().expect("the shipped rig")).expect("the scene builds");
+    let route = [[0.005, -0.012, 0.042], [0.025, -0.01, 0.042]];
+    let geometry = TieGeometry { right_before_draw_m: route.to_vec(), ..TieGeometry::default() };
+    let skill = plan_instrument_tie(&world, &geometry, &Variation::none());
+    let shipped = plan_instrument_tie(&world, &TieGeometry::default(), &Variation::none());
+    let offset_m = knotlab_sim::world::JAW_CENTRE_OFFSET_M;
+    // When the right's tip first comes within the jaw-centre offset (and 1 mm) of a route point.
+    let reached_s = |skill: &knotlab_hw::skill::Skill, p: [f64; 3]| {
+        let world_point = world.tissue.world_from_tissue * nalgebra::Point3::from(Vector3::from(p));
+        let right = skill.track(ArmName::Right).expect("the right");
+        right
+            .poses
+            .iter()
+            .find(|k| (Vector3::from(k.world_position_m) - world_point.coords).norm() <= offset_m + 1e-3)
+            .map(|k| k.time_s)
+    };
+    let first_s = reached_s(&skill, route[0]).expect("the right goes to the first point");
+    let second_s = reached_s(&skill, route[1]).expect("the right goes to the second point");
+    assert!(first_s < second_s, "in order: {first_s} s, {second_s} s");
+    assert!(reached_s(&shipped, route[1]).is_none(), "the shipped right does not go there");
+    // Meanwhile the left holds the tail still; it draws back only afterwards.
+    let left = skill.track(ArmName::Left).expect("the left");
+    let at = |t: f64| Vector3::from(left.target_at(t).expect("a target").world_position_m);
+    assert!((at(second_s) - at(first_s)).norm() < 1e-4, "the left moved while the right went round");
+    let end_s = left.poses.last().expect("poses").time_s;
+    assert!((at(end_s) - at(second_s)).norm() > 0.01, "the left draws and pulls afterwards");
+}
+
+#[test]
 fn for_the_second_throw_the_assist_takes_the_tail_near_its_end_and_draws_it_where_told() {
     use knotlab_scenarios::expert::{SecondThrow, plan_second_throw};
     let world = SimWorld::new(scene(), Rig::shipped().expect("the shipped rig")).expect("the scene builds");

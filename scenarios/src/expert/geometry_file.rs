@@ -110,6 +110,9 @@ fn range_problems(g: &TieGeometry) -> Vec<(String, String)> {
         c.range(key, v, 0.0, 1.0);
     }
     c.range("right_follows_draw", g.right_follows_draw, -1.0, 1.0);
+    for (k, p) in g.right_before_draw_m.iter().enumerate() {
+        c.point(&format!("right_before_draw_m[{k}]"), p);
+    }
     if let Some(p) = &g.right_draws_to_m {
         c.point("right_draws_to_m", p);
     }
@@ -202,6 +205,9 @@ fn range_problems(g: &TieGeometry) -> Vec<(String, String)> {
         if let Some(v) = s.right_follows_draw {
             c.range("second_throw.right_follows_draw", v, -1.0, 1.0);
         }
+        for (k, p) in s.right_before_draw_m.iter().enumerate() {
+            c.point(&format!("second_throw.right_before_draw_m[{k}]"), p);
+        }
         if let Some(p) = &s.right_draws_to_m {
             c.point("second_throw.right_draws_to_m", p);
         }
@@ -291,9 +297,11 @@ mod tests {
         assert_eq!(problems[0].0, "second_throw.tail_hold_along", "{problems:?}");
         let Err(GeometryFileError::Invalid { problems, .. }) = parse_tie_geometry(
             "tail_pull_force_n = 0.0\nright_jaws_across_winding = 1.5\ndraw_s = 0.0\ntail_end_offered_m = 0.01\n\
-             run_down_force_n = -1.0\nright_draws_to_m = [0.0, 0.0, 0.3]\n[second_throw]\n\
+             run_down_force_n = -1.0\nright_draws_to_m = [0.0, 0.0, 0.3]\n\
+             right_before_draw_m = [[0.0, 0.0, 0.0], [0.0, 0.3, 0.0]]\n[second_throw]\n\
              left_jaw_direction = [0.0, 0.0, 0.0]\nwinding_lead_rad = 7.0\nloosen_m = 0.5\ntail_take_short_m = 0.5\ndraw_back_m = 0.5\n\
              right_follows_draw = -5.0\nright_draws_to_m = [0.3, 0.0, 0.0]\ndraw_s = 100.0\n\
+             right_before_draw_m = [[0.3, 0.0, 0.0]]\n\
              run_down_force_n = 0.0\nassist_presents = true\nleft_keeps_tail = true\n\
              tail_hold_from_end_m = -0.01\ntail_held_to_m = [0.0, 0.5, 0.0]\n\
              winding_radius_m = 0.0\nwinding_behind_m = 0.5\ntake_tail_jaw_rad = 2.0\ntail_end_offered_m = 0.1\n\
@@ -310,6 +318,8 @@ mod tests {
             "draw_s",
             "run_down_force_n",
             "right_draws_to_m.z",
+            "right_before_draw_m[1].y",
+            "second_throw.right_before_draw_m[0].x",
             "second_throw.left_jaw_direction",
             "second_throw.assist_presents",
             "second_throw.winding_lead_rad",

@@ -117,6 +117,11 @@ pub struct TieGeometry {
     /// If set, the right goes here meanwhile instead (stitch frame): drawing the turn off the left's
     /// jaws by the long end while the left, whose tail is already knotted, hardly moves.
     pub right_draws_to_m: Option<[f64; 3]>,
+    /// Before the draw, the right carries the long end through these points (stitch frame) while the
+    /// left holds the tail still: for a second throw, round to the side the tail came from, so that
+    /// the long end leaves the turn opposite to where the tail is drawn (as a surgeon's hands cross;
+    /// left behind the jaws, the turn closes to a bight of the long end hooked round the tail, no throw).
+    pub right_before_draw_m: Vec<[f64; 3]>,
     /// How long the draw takes, s.
     pub draw_s: f64,
     /// While drawing back, the jaws turn this fraction of the way towards the shaft.
@@ -182,6 +187,7 @@ impl Default for TieGeometry {
             draw_back_m: 0.032,
             right_follows_draw: 0.0,
             right_draws_to_m: None,
+            right_before_draw_m: Vec::new(),
             draw_s: 1.2,
             draw_relax: 0.4,
             pull_force_n: 0.3,
@@ -571,7 +577,14 @@ fn plan_throw(world: &SimWorld, geometry: &TieGeometry, variation: &Variation, s
     // L4 and R3. First the left draws the tail back out of its coils, along its jaws, while the right
     // follows a little so that the coils stay loose and slide off the jaws onto the tail; then both run
     // the knot down onto the wound and pull the ends apart until the set force, and let go.
-    let draw_s = assist.time_s().max(grasped_s + d(0.4));
+    let mut draw_s = assist.time_s().max(grasped_s + d(0.4));
+    if !geometry.right_before_draw_m.is_empty() {
+        right.wait_until(draw_s);
+        for p in &geometry.right_before_draw_m {
+            right.go(Path::To(at(*p)), d(0.8));
+        }
+        draw_s = right.time_s() + pause[4];
+    }
     left.wait_until(draw_s);
     right.wait_until(draw_s);
     let first_s = left.time_s();

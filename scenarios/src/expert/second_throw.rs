@@ -61,6 +61,9 @@ pub struct SecondThrow {
     pub right_follows_draw: Option<f64>,
     /// ... or goes here (stitch frame); `None`: as the first throw.
     pub right_draws_to_m: Option<[f64; 3]>,
+    /// Before the draw, the right carries the long end through these points (stitch frame; see
+    /// [`TieGeometry::right_before_draw_m`]); empty: none.
+    pub right_before_draw_m: Vec<[f64; 3]>,
     /// How long the draw takes, s; `None`: as the first throw.
     pub draw_s: Option<f64>,
     /// The run-down's stopping force, N; `None`: as the first throw.
@@ -105,6 +108,7 @@ impl Default for SecondThrow {
             draw_back_m: None,
             right_follows_draw: None,
             right_draws_to_m: None,
+            right_before_draw_m: Vec::new(),
             draw_s: None,
             run_down_force_n: None,
             winding_towards: [0.0, 0.0, -1.0],
@@ -138,6 +142,7 @@ impl SecondThrow {
             draw_back_m: self.draw_back_m.unwrap_or(first.draw_back_m),
             right_follows_draw: self.right_follows_draw.unwrap_or(first.right_follows_draw),
             right_draws_to_m: self.right_draws_to_m.or(first.right_draws_to_m),
+            right_before_draw_m: self.right_before_draw_m.clone(),
             draw_s: self.draw_s.unwrap_or(first.draw_s),
             run_down_force_n: self.run_down_force_n.or(first.run_down_force_n),
             winding_towards: self.winding_towards,
