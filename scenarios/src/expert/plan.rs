@@ -118,9 +118,10 @@ pub struct TieGeometry {
     /// jaws by the long end while the left, whose tail is already knotted, hardly moves.
     pub right_draws_to_m: Option<[f64; 3]>,
     /// Before the draw, the right carries the long end through these points (stitch frame) while the
-    /// left holds the tail still: for a second throw, round to the side the tail came from, so that
-    /// the long end leaves the turn opposite to where the tail is drawn (as a surgeon's hands cross;
-    /// left behind the jaws, the turn closes to a bight of the long end hooked round the tail, no throw).
+    /// left holds the tail still. Meant for a second throw: round ahead of the jaws, so that the long
+    /// end leaves the turn opposite to where the tail is drawn, as a surgeon's hands cross (session 34:
+    /// taken over the top, the needle leg dragged the turn forward onto the grip, and the draw took it
+    /// off the tips without the tail).
     pub right_before_draw_m: Vec<[f64; 3]>,
     /// How long the draw takes, s.
     pub draw_s: f64,
