@@ -41,11 +41,7 @@ fn drawn_through_the_coils_at_the_first_take_the_thread_makes_the_first_throw() 
     assert_eq!(classify(line).expect("classifies").knot, KnotType::Unknot, "nothing tied yet");
 
     let left = run.demonstration.instrument(ArmName::Left).expect("the left's record");
-    let sample = left
-        .samples
-        .iter()
-        .min_by(|a, b| (a.time_s - at_s).abs().total_cmp(&(b.time_s - at_s).abs()))
-        .expect("samples");
+    let sample = left.sample_nearest(at_s).expect("samples");
     let jaws = sample.world_from_tip() * Vector3::z_axis();
     let through = drawn_through(line, grip, &sample.position_m, &jaws, 0.045, 0.003).expect("draws");
     assert_eq!(classify(&through).expect("classifies").knot, KnotType::Surgeons, "grip {grip}");

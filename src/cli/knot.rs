@@ -133,10 +133,8 @@ fn draw_through_report(
         .instrument(ArmName::Left)
         .with_context(|| format!("{}: no left instrument in the demonstration", dir.display()))?;
     let sample = left
-        .samples
-        .iter()
-        .min_by(|a, b| (a.time_s - at_s).abs().total_cmp(&(b.time_s - at_s).abs()))
-        .with_context(|| format!("{}: the left has no samples", dir.display()))?;
+        .sample_nearest(at_s)
+        .with_context(|| format!("{}: the left has no sample near {at_s} s", dir.display()))?;
     let jaws = sample.world_from_tip() * Vector3::z_axis();
     let drawn = drawn_through(&points, grip, &sample.position_m, &jaws, length_m, 0.003)
         .with_context(|| format!("{}: --grip/--length-m", file.display()))?;

@@ -102,6 +102,15 @@ impl InstrumentRecord {
     pub fn time_span_s(&self) -> Option<(f64, f64)> {
         Some((self.samples.first()?.time_s, self.samples.last()?.time_s))
     }
+
+    /// The sample nearest in time to `time_s` (the earlier of two equally near; `None` without
+    /// samples or for a time that is not a number).
+    pub fn sample_nearest(&self, time_s: f64) -> Option<&Sample> {
+        if time_s.is_nan() {
+            return None;
+        }
+        self.samples.iter().min_by(|a, b| (a.time_s - time_s).abs().total_cmp(&(b.time_s - time_s).abs()))
+    }
 }
 
 /// The stitch frame in the world: where the task was performed. Everything learned from the
@@ -215,5 +224,32 @@ impl Demonstration {
             csv::validate_samples(&record.samples, &record.file_name(), self.metadata.sample_rate_hz)?;
         }
         Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_sample_nearest_a_time_is_found_and_ties_go_to_the_earlier() {
+        let at = |time_s: f64| Sample {
+            time_s,
+            position_m: Vector3::new(time_s, 0.0, 0.0),
+            quaternion_xyzw: [0.0, 0.0, 0.0, 1.0],
+            jaw_rad: 0.0,
+            grasp: GraspState::Open,
+            force_n: Vector3::zeros(),
+        };
+        let record =
+            InstrumentRecord { instrument: ArmName::Left, samples: vec![at(0.0), at(0.01), at(0.02)] };
+        assert_eq!(record.sample_nearest(0.012).map(|s| s.time_s), Some(0.01));
+        assert_eq!(record.sample_nearest(0.015).map(|s| s.time_s), Some(0.01));
+        assert_eq!(record.sample_nearest(-5.0).map(|s| s.time_s), Some(0.0));
+        assert_eq!(record.sample_nearest(9.0).map(|s| s.time_s), Some(0.02));
+        assert!(record.sample_nearest(f64::NAN).is_none());
+        assert!(
+            InstrumentRecord { instrument: ArmName::Left, samples: vec![] }.sample_nearest(0.0).is_none()
+        );
     }
 }
