@@ -131,6 +131,16 @@ fn snapshots_zoom_to_the_half_width_asked_for() {
         let report: serde_json::Value = serde_json::from_str(&stdout).expect("JSON");
         assert_eq!(report["as_it_lies"], "unknot", "{stdout}");
         assert!(report["drawn_through"].is_string(), "{stdout}");
+        // In words: both knots, and the drawn one's invariants (an `unknown` says which knot it is not).
+        let (code, text, err) =
+            knotlab(&["knot", "draw-through", out.to_str().unwrap(), "--at", "0.2", "--grip", "70"]);
+        assert_eq!(code, 0, "{text}{err}");
+        let drawn = report["drawn_through"].as_str().unwrap_or_default();
+        assert!(text.contains(&format!("unknot as it lies; {drawn} (")), "{text}");
+        assert!(
+            text.contains(&format!("writhe {:+})", report["drawn_writhe"].as_i64().unwrap_or(i64::MAX))),
+            "{text}"
+        );
         let (code, stdout, err) =
             knotlab(&["knot", "draw-through", out.to_str().unwrap(), "--at", "0.2", "--grip", "81"]);
         assert_eq!(code, 1, "{stdout}{err}");

@@ -94,11 +94,15 @@ pub fn run(command: KnotCommand, out: &mut Output) -> anyhow::Result<ExitCode> {
             } else {
                 outln!(
                     out,
-                    "{} at {:.3} s: {} as it lies; {} with the tail drawn {:.3} m back along the left's jaws from point {}",
+                    "{} at {:.3} s: {} as it lies; {} ({}, writhe {:+}) with the tail drawn {:.3} m back along the left's jaws from point {}",
                     report.dir,
                     report.at_s,
                     report.as_it_lies,
                     report.drawn_through,
+                    report
+                        .drawn_determinant
+                        .map_or("determinant unknown".to_string(), |d| format!("determinant {d}")),
+                    report.drawn_writhe,
                     report.length_m,
                     report.grip
                 );
