@@ -6,8 +6,9 @@
 //! second throw's take). Real jaws clamp it where their faces meet it; so do ours now
 //! (`Grasp::squeezes`), holding it pressed between the faces.
 
-use knotlab_hw::rig::{ArmName, Rig};
-use knotlab_sim::scene::parse_scene;
+mod common;
+
+use knotlab_hw::rig::ArmName;
 use knotlab_sim::world::{JAW_CENTRE_OFFSET_M, SimWorld};
 use nalgebra::{Point3, Vector3};
 use rapier3d::prelude::*;
@@ -21,16 +22,8 @@ fn close_on_thread(jaw_rad: f64, from_hinge_m: f64, off_m: f64) -> (SimWorld, us
 /// it towards their tips), `from_hinge_m` out along them and `off_m` off their line across the
 /// opening; closes them; returns the world and the thread's middle segment.
 fn close_on_tilted(jaw_rad: f64, from_hinge_m: f64, off_m: f64, tilt_rad: f64) -> (SimWorld, usize) {
-    let scene =
-        parse_scene(include_str!("../../scenarios/default.toml"), "default.toml").expect("shipped scene");
-    let mut w = SimWorld::new(scene, Rig::shipped().expect("shipped rig")).expect("the scene builds");
-    w.free_thread();
-    let mut open = w.arm(ArmName::Left).command;
-    open.tool.jaw_rad = jaw_rad;
-    w.command(ArmName::Left, open);
-    for _ in 0..200 {
-        w.step().expect("healthy step");
-    }
+    let mut w = common::default_world();
+    let open = common::open_left_jaws(&mut w, jaw_rad);
     let tip = w.world_from_tip(ArmName::Left);
     // The hinge is twice the jaw-centre offset behind the tip, the jaws along the tip's z, opening
     // across its x, turning about its y.
@@ -41,15 +34,7 @@ fn close_on_tilted(jaw_rad: f64, from_hinge_m: f64, off_m: f64, tilt_rad: f64) -
     let start =
         at.coords - along * (w.thread.segment_length_m * (n / 2) as f64 + 0.5 * w.thread.segment_length_m);
     w.thread.lay_straight(&mut w.physics, &start, &along);
-    let gravity = w.physics.gravity;
-    w.physics.gravity = Vector::ZERO;
-    let mut closed = open;
-    closed.tool.jaw_rad = 0.0;
-    w.command(ArmName::Left, closed);
-    for _ in 0..300 {
-        w.step().expect("healthy step");
-    }
-    w.physics.gravity = gravity;
+    common::close_left_weightless(&mut w, open, 300);
     (w, n / 2)
 }
 

@@ -1,5 +1,7 @@
 //! (d) A grasp holds below its grip force and slips above it; opening the jaws releases.
 
+mod common;
+
 use knotlab_hw::rig::{ArmName, Rig};
 use knotlab_sim::grasp::GraspEvent;
 use knotlab_sim::scene::parse_scene;
@@ -7,37 +9,16 @@ use knotlab_sim::world::SimWorld;
 use nalgebra::Vector3;
 use rapier3d::prelude::*;
 
-fn world() -> SimWorld {
-    let scene =
-        parse_scene(include_str!("../../scenarios/default.toml"), "default.toml").expect("shipped scene");
-    SimWorld::new(scene, Rig::shipped().expect("shipped rig")).expect("the shipped scene builds")
-}
-
 /// Opens the left jaws, lays the thread through them (across the jaws, its middle segment at the jaw
 /// centre), closes them, and returns the held segment.
 fn grasp_middle(w: &mut SimWorld) -> usize {
-    w.free_thread();
-    let mut open = w.arm(ArmName::Left).command;
-    open.tool.jaw_rad = 0.6;
-    w.command(ArmName::Left, open);
-    for _ in 0..200 {
-        w.step().expect("healthy step");
-    }
+    let open = common::open_left_jaws(w, 0.6);
     let tip = w.world_from_tip(ArmName::Left);
     let centre = tip * nalgebra::Point3::new(0.0, 0.0, -0.005);
     let across = tip.rotation * Vector3::x();
     let half = 0.5 * w.thread.segment_length_m * w.thread.segments.len() as f64;
     w.thread.lay_straight(&mut w.physics, &(centre.coords - across * half), &across);
-    // The thread floats while the jaws close (they take about 75 ms; it would fall 3 cm meanwhile).
-    let gravity = w.physics.gravity;
-    w.physics.gravity = Vector::ZERO;
-    let mut closed = open;
-    closed.tool.jaw_rad = 0.0;
-    w.command(ArmName::Left, closed);
-    for _ in 0..200 {
-        w.step().expect("healthy step");
-    }
-    w.physics.gravity = gravity;
+    common::close_left_weightless(w, open, 200);
     w.arm(ArmName::Left).grasp.expect("the closed jaws hold a segment").segment
 }
 
@@ -74,7 +55,7 @@ fn an_unreachable_trocar_is_named() {
 
 #[test]
 fn a_grasp_holds_below_its_grip_force() {
-    let mut w = world();
+    let mut w = common::default_world();
     let segment = grasp_middle(&mut w);
     assert!((w.thread.segments.len() / 2).abs_diff(segment) <= 1, "held segment {segment}");
     let held_at = w.physics.bodies[w.thread.segments[segment]].translation();
@@ -90,7 +71,7 @@ fn a_grasp_holds_below_its_grip_force() {
 
 #[test]
 fn a_grasp_slips_above_its_grip_force() {
-    let mut w = world();
+    let mut w = common::default_world();
     grasp_middle(&mut w);
     let grip = w.grip_force_n;
     assert!(pull(&mut w, 2.0 * grip), "held above the grip force: {:?}", w.events);
@@ -99,7 +80,7 @@ fn a_grasp_slips_above_its_grip_force() {
 
 #[test]
 fn opening_the_jaws_releases() {
-    let mut w = world();
+    let mut w = common::default_world();
     grasp_middle(&mut w);
     let mut open = w.arm(ArmName::Left).command;
     open.tool.jaw_rad = 0.6;

@@ -1,0 +1,43 @@
+//! What the sim tests share: the default scene's world, and the left's jaws opened, then closed on a
+//! thread laid across them with gravity off.
+#![allow(dead_code)]
+
+use knotlab_hw::kinematics::ArmJoints;
+use knotlab_hw::rig::{ArmName, Rig};
+use knotlab_sim::scene::parse_scene;
+use knotlab_sim::world::SimWorld;
+use rapier3d::prelude::*;
+
+/// The world of `scenarios/default.toml` on the shipped rig.
+pub fn default_world() -> SimWorld {
+    let scene =
+        parse_scene(include_str!("../../../scenarios/default.toml"), "default.toml").expect("shipped scene");
+    SimWorld::new(scene, Rig::shipped().expect("shipped rig")).expect("the shipped scene builds")
+}
+
+/// Frees the thread, opens the left's jaws `jaw_rad` and lets them get there (0.2 s); returns the
+/// command that holds them open.
+pub fn open_left_jaws(w: &mut SimWorld, jaw_rad: f64) -> ArmJoints {
+    w.free_thread();
+    let mut open = w.arm(ArmName::Left).command;
+    open.tool.jaw_rad = jaw_rad;
+    w.command(ArmName::Left, open);
+    for _ in 0..200 {
+        w.step().expect("healthy step");
+    }
+    open
+}
+
+/// Closes the left's jaws from `open` over `steps` steps with gravity off, so the thread laid across
+/// them floats while they close (about 75 ms; it would fall 3 cm meanwhile), then turns gravity back on.
+pub fn close_left_weightless(w: &mut SimWorld, open: ArmJoints, steps: usize) {
+    let gravity = w.physics.gravity;
+    w.physics.gravity = Vector::ZERO;
+    let mut closed = open;
+    closed.tool.jaw_rad = 0.0;
+    w.command(ArmName::Left, closed);
+    for _ in 0..steps {
+        w.step().expect("healthy step");
+    }
+    w.physics.gravity = gravity;
+}
