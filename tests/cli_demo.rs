@@ -141,6 +141,48 @@ fn snapshots_zoom_to_the_half_width_asked_for() {
             text.contains(&format!("writhe {:+})", report["drawn_writhe"].as_i64().unwrap_or(i64::MAX))),
             "{text}"
         );
+        // Along the assist's jaws instead (a second throw wound on them): its own pose, named.
+        let (code, stdout, err) = knotlab(&[
+            "knot",
+            "draw-through",
+            out.to_str().unwrap(),
+            "--at",
+            "0.2",
+            "--grip",
+            "70",
+            "--arm",
+            "assist",
+            "--json",
+        ]);
+        assert_eq!(code, 0, "{stdout}{err}");
+        let by_assist: serde_json::Value = serde_json::from_str(&stdout).expect("JSON");
+        assert_eq!((&report["arm"], &by_assist["arm"]), (&"left".into(), &"assist".into()), "{stdout}");
+        let (code, text, err) = knotlab(&[
+            "knot",
+            "draw-through",
+            out.to_str().unwrap(),
+            "--at",
+            "0.2",
+            "--grip",
+            "70",
+            "--arm",
+            "assist",
+        ]);
+        assert_eq!(code, 0, "{text}{err}");
+        assert!(text.contains("back along the assist's jaws from point 70"), "{text}");
+        let (code, stdout, err) = knotlab(&[
+            "knot",
+            "draw-through",
+            out.to_str().unwrap(),
+            "--at",
+            "0.2",
+            "--grip",
+            "70",
+            "--arm",
+            "camera",
+        ]);
+        assert_eq!(code, 2, "{stdout}{err}");
+        assert!(err.contains("--arm"), "{err}");
         let (code, stdout, err) =
             knotlab(&["knot", "draw-through", out.to_str().unwrap(), "--at", "0.2", "--grip", "81"]);
         assert_eq!(code, 1, "{stdout}{err}");

@@ -19,7 +19,12 @@ fn every_expert_file_loads() {
     }
     names.sort();
     // The shipped plan's listing and the second-throw recipes are all there.
-    for expected in ["instrument-tie.toml", "two-throws-tail-end.toml", "two-throws-drawn-ahead.toml"] {
+    for expected in [
+        "instrument-tie.toml",
+        "two-throws-tail-end.toml",
+        "two-throws-drawn-ahead.toml",
+        "two-throws-on-the-assist.toml",
+    ] {
         assert!(names.iter().any(|n| n == expected), "{expected} missing from {names:?}");
     }
     // The drawn-ahead recipe is the tail-end one with the right drawing the turn off ahead.

@@ -439,3 +439,115 @@ fn the_assist_offers_the_tail_end_beside_the_left_jaws_along_their_hinge() {
     let hinge = rotation * Vector3::y();
     assert!(hinge.dot(&beside.normalize()) > 0.99, "{hinge:?} {beside:?}");
 }
+
+/// The point `from_end_m` of thread back from the tail's free end (the centreline's last point).
+fn from_tail_end(line: &[Vector3<f64>], mut from_end_m: f64) -> Option<Vector3<f64>> {
+    for at in (1..line.len()).rev() {
+        let step = line[at] - line[at - 1];
+        if from_end_m <= step.norm() {
+            return Some(line[at] - step.normalize() * from_end_m);
+        }
+        from_end_m -= step.norm();
+    }
+    None
+}
+
+/// When `track`'s jaw centre first comes within 1 mm of `point_m` (its tip within the jaw-centre
+/// offset and 1 mm).
+fn first_reaches(track: &knotlab_hw::skill::Track, point_m: &Vector3<f64>) -> Option<f64> {
+    let offset_m = knotlab_sim::world::JAW_CENTRE_OFFSET_M;
+    track
+        .poses
+        .iter()
+        .find(|k| (Vector3::from(k.world_position_m) - point_m).norm() <= offset_m + 1e-3)
+        .map(|k| k.time_s)
+}
+
+#[test]
+fn the_winding_advances_along_the_jaws_by_its_pitch() {
+    let world = SimWorld::new(scene(), Rig::shipped().expect("the shipped rig")).expect("the scene builds");
+    let flat = TieGeometry::default();
+    let pitch_m = 0.003;
+    let helix = TieGeometry { winding_pitch_m: pitch_m, ..flat.clone() };
+    let (flat_plan, helix_plan) = (
+        plan_instrument_tie(&world, &flat, &Variation::none()),
+        plan_instrument_tie(&world, &helix, &Variation::none()),
+    );
+    let right = |skill: &knotlab_hw::skill::Skill| skill.track(ArmName::Right).expect("the right").clone();
+    let (flat_right, helix_right) = (right(&flat_plan), right(&helix_plan));
+    let at = |track: &knotlab_hw::skill::Track, t: f64| {
+        Vector3::from(track.target_at(t).expect("a target").world_position_m)
+    };
+    // The two plans part only in the winding: the right ends it `pitch * turns` further along the
+    // left's jaws (they point at the right's trocar), and goes on from there.
+    let winding_point =
+        world.tissue.world_from_tissue * nalgebra::Point3::from(Vector3::from(flat.winding_point_m));
+    let jaws = (trocar_of(&world.config, ArmName::Right) - winding_point.coords).normalize();
+    let apart = |t: f64| at(&helix_right, t) - at(&flat_right, t);
+    let widest = flat_right
+        .poses
+        .iter()
+        .map(|k| apart(k.time_s))
+        .max_by(|a, b| a.norm().total_cmp(&b.norm()))
+        .expect("poses");
+    let advance_m = pitch_m * flat.winding_turns;
+    assert!(
+        (widest.norm() - advance_m).abs() < 5e-4,
+        "{} m apart at most, {advance_m} m expected",
+        widest.norm()
+    );
+    assert!(widest.normalize().dot(&jaws) > 0.99, "apart along {widest:?}, not the jaws {jaws:?}");
+    assert!(apart(0.0).norm() < 1e-9, "the same start");
+}
+
+#[test]
+fn a_second_throw_on_the_assists_jaws_begins_with_the_tail_handed_over_and_taken_back() {
+    use knotlab_scenarios::expert::{SecondThrow, plan_second_throw, plan_tail_hand_over};
+    let world = SimWorld::new(scene(), Rig::shipped().expect("the shipped rig")).expect("the scene builds");
+    let winding_point = [-0.012, 0.01, 0.028];
+    let second = SecondThrow {
+        tail_hold_from_end_m: Some(0.004),
+        left_retakes_from_end_m: Some(0.017),
+        assist_presents: true,
+        winding_point_m: winding_point,
+        left_jaw_direction: Some([-1.0, 0.0, 0.0]),
+        ..SecondThrow::default()
+    };
+    let with = |second: SecondThrow| TieGeometry { second_throw: Some(second), ..TieGeometry::default() };
+    let geometry = with(second.clone());
+    let none = Variation::none();
+    // Only a throw wound on the assist's jaws has a hand-over of its own.
+    assert!(
+        plan_tail_hand_over(&world, &with(SecondThrow { left_retakes_from_end_m: None, ..second }), &none)
+            .is_none()
+    );
+    let line = world.thread.centreline(&world.physics);
+    // The hand-over: the assist closes on the tail 4 mm from its end, then the left lets go.
+    let hand_over = plan_tail_hand_over(&world, &geometry, &none).expect("a hand-over");
+    let assist = hand_over.track(ArmName::Assist).expect("the assist");
+    let left = hand_over.track(ArmName::Left).expect("the left");
+    let took_s =
+        first_reaches(assist, &from_tail_end(&line, 0.004).expect("a tail")).expect("goes to the tail's end");
+    let closed_s = assist.jaw.iter().find(|k| k.jaw_rad == 0.0).map(|k| k.time_s).expect("closes");
+    let opened_s = left.jaw.iter().find(|k| k.jaw_rad > 0.0).map(|k| k.time_s).expect("the left opens");
+    assert!(took_s < closed_s && closed_s < opened_s, "{took_s} s, {closed_s} s, {opened_s} s");
+    // Then (planned on the world as the hand-over leaves it; here, as it is) the left closes on the
+    // tail 17 mm from its end, the assist lets go, and the assist's jaws, not the left's, go to the
+    // winding point.
+    let skill = plan_second_throw(&world, &geometry, &none).expect("a second throw");
+    let assist = skill.track(ArmName::Assist).expect("the assist");
+    let left = skill.track(ArmName::Left).expect("the left");
+    let retake_s =
+        first_reaches(left, &from_tail_end(&line, 0.017).expect("a tail")).expect("the left retakes");
+    let left_closed_s =
+        left.jaw.iter().find(|k| k.jaw_rad == 0.0 && k.time_s >= retake_s).map(|k| k.time_s).expect("closes");
+    let assist_opened_s = assist.jaw.iter().find(|k| k.jaw_rad > 0.0).map(|k| k.time_s).expect("opens");
+    assert!(
+        retake_s < left_closed_s && left_closed_s < assist_opened_s,
+        "{retake_s} s, {left_closed_s} s, {assist_opened_s} s"
+    );
+    let winding_world = world.tissue.world_from_tissue * nalgebra::Point3::from(Vector3::from(winding_point));
+    let wound_s = first_reaches(assist, &winding_world.coords).expect("the assist goes to the winding point");
+    assert!(wound_s > assist_opened_s, "{wound_s} s after {assist_opened_s} s");
+    assert!(first_reaches(left, &winding_world.coords).is_none(), "the left stays away");
+}

@@ -5,7 +5,7 @@ use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 use anyhow::Context;
-use clap::Subcommand;
+use clap::{Subcommand, ValueEnum};
 use nalgebra::Vector3;
 use serde::Serialize;
 
@@ -39,20 +39,23 @@ pub enum KnotCommand {
         #[arg(long, allow_hyphen_values = true, value_parser = parse_vector3, requires_all = ["tissue_point", "tissue_normal"])]
         stitch: Option<Vector3<f64>>,
     },
-    /// Which knot the thread of a `knotlab demo --snapshots` run would hold if the left drew the tail
-    /// straight back along its jaws from where it holds it, the rest of the tail following: a throw
-    /// checked before any physics. Reads DIR/centreline-T.csv (T as written, three decimals) and the
-    /// left's pose at T from the demonstration in DIR.
+    /// Which knot the thread of a `knotlab demo --snapshots` run would hold if the left (or the arm
+    /// given) drew the tail straight back along its jaws from where it holds it, the rest of the tail
+    /// following: a throw checked before any physics. Reads DIR/centreline-T.csv (T as written,
+    /// three decimals) and the arm's pose at T from the demonstration in DIR.
     DrawThrough {
         /// The run's directory (a demonstration with snapshots).
         dir: PathBuf,
         /// The snapshot's time, s.
         #[arg(long)]
         at: f64,
-        /// The tail segment the left holds (the `segment` of its `Grasped` event); the tail is
+        /// The tail segment the arm holds (the `segment` of its `Grasped` event); the tail is
         /// replaced from this segment's first point on.
         #[arg(long)]
         grip: usize,
+        /// The arm whose jaws draw the tail (the assist, for a second throw wound on its jaws).
+        #[arg(long, value_enum, default_value_t = DrawingArm::Left)]
+        arm: DrawingArm,
         /// How far back along the jaws the tail is drawn, m.
         #[arg(long, default_value_t = 0.045)]
         length_m: f64,
@@ -87,14 +90,14 @@ pub fn run(command: KnotCommand, out: &mut Output) -> anyhow::Result<ExitCode> {
                 Err(error) => Err(error),
             }
         }
-        KnotCommand::DrawThrough { dir, at, grip, length_m, json } => {
-            let report = draw_through_report(&dir, at, grip, length_m)?;
+        KnotCommand::DrawThrough { dir, at, grip, arm, length_m, json } => {
+            let report = draw_through_report(&dir, at, grip, arm, length_m)?;
             if json {
                 print_json(out, &report)?;
             } else {
                 outln!(
                     out,
-                    "{} at {:.3} s: {} as it lies; {} ({}, writhe {:+}) with the tail drawn {:.3} m back along the left's jaws from point {}",
+                    "{} at {:.3} s: {} as it lies; {} ({}, writhe {:+}) with the tail drawn {:.3} m back along the {}'s jaws from point {}",
                     report.dir,
                     report.at_s,
                     report.as_it_lies,
@@ -104,6 +107,7 @@ pub fn run(command: KnotCommand, out: &mut Output) -> anyhow::Result<ExitCode> {
                         .map_or("determinant unknown".to_string(), |d| format!("determinant {d}")),
                     report.drawn_writhe,
                     report.length_m,
+                    report.arm,
                     report.grip
                 );
             }
@@ -117,6 +121,7 @@ struct DrawThroughReport {
     dir: String,
     at_s: f64,
     grip: usize,
+    arm: String,
     length_m: f64,
     as_it_lies: KnotType,
     drawn_through: KnotType,
@@ -124,21 +129,39 @@ struct DrawThroughReport {
     drawn_writhe: i32,
 }
 
+/// The arms that take the tail and draw it through a turn on their jaws.
+#[derive(Clone, Copy, Debug, ValueEnum)]
+pub enum DrawingArm {
+    Left,
+    Assist,
+}
+
+impl DrawingArm {
+    fn arm(self) -> ArmName {
+        match self {
+            DrawingArm::Left => ArmName::Left,
+            DrawingArm::Assist => ArmName::Assist,
+        }
+    }
+}
+
 fn draw_through_report(
     dir: &Path,
     at_s: f64,
     grip: usize,
+    arm: DrawingArm,
     length_m: f64,
 ) -> anyhow::Result<DrawThroughReport> {
     let file = dir.join(format!("centreline-{at_s:.3}s.csv"));
     let points = read_points(&file)?;
     let demo = load_demonstration(dir).with_context(|| format!("{}", dir.display()))?;
-    let left = demo
-        .instrument(ArmName::Left)
-        .with_context(|| format!("{}: no left instrument in the demonstration", dir.display()))?;
-    let sample = left
+    let name = arm.arm();
+    let instrument = demo
+        .instrument(name)
+        .with_context(|| format!("{}: no {name} instrument in the demonstration", dir.display()))?;
+    let sample = instrument
         .sample_nearest(at_s)
-        .with_context(|| format!("{}: the left has no sample near {at_s} s", dir.display()))?;
+        .with_context(|| format!("{}: the {name} has no sample near {at_s} s", dir.display()))?;
     let jaws = sample.world_from_tip() * Vector3::z_axis();
     let drawn = drawn_through(&points, grip, &sample.position_m, &jaws, length_m, 0.003)
         .with_context(|| format!("{}: --grip/--length-m", file.display()))?;
@@ -148,6 +171,7 @@ fn draw_through_report(
         dir: dir.display().to_string(),
         at_s,
         grip,
+        arm: name.to_string(),
         length_m,
         as_it_lies: as_it_lies.knot,
         drawn_through: through.knot,

@@ -79,6 +79,7 @@ fn range_problems(g: &TieGeometry) -> Vec<(String, String)> {
     }
     for (key, v) in [
         ("winding_behind_m", g.winding_behind_m),
+        ("winding_pitch_m", g.winding_pitch_m),
         ("tail_ahead_m", g.tail_ahead_m),
         ("loosen_m", g.loosen_m),
         ("coils_back_m", g.coils_back_m),
@@ -152,6 +153,22 @@ fn range_problems(g: &TieGeometry) -> Vec<(String, String)> {
                 "cannot be set with left_keeps_tail: the assist takes no tail".to_owned(),
             ));
         }
+        if let Some(v) = s.left_retakes_from_end_m {
+            c.range("second_throw.left_retakes_from_end_m", v, 0.0, 0.1);
+            if s.tail_hold_from_end_m.is_none() {
+                c.0.push((
+                    "second_throw.left_retakes_from_end_m".to_owned(),
+                    "needs tail_hold_from_end_m: the left retakes the tail the assist holds by its end"
+                        .to_owned(),
+                ));
+            } else if s.tail_hold_from_end_m.is_some_and(|held| v <= held) {
+                c.0.push((
+                    "second_throw.left_retakes_from_end_m".to_owned(),
+                    "must be more than tail_hold_from_end_m: the left takes the tail between the assist's jaws and the knot"
+                        .to_owned(),
+                ));
+            }
+        }
         if let Some(p) = &s.tail_held_to_m {
             c.point("second_throw.tail_held_to_m", p);
             if s.tail_hold_from_end_m.is_none() {
@@ -192,6 +209,9 @@ fn range_problems(g: &TieGeometry) -> Vec<(String, String)> {
         }
         if let Some(v) = s.winding_behind_m {
             c.range("second_throw.winding_behind_m", v, -0.1, 0.1);
+        }
+        if let Some(v) = s.winding_pitch_m {
+            c.range("second_throw.winding_pitch_m", v, -0.1, 0.1);
         }
         if let Some(v) = s.tail_take_short_m {
             c.range("second_throw.tail_take_short_m", v, -0.1, 0.1);
@@ -296,7 +316,7 @@ mod tests {
         };
         assert_eq!(problems[0].0, "second_throw.tail_hold_along", "{problems:?}");
         let Err(GeometryFileError::Invalid { problems, .. }) = parse_tie_geometry(
-            "tail_pull_force_n = 0.0\nright_jaws_across_winding = 1.5\ndraw_s = 0.0\ntail_end_offered_m = 0.01\n\
+            "tail_pull_force_n = 0.0\nright_jaws_across_winding = 1.5\nwinding_pitch_m = 0.5\ndraw_s = 0.0\ntail_end_offered_m = 0.01\n\
              run_down_force_n = -1.0\nright_draws_to_m = [0.0, 0.0, 0.3]\n\
              right_before_draw_m = [[0.0, 0.0, 0.0], [0.0, 0.3, 0.0]]\n[second_throw]\n\
              left_jaw_direction = [0.0, 0.0, 0.0]\nwinding_lead_rad = 7.0\nloosen_m = 0.5\ntail_take_short_m = 0.5\ndraw_back_m = 0.5\n\
@@ -304,7 +324,7 @@ mod tests {
              right_before_draw_m = [[0.3, 0.0, 0.0]]\n\
              run_down_force_n = 0.0\nassist_presents = true\nleft_keeps_tail = true\n\
              tail_hold_from_end_m = -0.01\ntail_held_to_m = [0.0, 0.5, 0.0]\n\
-             winding_radius_m = 0.0\nwinding_behind_m = 0.5\ntake_tail_jaw_rad = 2.0\ntail_end_offered_m = 0.1\n\
+             winding_radius_m = 0.0\nwinding_behind_m = 0.5\nwinding_pitch_m = 0.2\ntake_tail_jaw_rad = 2.0\ntail_end_offered_m = 0.1\n\
              [second_throw.left_fetches]\nalong_tail = 2.0\n\
              jaw_direction = [0.0, 0.0, -1.0]\napproach_m = 0.01\nstop_short_m = 0.0\n",
             "bad.toml",
@@ -315,6 +335,7 @@ mod tests {
         for key in [
             "tail_pull_force_n",
             "right_jaws_across_winding",
+            "winding_pitch_m",
             "draw_s",
             "run_down_force_n",
             "right_draws_to_m.z",
@@ -335,12 +356,35 @@ mod tests {
             "second_throw.tail_held_to_m.y",
             "second_throw.winding_radius_m",
             "second_throw.winding_behind_m",
+            "second_throw.winding_pitch_m",
             "second_throw.take_tail_jaw_rad",
             "second_throw.tail_end_offered_m",
             "tail_end_offered_m",
         ] {
             assert!(keys.contains(&key), "{key} not named: {problems:?}");
         }
+        // The left retakes the tail only where the assist holds it by its end, and nearer the knot.
+        let retake_problems = |text: &str| match parse_tie_geometry(text, "bad.toml") {
+            Err(GeometryFileError::Invalid { problems, .. }) => problems,
+            other => panic!("{text}: {other:?}"),
+        };
+        let alone = retake_problems("[second_throw]\nleft_retakes_from_end_m = 0.017\n");
+        assert_eq!(alone[0].0, "second_throw.left_retakes_from_end_m", "{alone:?}");
+        assert!(alone[0].1.contains("needs tail_hold_from_end_m"), "{alone:?}");
+        let inside = retake_problems(
+            "[second_throw]\ntail_hold_from_end_m = 0.004\nleft_retakes_from_end_m = 0.004\n",
+        );
+        assert!(inside[0].1.contains("more than tail_hold_from_end_m"), "{inside:?}");
+        let far =
+            retake_problems("[second_throw]\ntail_hold_from_end_m = 0.004\nleft_retakes_from_end_m = 0.5\n");
+        assert_eq!(far[0].0, "second_throw.left_retakes_from_end_m", "{far:?}");
+        assert!(
+            parse_tie_geometry(
+                "[second_throw]\ntail_hold_from_end_m = 0.004\nleft_retakes_from_end_m = 0.017\n",
+                "ok.toml"
+            )
+            .is_ok()
+        );
         let missing = load_tie_geometry(Path::new("/nonexistent/expert.toml")).unwrap_err().to_string();
         assert!(missing.starts_with("/nonexistent/expert.toml: cannot read"), "{missing}");
     }

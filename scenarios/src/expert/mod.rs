@@ -11,6 +11,6 @@ pub mod record;
 pub mod second_throw;
 
 pub use geometry_file::{GeometryFileError, load_tie_geometry, parse_tie_geometry};
-pub use plan::{TieGeometry, Variation, plan_instrument_tie, plan_second_throw};
+pub use plan::{TieGeometry, Variation, plan_instrument_tie, plan_second_throw, plan_tail_hand_over};
 pub use record::{DemoRun, ExpertError, RecordOptions, demonstrate, demonstrate_with, record_demonstration};
 pub use second_throw::SecondThrow;

@@ -45,6 +45,10 @@ pub struct TieGeometry {
     pub right_jaws_across_winding: f64,
     /// The winding circles this far behind the left's jaw centre (towards its wrist), m.
     pub winding_behind_m: f64,
+    /// The winding advances this far along the left's jaws (towards their tips; negative: towards
+    /// the wrist) per turn, m: a helix, not a circle. Which end of a turn the long end's knot leg
+    /// joins, the hinge's or the tips', decides which hand of throw the drawn tail makes.
+    pub winding_pitch_m: f64,
     /// How long the winding takes, s (slow enough for the arm to follow the circle).
     pub winding_s: f64,
     /// Turns of the winding (a surgeon's knot: 2).
@@ -162,6 +166,7 @@ impl Default for TieGeometry {
             }),
             right_jaws_across_winding: 0.0,
             winding_behind_m: 0.003,
+            winding_pitch_m: 0.0,
             winding_s: 8.0,
             winding_turns: 2.0,
             winding_jaw_rad: 0.0,
@@ -269,6 +274,29 @@ impl Variation {
 const TAKE_APPROACH_M: f64 = 0.012;
 
 /// The jaw centre of an arm as its links stand (world frame, m).
+/// How far the left rises from where it let go of the tail before it goes to take it back, m.
+const RETAKE_CLEARANCE_M: f64 = 0.025;
+
+/// `track` takes the tail at `tail_m`, its jaws along its shaft and its hinge along the tail
+/// (`tail_dir`), so the tail runs between them.
+fn take_tail(
+    track: &mut TrackBuilder,
+    world: &SimWorld,
+    tail_m: Vector3<f64>,
+    tail_dir: Vector3<f64>,
+    d: &impl Fn(f64) -> f64,
+    pause: &[f64],
+) {
+    let jaws = (tail_m - trocar_of(&world.config, track.arm())).normalize();
+    let hinge = Unit::new_normalize(tail_dir - jaws * tail_dir.dot(&jaws));
+    let frame = nalgebra::Rotation3::from_basis_unchecked(&[hinge.cross(&jaws), hinge.into_inner(), jaws]);
+    track.go_framing(Path::To(tail_m - jaws * TAKE_APPROACH_M), d(1.5), frame);
+    track.go(Path::To(tail_m), d(0.8));
+    track.wait_until(track.time_s() + pause[3]);
+    track.jaw(0.0, d(0.3));
+    track.wait_until(track.time_s() + d(0.3) + 0.1);
+}
+
 fn jaw_centre_m(world: &SimWorld, arm: ArmName) -> Vector3<f64> {
     (world.world_from_tip(arm) * Point3::new(0.0, 0.0, -JAW_CENTRE_OFFSET_M)).coords
 }
@@ -279,9 +307,26 @@ enum Stage {
     /// The first, from the task's start condition; `keep_hold`: the pulls hold at the end instead of
     /// letting go (a second throw follows).
     First { keep_hold: bool },
-    /// The second, after the first: the left holds the tail and the right the long end, pulled apart;
-    /// the assist first takes the tail, unless the left keeps it (`tail_hold` `None`).
-    Second { tail_hold: Option<TailHold> },
+    /// Before a second throw wound on the assist's jaws: the assist takes the tail this far from its
+    /// free end (then draws it to `to_m`, stitch frame, if set), and the left lets go and rises clear
+    /// ([`plan_tail_hand_over`]).
+    HandOver { from_end_m: f64, to_m: Option<[f64; 3]> },
+    /// The second, after the first: the left holds the tail and the right the long end, pulled apart
+    /// (or, after a [`Stage::HandOver`], the assist holds the tail).
+    Second { start: SecondStart },
+}
+
+/// How the second throw begins.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum SecondStart {
+    /// The left keeps the tail it holds; the long end is wound round its closed jaws.
+    LeftKeepsTail,
+    /// The assist takes the tail from the left, which lets go.
+    AssistTakes(TailHold),
+    /// The assist holds the tail by its end: the left takes it back this far (along the thread) from
+    /// its end, the assist lets go, and the two swap parts for the rest of the throw
+    /// ([`SecondThrow::left_retakes_from_end_m`]).
+    LeftRetakes { from_end_m: f64 },
 }
 
 /// Where the assist takes the tail from the left before the second throw.
@@ -305,12 +350,27 @@ pub fn plan_instrument_tie(world: &SimWorld, geometry: &TieGeometry, variation: 
 pub fn plan_second_throw(world: &SimWorld, geometry: &TieGeometry, variation: &Variation) -> Option<Skill> {
     let second = geometry.second_throw.as_ref()?;
     let throw = second.applied_to(geometry);
-    let tail_hold = match (second.left_keeps_tail, second.tail_hold_from_end_m) {
-        (true, _) => None,
-        (false, Some(from_end_m)) => Some(TailHold::FromEnd { from_end_m, to_m: second.tail_held_to_m }),
-        (false, None) => Some(TailHold::Along(second.tail_hold_along)),
+    let start = match (second.left_keeps_tail, second.tail_hold_from_end_m, second.left_retakes_from_end_m) {
+        (true, _, _) => SecondStart::LeftKeepsTail,
+        (false, _, Some(from_end_m)) => SecondStart::LeftRetakes { from_end_m },
+        (false, Some(from_end_m), None) => {
+            SecondStart::AssistTakes(TailHold::FromEnd { from_end_m, to_m: second.tail_held_to_m })
+        }
+        (false, None, None) => SecondStart::AssistTakes(TailHold::Along(second.tail_hold_along)),
     };
-    Some(plan_throw(world, &throw, variation, Stage::Second { tail_hold }))
+    Some(plan_throw(world, &throw, variation, Stage::Second { start }))
+}
+
+/// Before a second throw wound on the assist's jaws (`left_retakes_from_end_m` set; `None`
+/// otherwise): the assist takes the tail by its end from the left, which lets go and rises clear.
+/// [`plan_second_throw`] then goes on from the world this leaves, as a surgeon looks where the tail
+/// lies before taking it back.
+pub fn plan_tail_hand_over(world: &SimWorld, geometry: &TieGeometry, variation: &Variation) -> Option<Skill> {
+    let second = geometry.second_throw.as_ref()?;
+    second.left_retakes_from_end_m?;
+    let from_end_m = second.tail_hold_from_end_m?;
+    let stage = Stage::HandOver { from_end_m, to_m: second.tail_held_to_m };
+    Some(plan_throw(world, &second.applied_to(geometry), variation, stage))
 }
 
 fn plan_throw(world: &SimWorld, geometry: &TieGeometry, variation: &Variation, stage: Stage) -> Skill {
@@ -333,44 +393,97 @@ fn plan_throw(world: &SimWorld, geometry: &TieGeometry, variation: &Variation, s
         b
     };
     let second = matches!(stage, Stage::Second { .. });
-    let left_keeps_tail = matches!(stage, Stage::Second { tail_hold: None });
-    let mut left = builder(ArmName::Left, if second { 0.0 } else { open }, &variation.tremor[0]);
+    let left_keeps_tail = matches!(stage, Stage::Second { start: SecondStart::LeftKeepsTail });
+    // Who holds the tail as the plan starts: the left after the first throw, the assist after a
+    // hand-over.
+    let assist_holds = matches!(stage, Stage::Second { start: SecondStart::LeftRetakes { .. } });
+    let left_holds = matches!(stage, Stage::HandOver { .. }) || (second && !assist_holds);
+    let jaw = |holds: bool| if holds { 0.0 } else { open };
+    let mut left = builder(ArmName::Left, jaw(left_holds), &variation.tremor[0]);
     let mut right = builder(ArmName::Right, 0.0, &variation.tremor[1]);
-    let mut assist = builder(ArmName::Assist, if second { open } else { 0.0 }, &variation.tremor[2]);
+    let assist_jaw = if matches!(stage, Stage::First { .. }) { 0.0 } else { jaw(assist_holds) };
+    let mut assist = builder(ArmName::Assist, assist_jaw, &variation.tremor[2]);
     let pause = &variation.pauses_s;
-    if let Stage::Second { tail_hold } = stage {
+    let up = world_from_stitch.rotation * Vector3::z();
+    if !matches!(stage, Stage::First { .. }) {
         // Every instrument goes on as it stands (the first throw left the jaws pointing their ways).
         for track in [&mut left, &mut right, &mut assist] {
             track.hold_as_it_stands();
         }
-        // The assist takes the tail between the knot and the left's jaws, or near its free end (the
-        // tail between its open jaws, along their hinge), then the left lets go of it.
-        let taken = tail_hold.and_then(|hold| match hold {
-            TailHold::Along(along) => tail_between_knot_and_left(world, along),
-            TailHold::FromEnd { from_end_m, .. } => tail_from_its_end(world, from_end_m),
-        });
-        if let Some((tail_m, tail_dir)) = taken {
-            let trocar_m = trocar_of(&world.config, ArmName::Assist);
-            let jaws = (tail_m - trocar_m).normalize();
-            let hinge = Unit::new_normalize(tail_dir - jaws * tail_dir.dot(&jaws));
-            let frame =
-                nalgebra::Rotation3::from_basis_unchecked(&[hinge.cross(&jaws), hinge.into_inner(), jaws]);
-            assist.go_framing(Path::To(tail_m - jaws * TAKE_APPROACH_M), d(1.5), frame);
-            assist.go(Path::To(tail_m), d(0.8));
-            assist.wait_until(assist.time_s() + pause[3]);
-            assist.jaw(0.0, d(0.3));
-            assist.wait_until(assist.time_s() + d(0.3) + 0.1);
+    }
+    if let Stage::HandOver { from_end_m, to_m } = stage {
+        // The assist takes the tail near its end, the left lets go and rises clear, and the assist
+        // draws the tail by its end to `to_m`.
+        if let Some((tail_m, tail_dir)) = tail_from_its_end(world, from_end_m) {
+            take_tail(&mut assist, world, tail_m, tail_dir, &d, pause);
         }
         left.wait_until(assist.time_s() + pause[5]);
-        if tail_hold.is_some() {
-            left.jaw(open, d(0.2));
-            left.wait_until(left.time_s() + d(0.2) + pause[0]);
-        }
-        if let Some(TailHold::FromEnd { to_m: Some(to_m), .. }) = tail_hold {
-            // The assist draws the tail by its end to where the left will take it, while the left
-            // goes to the winding point.
+        left.jaw(open, d(0.2));
+        left.wait_until(left.time_s() + d(0.2) + pause[0]);
+        left.go(Path::To(left.position_m() + up * RETAKE_CLEARANCE_M), d(0.8));
+        if let Some(to_m) = to_m {
             assist.wait_until(left.time_s());
             assist.go(Path::To(at(to_m)), d(1.5));
+        }
+        let end_s = left.time_s().max(assist.time_s()) + pause[5];
+        for track in [&mut left, &mut right, &mut assist] {
+            track.wait_until(end_s);
+        }
+        return Skill {
+            name: "instrument tie: surgeon's knot, the tail handed to the assist".into(),
+            tracks: vec![left.build(), right.build(), assist.build()],
+        };
+    }
+    if let Stage::Second { start } = stage {
+        match start {
+            SecondStart::LeftKeepsTail => {}
+            SecondStart::AssistTakes(tail_hold) => {
+                // The assist takes the tail between the knot and the left's jaws, or near its free
+                // end (the tail between its open jaws, along their hinge), then the left lets go.
+                let taken = match tail_hold {
+                    TailHold::Along(along) => tail_between_knot_and_left(world, along),
+                    TailHold::FromEnd { from_end_m, .. } => tail_from_its_end(world, from_end_m),
+                };
+                if let Some((tail_m, tail_dir)) = taken {
+                    take_tail(&mut assist, world, tail_m, tail_dir, &d, pause);
+                }
+                left.wait_until(assist.time_s() + pause[5]);
+                left.jaw(open, d(0.2));
+                left.wait_until(left.time_s() + d(0.2) + pause[0]);
+                if let TailHold::FromEnd { to_m: Some(to_m), .. } = tail_hold {
+                    // The assist draws the tail by its end to where the left will take it, while the
+                    // left goes to the winding point.
+                    assist.wait_until(left.time_s());
+                    assist.go(Path::To(at(to_m)), d(1.5));
+                }
+            }
+            SecondStart::LeftRetakes { from_end_m } => {
+                // The assist holds the tail by its end: the left takes it back `from_end_m` from its
+                // end, where it lies now, its jaws square to the tail (along its shaft they would
+                // come down the tail onto the assist's jaws) and its hinge along it; the assist lets
+                // go; and from here on the assist winds and takes the tail, the left presents it.
+                if let Some((retake, along)) = tail_from_its_end(world, from_end_m) {
+                    let shaft = (retake - trocar_of(&world.config, left.arm())).normalize();
+                    let jaws = (shaft - along * shaft.dot(&along)).try_normalize(1e-6).unwrap_or(-up);
+                    let hinge = Unit::try_new(along - jaws * along.dot(&jaws), 1e-9)
+                        .unwrap_or_else(|| Unit::new_normalize(world_from_stitch.rotation * Vector3::x()));
+                    let frame = nalgebra::Rotation3::from_basis_unchecked(&[
+                        hinge.cross(&jaws),
+                        hinge.into_inner(),
+                        jaws,
+                    ]);
+                    left.go_framing(Path::To(retake - jaws * TAKE_APPROACH_M), d(1.5), frame);
+                    left.go(Path::To(retake), d(0.8));
+                    left.wait_until(left.time_s() + pause[3]);
+                    left.jaw(0.0, d(0.3));
+                    left.wait_until(left.time_s() + d(0.3) + 0.1);
+                }
+                assist.wait_until(left.time_s());
+                assist.jaw(open, d(0.2));
+                assist.wait_until(assist.time_s() + d(0.2) + pause[5]);
+                std::mem::swap(&mut left, &mut assist);
+                left.wait_until(assist.time_s());
+            }
         }
         right.wait_until(left.time_s());
         assist.wait_until(left.time_s());
@@ -433,7 +546,13 @@ fn plan_throw(world: &SimWorld, geometry: &TieGeometry, variation: &Variation, s
     // R2: the right winds the long end around the left's jaws, after the left is there.
     right.wait_until(left.time_s() + pause[2]);
     right.go(
-        Path::Around { centre_m: centre, axis, turns: geometry.winding_turns, pitch_m: 0.0 },
+        Path::Around {
+            centre_m: centre,
+            axis,
+            turns: geometry.winding_turns,
+            // `axis` is the jaws' or their reverse (the turns' sense): the advance is along the jaws.
+            pitch_m: geometry.winding_pitch_m * axis.dot(&jaws).signum(),
+        },
         d(geometry.winding_s),
     );
     // Then it gives a little thread back, so the coils loosen enough to slide along the jaws.
@@ -532,7 +651,7 @@ fn plan_throw(world: &SimWorld, geometry: &TieGeometry, variation: &Variation, s
                 -hinge.into_inner()
             };
             let offer_m = tail_point + side * offered_m;
-            let shaft = (offer_m - trocar_of(&world.config, ArmName::Assist)).normalize();
+            let shaft = (offer_m - trocar_of(&world.config, assist.arm())).normalize();
             let assist_jaws = (shaft - side * shaft.dot(&side)).try_normalize(1e-9).unwrap_or(shaft);
             let frame =
                 nalgebra::Rotation3::from_basis_unchecked(&[side.cross(&assist_jaws), side, assist_jaws]);
@@ -592,7 +711,7 @@ fn plan_throw(world: &SimWorld, geometry: &TieGeometry, variation: &Variation, s
     let draw = -left.jaw_direction() * geometry.draw_back_m;
     // The wrist straightens a little on the way (a bent wrist drawn back runs into its limit).
     let drawn_to = left.position_m() + draw;
-    let shaft = (drawn_to - trocar_of(&world.config, ArmName::Left)).normalize();
+    let shaft = (drawn_to - trocar_of(&world.config, left.arm())).normalize();
     let relaxed = left.jaw_direction().lerp(&shaft, geometry.draw_relax);
     if geometry.left_fetches.as_ref().is_some_and(|f| f.as_one_body) {
         // The left holds a whole frame since the fetch: it turns that frame, the roll going with it

@@ -24,6 +24,14 @@ pub struct SecondThrow {
     /// Once the left has let go, the assist draws the tail it holds to here (stitch frame); `None`:
     /// it stays where it took it.
     pub tail_held_to_m: Option<[f64; 3]>,
+    /// If set, the assist and the left swap parts for the rest of the throw: once the assist holds
+    /// the tail by its end (`tail_hold_from_end_m`; drawn to `tail_held_to_m` if set), the left
+    /// takes it back this far (along the thread) from its free end and the assist lets go; then the long end is wound round the
+    /// assist's jaws, the left presents the tail and the assist takes it and draws it through, m.
+    /// The assist's jaws can point where the left's cannot (along -x, from its trocar on the other
+    /// side), so the throw can be wound as the mirror image of one wound on the left's jaws, and a
+    /// throw's mirror image is the throw of the other hand (session 36).
+    pub left_retakes_from_end_m: Option<f64>,
     /// The left's jaw centre while the long end is wound round them.
     pub winding_point_m: [f64; 3],
     /// Where the left's jaws point while the long end is wound round them (stitch frame); `None`: as
@@ -75,6 +83,9 @@ pub struct SecondThrow {
     pub winding_radius_m: Option<f64>,
     /// The winding circles this far behind the left's jaw centre, m; `None`: as the first throw.
     pub winding_behind_m: Option<f64>,
+    /// The winding advances this far along the jaws per turn ([`TieGeometry::winding_pitch_m`]), m;
+    /// `None`: as the first throw.
+    pub winding_pitch_m: Option<f64>,
     /// Where the winding starts (see [`TieGeometry::winding_lead_rad`]); `None`: as the first throw.
     pub winding_lead_rad: Option<f64>,
     /// Turns of the winding.
@@ -96,6 +107,7 @@ impl Default for SecondThrow {
             tail_hold_along: 0.6,
             tail_hold_from_end_m: None,
             tail_held_to_m: None,
+            left_retakes_from_end_m: None,
             winding_point_m: first.winding_point_m,
             left_jaw_direction: None,
             left_fetches: None,
@@ -114,6 +126,7 @@ impl Default for SecondThrow {
             winding_towards: [0.0, 0.0, -1.0],
             winding_radius_m: None,
             winding_behind_m: None,
+            winding_pitch_m: None,
             winding_lead_rad: None,
             winding_turns: 1.0,
             left_run_down_to_m: first.left_run_down_to_m,
@@ -148,6 +161,7 @@ impl SecondThrow {
             winding_towards: self.winding_towards,
             winding_radius_m: self.winding_radius_m.unwrap_or(first.winding_radius_m),
             winding_behind_m: self.winding_behind_m.unwrap_or(first.winding_behind_m),
+            winding_pitch_m: self.winding_pitch_m.unwrap_or(first.winding_pitch_m),
             winding_lead_rad: self.winding_lead_rad.unwrap_or(first.winding_lead_rad),
             winding_turns: self.winding_turns,
             left_run_down_to_m: self.left_run_down_to_m,
