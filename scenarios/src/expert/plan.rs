@@ -46,8 +46,9 @@ pub struct TieGeometry {
     /// The winding circles this far behind the left's jaw centre (towards its wrist), m.
     pub winding_behind_m: f64,
     /// The winding advances this far along the left's jaws (towards their tips; negative: towards
-    /// the wrist) per turn, m: a helix, not a circle. Which end of a turn the long end's knot leg
-    /// joins, the hinge's or the tips', decides which hand of throw the drawn tail makes.
+    /// the wrist) per turn, m: a helix, not a circle. (Session 36: tried so that the second turn
+    /// would close over the long end's knot leg, which decides the throw's hand; the turn slid along
+    /// the jaws as a whole instead.)
     pub winding_pitch_m: f64,
     /// How long the winding takes, s (slow enough for the arm to follow the circle).
     pub winding_s: f64,
@@ -273,7 +274,6 @@ impl Variation {
 /// The assist's last stretch onto the tail it takes for the second throw, along its jaws, m.
 const TAKE_APPROACH_M: f64 = 0.012;
 
-/// The jaw centre of an arm as its links stand (world frame, m).
 /// How far the left rises from where it let go of the tail before it goes to take it back, m.
 const RETAKE_CLEARANCE_M: f64 = 0.025;
 
@@ -297,6 +297,7 @@ fn take_tail(
     track.wait_until(track.time_s() + d(0.3) + 0.1);
 }
 
+/// The jaw centre of an arm as its links stand (world frame, m).
 fn jaw_centre_m(world: &SimWorld, arm: ArmName) -> Vector3<f64> {
     (world.world_from_tip(arm) * Point3::new(0.0, 0.0, -JAW_CENTRE_OFFSET_M)).coords
 }

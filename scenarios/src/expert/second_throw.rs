@@ -3,7 +3,8 @@
 //! two throws can (`sim/tests/square_knot_holds_its_free_ends_let_go.rs`). The expert plans it from
 //! the world the first throw left, as a surgeon looks before the next move: the assist takes the tail
 //! between the knot and the left's jaws, the left lets go of it, and the throw goes as the first
-//! ([`super::plan`]) with its own winding and pulls.
+//! ([`super::plan`]) with its own winding and pulls; or, with `left_retakes_from_end_m`, it is wound
+//! on the assist's jaws instead, the left presenting the tail.
 
 use knotlab_hw::rig::ArmName;
 use knotlab_sim::world::SimWorld;
@@ -26,11 +27,13 @@ pub struct SecondThrow {
     pub tail_held_to_m: Option<[f64; 3]>,
     /// If set, the assist and the left swap parts for the rest of the throw: once the assist holds
     /// the tail by its end (`tail_hold_from_end_m`; drawn to `tail_held_to_m` if set), the left
-    /// takes it back this far (along the thread) from its free end and the assist lets go; then the long end is wound round the
-    /// assist's jaws, the left presents the tail and the assist takes it and draws it through, m.
+    /// takes it back this far (along the thread) from its free end and the assist lets go; then the
+    /// long end is wound round the assist's jaws, the left presents the tail and the assist takes
+    /// it and draws it through, m.
     /// The assist's jaws can point where the left's cannot (along -x, from its trocar on the other
-    /// side), so the throw can be wound as the mirror image of one wound on the left's jaws, and a
-    /// throw's mirror image is the throw of the other hand (session 36).
+    /// side), so the turn can be wound as the mirror image of one wound on the left's jaws. (Session
+    /// 36: that did not make the throw's mirror image, the other hand: the first knot, where both
+    /// legs start, is not mirrored.)
     pub left_retakes_from_end_m: Option<f64>,
     /// The left's jaw centre while the long end is wound round them.
     pub winding_point_m: [f64; 3],
