@@ -437,7 +437,7 @@ fn plan_throw(world: &SimWorld, geometry: &TieGeometry, variation: &Variation, s
     }
     if let Stage::Second { start } = stage {
         match start {
-            SecondStart::LeftKeepsTail => {}
+            SecondStart::LeftKeepsTail => left.wait_until(assist.time_s() + pause[5]),
             SecondStart::AssistTakes(tail_hold) => {
                 // The assist takes the tail between the knot and the left's jaws, or near its free
                 // end (the tail between its open jaws, along their hinge), then the left lets go.
