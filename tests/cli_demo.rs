@@ -117,23 +117,19 @@ fn snapshots_zoom_to_the_half_width_asked_for() {
         assert_eq!(code, 0, "{stdout}{err}");
         assert!(stdout.contains("unknot"), "no knot yet at 0.2 s: {stdout}");
         // The same snapshot with the tail drawn back along the left's jaws (issue 6's what-if).
-        let (code, stdout, err) = knotlab(&[
-            "knot",
-            "draw-through",
-            out.to_str().unwrap(),
-            "--at",
-            "0.2",
-            "--grip",
-            "70",
-            "--json",
-        ]);
+        let dir_arg = out.to_str().unwrap();
+        let draw = |grip: &str, more: &[&str]| {
+            let mut args = vec!["knot", "draw-through", dir_arg, "--at", "0.2", "--grip", grip];
+            args.extend_from_slice(more);
+            knotlab(&args)
+        };
+        let (code, stdout, err) = draw("70", &["--json"]);
         assert_eq!(code, 0, "{stdout}{err}");
         let report: serde_json::Value = serde_json::from_str(&stdout).expect("JSON");
         assert_eq!(report["as_it_lies"], "unknot", "{stdout}");
         assert!(report["drawn_through"].is_string(), "{stdout}");
         // In words: both knots, and the drawn one's invariants (an `unknown` says which knot it is not).
-        let (code, text, err) =
-            knotlab(&["knot", "draw-through", out.to_str().unwrap(), "--at", "0.2", "--grip", "70"]);
+        let (code, text, err) = draw("70", &[]);
         assert_eq!(code, 0, "{text}{err}");
         let drawn = report["drawn_through"].as_str().unwrap_or_default();
         assert!(text.contains(&format!("unknot as it lies; {drawn} (")), "{text}");
@@ -142,49 +138,17 @@ fn snapshots_zoom_to_the_half_width_asked_for() {
             "{text}"
         );
         // Along the assist's jaws instead (a second throw wound on them): its own pose, named.
-        let (code, stdout, err) = knotlab(&[
-            "knot",
-            "draw-through",
-            out.to_str().unwrap(),
-            "--at",
-            "0.2",
-            "--grip",
-            "70",
-            "--arm",
-            "assist",
-            "--json",
-        ]);
+        let (code, stdout, err) = draw("70", &["--arm", "assist", "--json"]);
         assert_eq!(code, 0, "{stdout}{err}");
         let by_assist: serde_json::Value = serde_json::from_str(&stdout).expect("JSON");
         assert_eq!((&report["arm"], &by_assist["arm"]), (&"left".into(), &"assist".into()), "{stdout}");
-        let (code, text, err) = knotlab(&[
-            "knot",
-            "draw-through",
-            out.to_str().unwrap(),
-            "--at",
-            "0.2",
-            "--grip",
-            "70",
-            "--arm",
-            "assist",
-        ]);
+        let (code, text, err) = draw("70", &["--arm", "assist"]);
         assert_eq!(code, 0, "{text}{err}");
         assert!(text.contains("back along the assist's jaws from point 70"), "{text}");
-        let (code, stdout, err) = knotlab(&[
-            "knot",
-            "draw-through",
-            out.to_str().unwrap(),
-            "--at",
-            "0.2",
-            "--grip",
-            "70",
-            "--arm",
-            "camera",
-        ]);
+        let (code, stdout, err) = draw("70", &["--arm", "camera"]);
         assert_eq!(code, 2, "{stdout}{err}");
         assert!(err.contains("--arm"), "{err}");
-        let (code, stdout, err) =
-            knotlab(&["knot", "draw-through", out.to_str().unwrap(), "--at", "0.2", "--grip", "81"]);
+        let (code, stdout, err) = draw("81", &[]);
         assert_eq!(code, 1, "{stdout}{err}");
         assert!(err.contains("grip point 81 is not on the thread"), "{err}");
     }

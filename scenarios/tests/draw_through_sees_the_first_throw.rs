@@ -6,9 +6,8 @@
 
 mod common;
 
-use common::{event_segment, expert, two_throw_scene};
+use common::{event_segment, two_throw_run};
 use knotlab_hw::rig::ArmName;
-use knotlab_scenarios::expert::{RecordOptions, demonstrate_with};
 use knotlab_sim::knot::{KnotType, classify, drawn_through};
 use nalgebra::Vector3;
 
@@ -16,23 +15,7 @@ use nalgebra::Vector3;
 fn drawn_through_the_coils_at_the_first_take_the_thread_makes_the_first_throw() {
     // Seed 0 of the two-throw scene: the left takes the tail at 16.23 s.
     let at_s = 16.3;
-    let options = RecordOptions {
-        cycles_per_sample: 10,
-        snapshot_times_s: vec![at_s],
-        stop_after_s: Some(16.4),
-        ..RecordOptions::default()
-    };
-    let run = demonstrate_with(
-        two_throw_scene(),
-        "scenarios/short-suture-friction-0.5.toml",
-        0,
-        true,
-        &expert("two-throws-drawn-ahead.toml"),
-        &options,
-        None,
-    )
-    .expect("records");
-    assert_eq!(run.fault, None);
+    let run = two_throw_run("two-throws-drawn-ahead.toml", 0, vec![at_s], 16.4);
     let take =
         run.events.iter().find(|e| e.starts_with("Grasped { arm: Left")).expect("the left takes the tail");
     let grip = event_segment(take).expect("a segment");

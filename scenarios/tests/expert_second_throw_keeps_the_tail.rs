@@ -6,8 +6,8 @@
 
 mod common;
 
-use common::{event_time_s, expert, two_throw_scene};
-use knotlab_scenarios::expert::{RecordOptions, TieGeometry, demonstrate_with};
+use common::{event_time_s, expert, two_throw_run};
+use knotlab_scenarios::expert::TieGeometry;
 
 #[test]
 fn the_two_throw_file_ties_its_first_throw_as_coils_on_the_left() {
@@ -19,25 +19,8 @@ fn the_two_throw_file_ties_its_first_throw_as_coils_on_the_left() {
 
 #[test]
 fn the_second_turn_is_wound_round_the_jaws_that_hold_the_tail() {
-    let scene = two_throw_scene();
     // Seed 0: the first throw ends at 28 s, the second turn is wound by 38 s and drawn at 41-45 s.
-    let options = RecordOptions {
-        cycles_per_sample: 10,
-        snapshot_times_s: vec![40.0],
-        stop_after_s: Some(40.5),
-        ..RecordOptions::default()
-    };
-    let run = demonstrate_with(
-        scene,
-        "scenarios/short-suture-friction-0.5.toml",
-        0,
-        true,
-        &expert("two-throws.toml"),
-        &options,
-        None,
-    )
-    .expect("records");
-    assert_eq!(run.fault, None);
+    let run = two_throw_run("two-throws.toml", 0, vec![40.0], 40.5);
     // The left took the tail once, in the first throw, and holds it on: no hand-over (the jaws all
     // open as the run stops).
     let before_stop = |e: &&String| event_time_s(e) < Some(40.4);

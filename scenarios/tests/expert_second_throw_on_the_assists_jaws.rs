@@ -7,10 +7,9 @@
 
 mod common;
 
-use common::{event_segment, event_time_s, expert, two_throw_scene};
+use common::{event_segment, event_time_s, two_throw_run};
 use knotlab_hw::rig::ArmName;
 use knotlab_scenarios::expert::diagnose::turns_about;
-use knotlab_scenarios::expert::{RecordOptions, demonstrate_with};
 use nalgebra::Vector3;
 
 #[test]
@@ -18,23 +17,7 @@ fn the_left_takes_the_tail_back_and_the_long_end_is_wound_round_the_assists_jaws
     // Seed 0: the first throw ends near 28 s; the assist takes the tail's end at 29.4 s, the left
     // lets go at 30.3 s and takes it back at 36.5 s, the turn is wound by 52 s, the assist takes the
     // presented tail at 54.1 s.
-    let options = RecordOptions {
-        cycles_per_sample: 10,
-        snapshot_times_s: vec![52.0],
-        stop_after_s: Some(54.5),
-        ..RecordOptions::default()
-    };
-    let run = demonstrate_with(
-        two_throw_scene(),
-        "scenarios/short-suture-friction-0.5.toml",
-        0,
-        true,
-        &expert("two-throws-on-the-assist.toml"),
-        &options,
-        None,
-    )
-    .expect("records");
-    assert_eq!(run.fault, None);
+    let run = two_throw_run("two-throws-on-the-assist.toml", 0, vec![52.0], 54.5);
     let segments = run.final_scene.thread_m.len().saturating_sub(1);
     let events_of = |prefix: &str| run.events.iter().filter(|e| e.starts_with(prefix)).collect::<Vec<_>>();
     let (assist_takes, left_takes) = (events_of("Grasped { arm: Assist"), events_of("Grasped { arm: Left"));

@@ -7,9 +7,9 @@
 
 mod common;
 
-use common::{event_segment, event_time_s, expert, two_throw_scene};
+use common::{event_segment, event_time_s, expert, two_throw_run};
+use knotlab_scenarios::expert::TieGeometry;
 use knotlab_scenarios::expert::diagnose::turns_about;
-use knotlab_scenarios::expert::{RecordOptions, TieGeometry, demonstrate_with};
 
 #[test]
 fn the_tail_end_file_ties_its_first_throw_as_coils_on_the_left() {
@@ -22,26 +22,9 @@ fn the_tail_end_file_ties_its_first_throw_as_coils_on_the_left() {
 
 #[test]
 fn the_assist_takes_the_tail_by_its_end_and_the_turn_goes_from_the_empty_jaws_onto_the_tail() {
-    let scene = two_throw_scene();
     // Seed 1: the first throw ends at 27 s; the assist takes the tail's end, the left lets go, the
     // turn is wound by 40 s, the left takes the presented tail at 42.8 s and draws it back by 46 s.
-    let options = RecordOptions {
-        cycles_per_sample: 10,
-        snapshot_times_s: vec![40.0, 47.0],
-        stop_after_s: Some(47.5),
-        ..RecordOptions::default()
-    };
-    let run = demonstrate_with(
-        scene,
-        "scenarios/short-suture-friction-0.5.toml",
-        1,
-        true,
-        &expert("two-throws-tail-end.toml"),
-        &options,
-        None,
-    )
-    .expect("records");
-    assert_eq!(run.fault, None);
+    let run = two_throw_run("two-throws-tail-end.toml", 1, vec![40.0, 47.0], 47.5);
     let segments = run.final_scene.thread_m.len().saturating_sub(1);
     let time_of = |e: &String| event_time_s(e);
     // The assist's second take is within two segments of the tail's free end, after the first throw.

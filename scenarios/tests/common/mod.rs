@@ -1,7 +1,8 @@
-//! What the expert's tests share: the expert files, the two-throw scene, and reading grasp events.
+//! What the expert's tests share: the expert files, the two-throw scene and runs on it, and reading
+//! grasp events.
 #![allow(dead_code)]
 
-use knotlab_scenarios::expert::{TieGeometry, load_tie_geometry};
+use knotlab_scenarios::expert::{DemoRun, RecordOptions, TieGeometry, demonstrate_with, load_tie_geometry};
 use knotlab_sim::scene::{SceneConfig, parse_scene};
 
 /// An expert file of `scenarios/experts/`.
@@ -24,4 +25,28 @@ pub fn event_time_s(event: &str) -> Option<f64> {
 /// The segment of a grasp event as the run lists it (`... segment: N, ...`).
 pub fn event_segment(event: &str) -> Option<usize> {
     event.split("segment: ").nth(1)?.split(',').next()?.parse().ok()
+}
+
+/// A recorded run of the expert file `name` (`scenarios/experts/`) on the two-throw scene, with the
+/// human-like variation of `seed`: sampled every 10 cycles, snapshots at `snapshot_times_s`, stopped
+/// at `stop_after_s`. It must run to there without a fault.
+pub fn two_throw_run(name: &str, seed: u64, snapshot_times_s: Vec<f64>, stop_after_s: f64) -> DemoRun {
+    let options = RecordOptions {
+        cycles_per_sample: 10,
+        snapshot_times_s,
+        stop_after_s: Some(stop_after_s),
+        ..RecordOptions::default()
+    };
+    let run = demonstrate_with(
+        two_throw_scene(),
+        "scenarios/short-suture-friction-0.5.toml",
+        seed,
+        true,
+        &expert(name),
+        &options,
+        None,
+    )
+    .expect("records");
+    assert_eq!(run.fault, None, "{name}, seed {seed}");
+    run
 }
