@@ -328,16 +328,10 @@ fn before_the_draw_the_right_carries_the_long_end_through_the_points_given() {
     let geometry = TieGeometry { right_before_draw_m: route.to_vec(), ..TieGeometry::default() };
     let skill = plan_instrument_tie(&world, &geometry, &Variation::none());
     let shipped = plan_instrument_tie(&world, &TieGeometry::default(), &Variation::none());
-    let offset_m = knotlab_sim::world::JAW_CENTRE_OFFSET_M;
-    // When the right's tip first comes within the jaw-centre offset (and 1 mm) of a route point.
+    // When the right's jaw centre first comes within 1 mm of a route point.
     let reached_s = |skill: &knotlab_hw::skill::Skill, p: [f64; 3]| {
         let world_point = world.tissue.world_from_tissue * nalgebra::Point3::from(Vector3::from(p));
-        let right = skill.track(ArmName::Right).expect("the right");
-        right
-            .poses
-            .iter()
-            .find(|k| (Vector3::from(k.world_position_m) - world_point.coords).norm() <= offset_m + 1e-3)
-            .map(|k| k.time_s)
+        first_reaches(skill.track(ArmName::Right).expect("the right"), &world_point.coords)
     };
     let first_s = reached_s(&skill, route[0]).expect("the right goes to the first point");
     let second_s = reached_s(&skill, route[1]).expect("the right goes to the second point");
@@ -357,17 +351,7 @@ fn for_the_second_throw_the_assist_takes_the_tail_near_its_end_and_draws_it_wher
     let world = SimWorld::new(scene(), Rig::shipped().expect("the shipped rig")).expect("the scene builds");
     let line = world.thread.centreline(&world.physics);
     // 6 mm of thread back from the tail's free end (the last point of the centreline).
-    let mut from_end_m = 0.006;
-    let mut expected = None;
-    for at in (1..line.len()).rev() {
-        let step = line[at] - line[at - 1];
-        if from_end_m <= step.norm() {
-            expected = Some(line[at] - step.normalize() * from_end_m);
-            break;
-        }
-        from_end_m -= step.norm();
-    }
-    let expected = expected.expect("a tail longer than 6 mm");
+    let expected = from_tail_end(&line, 0.006).expect("a tail longer than 6 mm");
     let held_to = [0.0, 0.05, 0.04];
     let held_to_world = world.tissue.world_from_tissue * nalgebra::Point3::from(Vector3::from(held_to));
     let second = SecondThrow {
@@ -379,19 +363,16 @@ fn for_the_second_throw_the_assist_takes_the_tail_near_its_end_and_draws_it_wher
     let geometry = TieGeometry { second_throw: Some(second), ..TieGeometry::default() };
     let skill = plan_second_throw(&world, &geometry, &Variation::none()).expect("a second throw");
     let assist = skill.track(ArmName::Assist).expect("the assist");
-    let offset_m = knotlab_sim::world::JAW_CENTRE_OFFSET_M;
-    let first_within = |point: &Vector3<f64>| {
-        assist.poses.iter().find(|k| (Vector3::from(k.world_position_m) - point).norm() <= offset_m + 1e-3)
-    };
-    let took = first_within(&expected).expect("the assist's jaws go to the tail 6 mm from its end");
-    let drew = first_within(&held_to_world.coords).expect("then to where the tail is drawn");
-    assert!(drew.time_s > took.time_s, "drawn after it is taken: {} s, {} s", took.time_s, drew.time_s);
+    let took_s =
+        first_reaches(assist, &expected).expect("the assist's jaws go to the tail 6 mm from its end");
+    let drew_s = first_reaches(assist, &held_to_world.coords).expect("then to where the tail is drawn");
+    assert!(drew_s > took_s, "drawn after it is taken: {took_s} s, {drew_s} s");
     // The assist's jaws close on it before the left opens, and the draw starts once the left is open.
     let closed_s = assist.jaw.iter().find(|k| k.jaw_rad == 0.0).map(|k| k.time_s).expect("closes");
     let left = skill.track(ArmName::Left).expect("the left");
     let opened_s = left.jaw.iter().find(|k| k.jaw_rad > 0.0).map(|k| k.time_s).expect("the left opens");
-    assert!(took.time_s < closed_s && closed_s < opened_s, "{} s, {closed_s} s, {opened_s} s", took.time_s);
-    assert!(drew.time_s > opened_s, "{} s, {opened_s} s", drew.time_s);
+    assert!(took_s < closed_s && closed_s < opened_s, "{took_s} s, {closed_s} s, {opened_s} s");
+    assert!(drew_s > opened_s, "{drew_s} s, {opened_s} s");
 }
 
 #[test]
