@@ -24,6 +24,7 @@ fn every_expert_file_loads() {
         "two-throws-tail-end.toml",
         "two-throws-drawn-ahead.toml",
         "two-throws-on-the-assist.toml",
+        "two-throws-leg-behind.toml",
     ] {
         assert!(names.iter().any(|n| n == expected), "{expected} missing from {names:?}");
     }
