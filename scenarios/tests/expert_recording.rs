@@ -534,20 +534,22 @@ fn a_second_throw_on_the_assists_jaws_begins_with_the_tail_handed_over_and_taken
 }
 
 #[test]
-fn the_left_takes_the_tail_presented_in_its_jaws_closing_them_only_part_way() {
+fn the_second_throw_presents_the_tail_as_far_ahead_of_the_left_jaws_as_told() {
     use knotlab_scenarios::expert::{SecondThrow, plan_second_throw};
     let world = SimWorld::new(scene(), Rig::shipped().expect("the shipped rig")).expect("the scene builds");
     let winding_point = [0.022, 0.01, 0.03];
-    let plan = |tail_grip_jaw_rad: Option<f64>| {
+    let jaws = Vector3::new(1.0, 0.0, -0.3).normalize();
+    // Where the left's jaw centre is as it closes on the tail, from where it wound (stitch frame is
+    // the world turned: the tissue is level).
+    let closes_at = |tail_ahead_m: Option<f64>| {
         let second = SecondThrow {
             tail_hold_from_end_m: Some(0.008),
             assist_presents: true,
             tail_end_offered_m: Some(0.004),
-            tail_ahead_m: Some(0.004),
+            tail_ahead_m,
             tail_take_short_m: Some(0.004),
-            tail_grip_jaw_rad,
             winding_point_m: winding_point,
-            left_jaw_direction: Some([1.0, 0.0, -0.3]),
+            left_jaw_direction: Some(jaws.into()),
             ..SecondThrow::default()
         };
         // Wound round jaws open as far as they open to take the tail (and let go of it before): the
@@ -558,25 +560,21 @@ fn the_left_takes_the_tail_presented_in_its_jaws_closing_them_only_part_way() {
             second_throw: Some(second),
             ..TieGeometry::default()
         };
-        plan_second_throw(&world, &geometry, &Variation::none()).expect("a second throw")
-    };
-    // The left's closing on the tail: the first jaw key after it opened, and when.
-    let closing = |skill: &knotlab_hw::skill::Skill| {
+        let skill = plan_second_throw(&world, &geometry, &Variation::none()).expect("a second throw");
         let jaw = &skill.track(ArmName::Left).expect("the left").jaw;
-        let opened =
-            jaw.iter().position(|k| (k.jaw_rad - 0.6).abs() < 1e-9).expect("opened to take the tail");
+        let opened = jaw.iter().position(|k| (k.jaw_rad - 0.6).abs() < 1e-9).expect("opened");
         let closed = jaw[opened..].iter().find(|k| k.jaw_rad < 0.6).expect("closes on the tail");
-        (closed.jaw_rad, jaw[opened..].iter().rev().find(|k| k.time_s < closed.time_s).expect("a key").time_s)
+        let closing_s = jaw[opened..].iter().rev().find(|k| k.time_s < closed.time_s).expect("a key").time_s;
+        let (centre, _) = jaws_at(&skill, &world, ArmName::Left, closing_s);
+        let wound_at =
+            (world.tissue.world_from_tissue * nalgebra::Point3::from(Vector3::from(winding_point))).coords;
+        world.tissue.world_from_tissue.rotation.inverse() * (centre - wound_at)
     };
-    let (part_way, part_way_s) = closing(&plan(Some(0.35)));
-    assert!((part_way - 0.35).abs() < 1e-9, "closed to {part_way} rad");
-    let (shut, _) = closing(&plan(None));
-    assert_eq!(shut, 0.0, "shut, as the first throw, unless told");
     // Presented 4 mm ahead of the jaw centre and taken 4 mm short of it: the left closes where it
     // wound, without moving on to the tail.
-    let skill = plan(Some(0.35));
-    let (centre, _) = jaws_at(&skill, &world, ArmName::Left, part_way_s);
-    let wound_at =
-        (world.tissue.world_from_tissue * nalgebra::Point3::from(Vector3::from(winding_point))).coords;
-    assert!((centre - wound_at).norm() < 1e-6, "{} m from the winding point", (centre - wound_at).norm());
+    let in_place = closes_at(Some(0.004));
+    assert!(in_place.norm() < 1e-6, "{} m from the winding point", in_place.norm());
+    // As the first throw (12 mm ahead), it goes on 8 mm along its jaws to the tail.
+    let moved = closes_at(None);
+    assert!((moved - jaws * 0.008).norm() < 1e-6, "moved {moved:?}");
 }

@@ -3,7 +3,7 @@
 //! them as a helix advancing towards their tips, so that its knot leg joins the turn from behind, and
 //! the tail taken where it is presented within the jaws. As the instruments let go the thread holds
 //! the surgeon's knot (a double throw, then a single of the opposite hand). It is not yet run down
-//! tight: once let go it slips (the verdict `knot_slipped`; see the README).
+//! onto the first throw: the verdict is a failure still (see the README).
 
 mod common;
 
@@ -18,7 +18,14 @@ fn the_second_throw_is_of_the_other_hand_and_makes_a_surgeons_knot() {
     let at_release = run.knot_at_release.as_ref().expect("the left let go of the tail");
     assert_eq!(at_release.knot, KnotType::SurgeonsKnot, "{:?}", run.evaluation);
     assert_eq!(run.evaluation.knot_before, Some(KnotType::SurgeonsKnot), "{:?}", run.evaluation);
-    // Not yet holding: the wound opens as the knot slips once let go.
-    assert_eq!(run.evaluation.verdict, Verdict::Failure(FailureMode::KnotSlipped), "{:?}", run.evaluation);
+    // Not yet down and holding.
+    assert!(
+        matches!(
+            run.evaluation.verdict,
+            Verdict::Failure(FailureMode::KnotNotDown | FailureMode::KnotSlipped)
+        ),
+        "{:?}",
+        run.evaluation
+    );
     assert!(run.events.iter().all(|e| !e.starts_with("Slipped")), "no grip slips: {:?}", run.events);
 }

@@ -46,18 +46,6 @@ impl Check {
         }
     }
 
-    /// How far jaws opened `open_rad` to take a thread close on it: from shut up to that opening
-    /// (closing to more would open them past where they took it, which lets go).
-    fn grip(&mut self, key: &str, grip_rad: f64, open_rad: f64) {
-        self.range(key, grip_rad, 0.0, 1.6);
-        if grip_rad.is_finite() && grip_rad > open_rad {
-            self.0.push((
-                key.to_owned(),
-                format!("must be at most the opening to take the tail ({open_rad} rad), got {grip_rad}"),
-            ));
-        }
-    }
-
     /// How the left fetches the tail, its keys under `table`.
     fn fetch(&mut self, table: &str, f: &LeftFetch) {
         self.range(&format!("{table}.along_tail"), f.along_tail, 0.0, 1.0);
@@ -109,7 +97,6 @@ fn range_problems(g: &TieGeometry) -> Vec<(String, String)> {
     c.range("winding_turns", g.winding_turns, 0.0, 5.0);
     c.range("take_tail_jaw_rad", g.take_tail_jaw_rad, 0.0, 1.6);
     c.range("winding_jaw_rad", g.winding_jaw_rad, 0.0, 1.6);
-    c.grip("tail_grip_jaw_rad", g.tail_grip_jaw_rad, g.take_tail_jaw_rad);
     c.range("speed_fraction", g.speed_fraction, 0.01, 1.0);
     c.range("pull_force_n", g.pull_force_n, 0.01, 10.0);
     if let Some(f) = g.tail_pull_force_n {
@@ -216,9 +203,6 @@ fn range_problems(g: &TieGeometry) -> Vec<(String, String)> {
         }
         if let Some(v) = s.take_tail_jaw_rad {
             c.range("second_throw.take_tail_jaw_rad", v, 0.0, 1.6);
-        }
-        if let Some(v) = s.tail_grip_jaw_rad {
-            c.grip("second_throw.tail_grip_jaw_rad", v, s.take_tail_jaw_rad.unwrap_or(g.take_tail_jaw_rad));
         }
         if let Some(v) = s.tail_ahead_m {
             c.range("second_throw.tail_ahead_m", v, -0.1, 0.1);
@@ -344,7 +328,7 @@ mod tests {
              run_down_force_n = 0.0\nassist_presents = true\nleft_keeps_tail = true\n\
              tail_hold_from_end_m = -0.01\ntail_held_to_m = [0.0, 0.5, 0.0]\n\
              winding_radius_m = 0.0\nwinding_behind_m = 0.5\nwinding_pitch_m = 0.2\ntake_tail_jaw_rad = 2.0\ntail_end_offered_m = 0.1\n\
-             tail_grip_jaw_rad = -0.1\ntail_ahead_m = 0.5\n\
+             tail_ahead_m = 0.5\n\
              [second_throw.left_fetches]\nalong_tail = 2.0\n\
              jaw_direction = [0.0, 0.0, -1.0]\napproach_m = 0.01\nstop_short_m = 0.0\n",
             "bad.toml",
@@ -379,7 +363,6 @@ mod tests {
             "second_throw.winding_pitch_m",
             "second_throw.take_tail_jaw_rad",
             "second_throw.tail_end_offered_m",
-            "second_throw.tail_grip_jaw_rad",
             "second_throw.tail_ahead_m",
             "tail_end_offered_m",
         ] {
@@ -407,13 +390,6 @@ mod tests {
             )
             .is_ok()
         );
-        // The jaws close on the tail at most as far as they opened for it.
-        let wide = retake_problems("take_tail_jaw_rad = 0.6\ntail_grip_jaw_rad = 0.7\n");
-        assert_eq!(wide[0].0, "tail_grip_jaw_rad", "{wide:?}");
-        assert!(wide[0].1.contains("at most the opening"), "{wide:?}");
-        let second = retake_problems("take_tail_jaw_rad = 0.6\n[second_throw]\ntail_grip_jaw_rad = 0.7\n");
-        assert_eq!(second[0].0, "second_throw.tail_grip_jaw_rad", "{second:?}");
-        assert!(parse_tie_geometry("take_tail_jaw_rad = 0.6\ntail_grip_jaw_rad = 0.35\n", "ok.toml").is_ok());
         let missing = load_tie_geometry(Path::new("/nonexistent/expert.toml")).unwrap_err().to_string();
         assert!(missing.starts_with("/nonexistent/expert.toml: cannot read"), "{missing}");
     }

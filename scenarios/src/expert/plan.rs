@@ -82,10 +82,6 @@ pub struct TieGeometry {
     /// seeds 0-7 kept a coil on the jaws after the draw (a single throw; the jaws likely closed on it
     /// with the tail); at 0.8 rad none did.
     pub take_tail_jaw_rad: f64,
-    /// The left closes its jaws this far on the presented tail, rad (0: shut). They take it where
-    /// they first squeeze it (at 0.35 rad, 9 mm out from their hinge) and stay open so far: a turn
-    /// wound round open jaws is then not left slack round shut ones.
-    pub tail_grip_jaw_rad: f64,
     /// The assist first draws the tail this much tauter, m.
     pub tail_tension_m: f64,
     /// The assist holds the tail this far beyond the point the left's jaws close on, m.
@@ -181,7 +177,6 @@ impl Default for TieGeometry {
             tail_beyond_m: 0.008,
             tail_tension_m: 0.003,
             take_tail_jaw_rad: 0.8,
-            tail_grip_jaw_rad: 0.0,
             loosen_m: 0.004,
             coils_back_m: 0.0,
             tail_swing_lean: [0.8, 0.0, 0.0],
@@ -689,7 +684,7 @@ fn plan_throw(world: &SimWorld, geometry: &TieGeometry, variation: &Variation, s
         left.wait_until(assist.time_s());
         left.go(Path::To(tail_point - jaws.into_inner() * geometry.tail_take_short_m), d(1.0));
         left.wait_until(left.time_s() + pause[4]);
-        left.jaw(geometry.tail_grip_jaw_rad, d(0.3));
+        left.jaw(0.0, d(0.3));
         left.wait_until(left.time_s() + d(0.3) + 0.1);
     }
     let grasped_s = left.time_s();

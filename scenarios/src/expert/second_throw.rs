@@ -66,9 +66,6 @@ pub struct SecondThrow {
     /// jaws' tips take a tail presented further off their line (the tips of jaws opened 0.6 rad
     /// stand 3 mm either side of it).
     pub take_tail_jaw_rad: Option<f64>,
-    /// The left closes its jaws this far on the tail ([`TieGeometry::tail_grip_jaw_rad`]), rad;
-    /// `None`: as the first throw.
-    pub tail_grip_jaw_rad: Option<f64>,
     /// After winding, the right gives this much thread back towards the left's jaws, m; `None`: as
     /// the first throw.
     pub loosen_m: Option<f64>,
@@ -127,7 +124,6 @@ impl Default for SecondThrow {
             tail_take_short_m: None,
             tail_end_offered_m: None,
             take_tail_jaw_rad: None,
-            tail_grip_jaw_rad: None,
             loosen_m: None,
             draw_back_m: None,
             right_follows_draw: None,
@@ -163,7 +159,6 @@ impl SecondThrow {
             tail_ahead_m: self.tail_ahead_m.unwrap_or(first.tail_ahead_m),
             tail_take_short_m: self.tail_take_short_m.unwrap_or(first.tail_take_short_m),
             take_tail_jaw_rad: self.take_tail_jaw_rad.unwrap_or(first.take_tail_jaw_rad),
-            tail_grip_jaw_rad: self.tail_grip_jaw_rad.unwrap_or(first.tail_grip_jaw_rad),
             tail_end_offered_m: self.tail_end_offered_m.or(first.tail_end_offered_m),
             loosen_m: self.loosen_m.unwrap_or(first.loosen_m),
             draw_back_m: self.draw_back_m.unwrap_or(first.draw_back_m),
