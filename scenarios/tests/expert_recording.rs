@@ -121,6 +121,30 @@ fn the_pulls_let_go_at_the_set_force_or_hold_it_as_the_geometry_says() {
 }
 
 #[test]
+fn the_pulls_hold_through_the_release_when_told() {
+    let world = SimWorld::new(scene(), Rig::shipped().expect("the shipped rig")).expect("the scene builds");
+    // For each pulling arm: when its set-force hold ends, and when its jaws have opened at the end.
+    let windows = |hold_through_release: bool| {
+        let geometry = TieGeometry { hold_through_release, ..TieGeometry::default() };
+        let skill = plan_instrument_tie(&world, &geometry, &Variation::none());
+        [ArmName::Left, ArmName::Right].map(|arm| {
+            let track = skill.track(arm).expect("the arm pulls");
+            let hold = track.events.iter().find(|e| e.name == "set force").expect("a set force");
+            let last = track.jaw.last().expect("jaw keys");
+            assert!(last.jaw_rad >= SimWorld::JAW_OPEN_RAD - 1e-9, "{arm} lets go at the end");
+            let opening = track.jaw.iter().rev().find(|k| k.jaw_rad < last.jaw_rad).expect("it was shut");
+            (hold.until_s, opening.time_s, last.time_s)
+        })
+    };
+    for (until_s, opening_s, _) in windows(false) {
+        assert!((until_s - opening_s).abs() < 1e-9, "the hold ends as the jaws start to open");
+    }
+    for (until_s, _, opened_s) in windows(true) {
+        assert!(until_s >= opened_s, "the hold lasts until the jaws have opened: {until_s} < {opened_s}");
+    }
+}
+
+#[test]
 fn the_left_pulls_the_tail_to_its_own_set_force_when_given_one() {
     let world = SimWorld::new(scene(), Rig::shipped().expect("the shipped rig")).expect("the scene builds");
     let geometry = TieGeometry { tail_pull_force_n: Some(0.7), ..TieGeometry::default() };

@@ -145,6 +145,10 @@ pub struct TieGeometry {
     /// Whether a pull that reaches the set force stops and holds the thread there (both let go
     /// together at the end, the knot cinched between two tensions) rather than letting go at once.
     pub hold_at_force: bool,
+    /// Whether that hold lasts until the jaws have opened at the end. Otherwise it ends as they start
+    /// to open, and each arm goes on towards where its pull was headed while it lets go, jerking the
+    /// thread (session 37: grips slipping at 5-14 N as they opened, the thread passing through itself).
+    pub hold_through_release: bool,
     /// The second throw, if the expert ties one: the first throw's pulls then hold, and the second
     /// is planned from the world they leave ([`super::second_throw`]).
     pub second_throw: Option<SecondThrow>,
@@ -201,6 +205,7 @@ impl Default for TieGeometry {
             tail_pull_force_n: None,
             pull_force_sustain_s: 0.0,
             hold_at_force: true,
+            hold_through_release: false,
             second_throw: None,
         }
     }
@@ -785,10 +790,14 @@ fn plan_throw(world: &SimWorld, geometry: &TieGeometry, variation: &Variation, s
         // The jaws keep pointing as they do: turning them along the shaft on the way passes the
         // straight wrist, where the arm crawls and the pull never reaches its force.
         track.go(Path::To(at(to)), d(2.5));
+        // The hold ends as the jaws start to open, or, with `hold_through_release`, once they are
+        // open: ended before, the arm goes on towards where the pull was headed as it lets go.
+        let release_s = track.time_s() + 1.0;
+        let hold_until_s = if geometry.hold_through_release { release_s + d(0.2) + 0.3 } else { release_s };
         track.event(ForceEvent {
             name: "set force".into(),
             from_s: from_s + d(0.5),
-            until_s: track.time_s() + 1.0,
+            until_s: hold_until_s,
             threshold_n,
             sustain_s: geometry.pull_force_sustain_s,
             action: if geometry.hold_at_force {

@@ -81,6 +81,9 @@ pub struct SecondThrow {
     pub right_before_draw_m: Vec<[f64; 3]>,
     /// How long the draw takes, s; `None`: as the first throw.
     pub draw_s: Option<f64>,
+    /// Whether the pulls' hold lasts until the jaws have opened
+    /// ([`TieGeometry::hold_through_release`]); `None`: as the first throw.
+    pub hold_through_release: Option<bool>,
     /// The run-down's stopping force, N; `None`: as the first throw.
     pub run_down_force_n: Option<f64>,
     /// The winding's first move (picks the sense of the turn).
@@ -130,6 +133,7 @@ impl Default for SecondThrow {
             right_draws_to_m: None,
             right_before_draw_m: Vec::new(),
             draw_s: None,
+            hold_through_release: None,
             run_down_force_n: None,
             winding_towards: [0.0, 0.0, -1.0],
             winding_radius_m: None,
@@ -166,6 +170,7 @@ impl SecondThrow {
             right_draws_to_m: self.right_draws_to_m.or(first.right_draws_to_m),
             right_before_draw_m: self.right_before_draw_m.clone(),
             draw_s: self.draw_s.unwrap_or(first.draw_s),
+            hold_through_release: self.hold_through_release.unwrap_or(first.hold_through_release),
             run_down_force_n: self.run_down_force_n.or(first.run_down_force_n),
             winding_towards: self.winding_towards,
             winding_radius_m: self.winding_radius_m.unwrap_or(first.winding_radius_m),
@@ -273,6 +278,9 @@ mod tests {
         );
         assert_eq!((own.run_down_force_n, own.winding_lead_rad), (Some(2.5), -1.5));
         assert_eq!((same.loosen_m, own.loosen_m), (first.loosen_m, 0.006));
+        let held =
+            SecondThrow { hold_through_release: Some(true), ..SecondThrow::default() }.applied_to(&first);
+        assert_eq!((same.hold_through_release, held.hold_through_release), (false, true));
         assert_eq!((same.tail_take_short_m, own.tail_take_short_m), (first.tail_take_short_m, 0.0045));
         let small = SecondThrow {
             winding_radius_m: Some(0.01),
