@@ -97,19 +97,27 @@ fn a_recorded_run_is_a_valid_100_hz_demonstration_that_round_trips() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
+/// The plan for `geometry` at the shipped scene, for each pulling arm (left, right): its track and
+/// its one set-force event (the final pull's).
+fn pulls(geometry: &TieGeometry) -> [(knotlab_hw::skill::Track, knotlab_hw::skill::ForceEvent); 2] {
+    let world = SimWorld::new(scene(), Rig::shipped().expect("the shipped rig")).expect("the scene builds");
+    let skill = plan_instrument_tie(&world, geometry, &Variation::none());
+    [ArmName::Left, ArmName::Right].map(|arm| {
+        let track = skill.track(arm).expect("the arm pulls").clone();
+        let set: Vec<_> = track.events.iter().filter(|e| e.name == "set force").cloned().collect();
+        assert_eq!(set.len(), 1, "{arm}: one set-force event");
+        (track, set[0].clone())
+    })
+}
+
 #[test]
 fn the_pulls_let_go_at_the_set_force_or_hold_it_as_the_geometry_says() {
     use knotlab_hw::skill::ForceAction;
-    let world = SimWorld::new(scene(), Rig::shipped().expect("the shipped rig")).expect("the scene builds");
     let actions = |hold_at_force: bool| {
         let geometry = TieGeometry { hold_at_force, ..TieGeometry::default() };
-        let skill = plan_instrument_tie(&world, &geometry, &Variation::none());
-        [ArmName::Left, ArmName::Right].map(|arm| {
-            let events = &skill.track(arm).expect("the arm pulls").events;
-            let set: Vec<_> = events.iter().filter(|e| e.name == "set force").collect();
-            assert_eq!(set.len(), 1, "{arm}: one set-force event");
-            assert_eq!(set[0].threshold_n, geometry.pull_force_n);
-            set[0].action
+        pulls(&geometry).map(|(_, set)| {
+            assert_eq!(set.threshold_n, geometry.pull_force_n);
+            set.action
         })
     };
     for action in actions(false) {
@@ -122,16 +130,12 @@ fn the_pulls_let_go_at_the_set_force_or_hold_it_as_the_geometry_says() {
 
 #[test]
 fn the_pulls_hold_through_the_release_when_told() {
-    let world = SimWorld::new(scene(), Rig::shipped().expect("the shipped rig")).expect("the scene builds");
-    // For each pulling arm: when its set-force hold ends, and when its jaws have opened at the end.
+    // For each pulling arm: when its set-force hold ends, when its jaws start to open at the end, and
+    // when they are open.
     let windows = |hold_through_release: bool| {
-        let geometry = TieGeometry { hold_through_release, ..TieGeometry::default() };
-        let skill = plan_instrument_tie(&world, &geometry, &Variation::none());
-        [ArmName::Left, ArmName::Right].map(|arm| {
-            let track = skill.track(arm).expect("the arm pulls");
-            let hold = track.events.iter().find(|e| e.name == "set force").expect("a set force");
+        pulls(&TieGeometry { hold_through_release, ..TieGeometry::default() }).map(|(track, hold)| {
             let last = track.jaw.last().expect("jaw keys");
-            assert!(last.jaw_rad >= SimWorld::JAW_OPEN_RAD - 1e-9, "{arm} lets go at the end");
+            assert!(last.jaw_rad >= SimWorld::JAW_OPEN_RAD - 1e-9, "{}: lets go at the end", track.arm);
             let opening = track.jaw.iter().rev().find(|k| k.jaw_rad < last.jaw_rad).expect("it was shut");
             (hold.until_s, opening.time_s, last.time_s)
         })
@@ -146,15 +150,10 @@ fn the_pulls_hold_through_the_release_when_told() {
 
 #[test]
 fn the_left_pulls_the_tail_to_its_own_set_force_when_given_one() {
-    let world = SimWorld::new(scene(), Rig::shipped().expect("the shipped rig")).expect("the scene builds");
     let geometry = TieGeometry { tail_pull_force_n: Some(0.7), ..TieGeometry::default() };
-    let skill = plan_instrument_tie(&world, &geometry, &Variation::none());
-    let set_force = |arm: ArmName| {
-        let events = &skill.track(arm).expect("the arm pulls").events;
-        events.iter().find(|e| e.name == "set force").expect("a set force").threshold_n
-    };
-    assert_eq!(set_force(ArmName::Left), 0.7);
-    assert_eq!(set_force(ArmName::Right), geometry.pull_force_n);
+    let [(_, left), (_, right)] = pulls(&geometry);
+    assert_eq!(left.threshold_n, 0.7);
+    assert_eq!(right.threshold_n, geometry.pull_force_n);
 }
 
 #[test]
