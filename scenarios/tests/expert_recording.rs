@@ -369,6 +369,42 @@ fn before_the_draw_the_right_carries_the_long_end_through_the_points_given() {
 }
 
 #[test]
+fn the_left_runs_down_through_the_points_given_after_the_right_has_run_down() {
+    let world = SimWorld::new(scene(), Rig::shipped().expect("the shipped rig")).expect("the scene builds");
+    let via = [[0.01, 0.02, 0.05], [0.0, 0.03, 0.06]];
+    let geometry = TieGeometry { left_run_down_via_m: via.to_vec(), ..TieGeometry::default() };
+    let skill = plan_instrument_tie(&world, &geometry, &Variation::none());
+    let shipped = plan_instrument_tie(&world, &TieGeometry::default(), &Variation::none());
+    let reached_s = |skill: &knotlab_hw::skill::Skill, arm: ArmName, p: [f64; 3]| {
+        let world_point = world.tissue.world_from_tissue * nalgebra::Point3::from(Vector3::from(p));
+        first_reaches(skill.track(arm).expect("the arm runs down"), &world_point.coords)
+    };
+    let first_s = reached_s(&skill, ArmName::Left, via[0]).expect("the left goes to the first point");
+    let second_s = reached_s(&skill, ArmName::Left, via[1]).expect("the left goes to the second point");
+    let end_s =
+        reached_s(&skill, ArmName::Left, geometry.left_run_down_to_m).expect("and on to its run-down's end");
+    assert!(first_s < second_s && second_s < end_s, "in order: {first_s} s, {second_s} s, {end_s} s");
+    assert!(reached_s(&shipped, ArmName::Left, via[0]).is_none(), "the shipped left does not go there");
+    // The right makes its run-down in the left's first leg: it is down before the left goes on.
+    let right_s =
+        reached_s(&skill, ArmName::Right, geometry.right_run_down_to_m).expect("the right runs down");
+    assert!(
+        right_s < second_s,
+        "the right is down at {right_s} s, the left at its second point at {second_s} s"
+    );
+    // Each leg takes the run-down's time: the plan is two legs longer.
+    let last_s = |skill: &knotlab_hw::skill::Skill| {
+        skill.track(ArmName::Left).and_then(|t| t.poses.last()).map(|k| k.time_s)
+    };
+    let longer_s = last_s(&skill).expect("poses") - last_s(&shipped).expect("poses");
+    assert!(
+        (longer_s - 2.0 * geometry.run_down_s).abs() < 0.5,
+        "{longer_s} s longer for two legs of {} s",
+        geometry.run_down_s
+    );
+}
+
+#[test]
 fn for_the_second_throw_the_assist_takes_the_tail_near_its_end_and_draws_it_where_told() {
     use knotlab_scenarios::expert::{SecondThrow, plan_second_throw};
     let world = SimWorld::new(scene(), Rig::shipped().expect("the shipped rig")).expect("the scene builds");

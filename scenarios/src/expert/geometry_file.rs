@@ -114,6 +114,9 @@ fn range_problems(g: &TieGeometry) -> Vec<(String, String)> {
     for (k, p) in g.right_before_draw_m.iter().enumerate() {
         c.point(&format!("right_before_draw_m[{k}]"), p);
     }
+    for (k, p) in g.left_run_down_via_m.iter().enumerate() {
+        c.point(&format!("left_run_down_via_m[{k}]"), p);
+    }
     if let Some(p) = &g.right_draws_to_m {
         c.point("right_draws_to_m", p);
     }
@@ -231,11 +234,22 @@ fn range_problems(g: &TieGeometry) -> Vec<(String, String)> {
         for (k, p) in s.right_before_draw_m.iter().enumerate() {
             c.point(&format!("second_throw.right_before_draw_m[{k}]"), p);
         }
+        for (k, p) in s.left_run_down_via_m.iter().enumerate() {
+            c.point(&format!("second_throw.left_run_down_via_m[{k}]"), p);
+        }
         if let Some(p) = &s.right_draws_to_m {
             c.point("second_throw.right_draws_to_m", p);
         }
         if let Some(v) = s.draw_s {
             c.range("second_throw.draw_s", v, 0.1, 60.0);
+        }
+        for (key, force) in [
+            ("second_throw.pull_force_n", s.pull_force_n),
+            ("second_throw.tail_pull_force_n", s.tail_pull_force_n),
+        ] {
+            if let Some(v) = force {
+                c.range(key, v, 0.01, 10.0);
+            }
         }
         if let Some(v) = s.run_down_force_n {
             c.range("second_throw.run_down_force_n", v, 0.01, 10.0);
@@ -324,7 +338,7 @@ mod tests {
              right_before_draw_m = [[0.0, 0.0, 0.0], [0.0, 0.3, 0.0]]\n[second_throw]\n\
              left_jaw_direction = [0.0, 0.0, 0.0]\nwinding_lead_rad = 7.0\nloosen_m = 0.5\ntail_take_short_m = 0.5\ndraw_back_m = 0.5\n\
              right_follows_draw = -5.0\nright_draws_to_m = [0.3, 0.0, 0.0]\ndraw_s = 100.0\n\
-             right_before_draw_m = [[0.3, 0.0, 0.0]]\n\
+             right_before_draw_m = [[0.3, 0.0, 0.0]]\nleft_run_down_via_m = [[0.0, 0.0, -0.3]]\npull_force_n = 0.0\n\
              run_down_force_n = 0.0\nassist_presents = true\nleft_keeps_tail = true\n\
              tail_hold_from_end_m = -0.01\ntail_held_to_m = [0.0, 0.5, 0.0]\n\
              winding_radius_m = 0.0\nwinding_behind_m = 0.5\nwinding_pitch_m = 0.2\ntake_tail_jaw_rad = 2.0\ntail_end_offered_m = 0.1\n\
@@ -345,6 +359,8 @@ mod tests {
             "right_draws_to_m.z",
             "right_before_draw_m[1].y",
             "second_throw.right_before_draw_m[0].x",
+            "second_throw.left_run_down_via_m[0].z",
+            "second_throw.pull_force_n",
             "second_throw.left_jaw_direction",
             "second_throw.assist_presents",
             "second_throw.winding_lead_rad",

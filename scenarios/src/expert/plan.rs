@@ -98,6 +98,10 @@ pub struct TieGeometry {
     pub left_run_down_to_m: [f64; 3],
     /// Where the right's jaws go meanwhile: low over the long end's flap.
     pub right_run_down_to_m: [f64; 3],
+    /// The left goes through these points (stitch frame) on its way to `left_run_down_to_m`, each
+    /// leg taking `run_down_s`, while the right makes its run-down in the first leg: for a second
+    /// throw whose ends cross, the tail carried over the long end once the right has drawn it clear.
+    pub left_run_down_via_m: Vec<[f64; 3]>,
     /// How long the run-down takes, s.
     pub run_down_s: f64,
     /// If set, each instrument stops its run-down where its gauge first reads this force, N (the
@@ -189,6 +193,7 @@ impl Default for TieGeometry {
             tail_give_fraction: 0.0,
             left_run_down_to_m: [0.0, 0.04, 0.05],
             right_run_down_to_m: [0.0, -0.012, 0.012],
+            left_run_down_via_m: Vec::new(),
             run_down_s: 2.5,
             run_down_force_n: None,
             left_pull_to_m: [0.0, 0.06, 0.01],
@@ -734,6 +739,10 @@ fn plan_throw(world: &SimWorld, geometry: &TieGeometry, variation: &Variation, s
     right.go(Path::To(right_to), left.time_s() - first_s);
     // The run-down: the knot onto the wound.
     let run_down_s = left.time_s() + pause[4];
+    left.wait_until(run_down_s);
+    for via in &geometry.left_run_down_via_m {
+        left.go(Path::To(at(*via)), d(geometry.run_down_s));
+    }
     for (track, to) in [(&mut left, geometry.left_run_down_to_m), (&mut right, geometry.right_run_down_to_m)]
     {
         track.wait_until(run_down_s);

@@ -86,6 +86,10 @@ pub struct SecondThrow {
     pub hold_through_release: Option<bool>,
     /// The run-down's stopping force, N; `None`: as the first throw.
     pub run_down_force_n: Option<f64>,
+    /// The right's set force in the pulls, N; `None`: as the first throw.
+    pub pull_force_n: Option<f64>,
+    /// The left's set force on the tail in the pulls, N; `None`: as the first throw.
+    pub tail_pull_force_n: Option<f64>,
     /// The winding's first move (picks the sense of the turn).
     pub winding_towards: [f64; 3],
     /// The right's jaws' distance from the left's jaw axis while winding, m; `None`: as the first
@@ -104,6 +108,8 @@ pub struct SecondThrow {
     pub left_run_down_to_m: [f64; 3],
     /// ... while the right takes its jaws to here.
     pub right_run_down_to_m: [f64; 3],
+    /// The left's way to its run-down's end ([`TieGeometry::left_run_down_via_m`]); empty: straight.
+    pub left_run_down_via_m: Vec<[f64; 3]>,
     /// Then the pulls until the set force: the left towards here ...
     pub left_pull_to_m: [f64; 3],
     /// ... the right towards here.
@@ -135,6 +141,8 @@ impl Default for SecondThrow {
             draw_s: None,
             hold_through_release: None,
             run_down_force_n: None,
+            pull_force_n: None,
+            tail_pull_force_n: None,
             winding_towards: [0.0, 0.0, -1.0],
             winding_radius_m: None,
             winding_behind_m: None,
@@ -143,6 +151,7 @@ impl Default for SecondThrow {
             winding_turns: 1.0,
             left_run_down_to_m: first.left_run_down_to_m,
             right_run_down_to_m: first.right_run_down_to_m,
+            left_run_down_via_m: Vec::new(),
             left_pull_to_m: first.left_pull_to_m,
             right_pull_to_m: first.right_pull_to_m,
         }
@@ -172,6 +181,8 @@ impl SecondThrow {
             draw_s: self.draw_s.unwrap_or(first.draw_s),
             hold_through_release: self.hold_through_release.unwrap_or(first.hold_through_release),
             run_down_force_n: self.run_down_force_n.or(first.run_down_force_n),
+            pull_force_n: self.pull_force_n.unwrap_or(first.pull_force_n),
+            tail_pull_force_n: self.tail_pull_force_n.or(first.tail_pull_force_n),
             winding_towards: self.winding_towards,
             winding_radius_m: self.winding_radius_m.unwrap_or(first.winding_radius_m),
             winding_behind_m: self.winding_behind_m.unwrap_or(first.winding_behind_m),
@@ -180,6 +191,7 @@ impl SecondThrow {
             winding_turns: self.winding_turns,
             left_run_down_to_m: self.left_run_down_to_m,
             right_run_down_to_m: self.right_run_down_to_m,
+            left_run_down_via_m: self.left_run_down_via_m.clone(),
             left_pull_to_m: self.left_pull_to_m,
             right_pull_to_m: self.right_pull_to_m,
             second_throw: None,
@@ -281,6 +293,22 @@ mod tests {
         let held =
             SecondThrow { hold_through_release: Some(true), ..SecondThrow::default() }.applied_to(&first);
         assert_eq!((same.hold_through_release, held.hold_through_release), (false, true));
+        let pulled = SecondThrow {
+            pull_force_n: Some(1.5),
+            tail_pull_force_n: Some(1.2),
+            left_run_down_via_m: vec![[0.0, 0.01, 0.03]],
+            ..SecondThrow::default()
+        }
+        .applied_to(&first);
+        assert_eq!(
+            (same.pull_force_n, same.tail_pull_force_n),
+            (first.pull_force_n, first.tail_pull_force_n)
+        );
+        assert_eq!((pulled.pull_force_n, pulled.tail_pull_force_n), (1.5, Some(1.2)));
+        assert_eq!(
+            (same.left_run_down_via_m.len(), pulled.left_run_down_via_m),
+            (0, vec![[0.0, 0.01, 0.03]])
+        );
         assert_eq!((same.tail_take_short_m, own.tail_take_short_m), (first.tail_take_short_m, 0.0045));
         let small = SecondThrow {
             winding_radius_m: Some(0.01),
