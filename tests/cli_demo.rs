@@ -31,6 +31,13 @@ fn demo_json_reports_each_run_and_writes_loadable_demonstrations() {
     assert_eq!(run["fault"], serde_json::Value::Null, "{run}");
     // The knot where the pulls left it, taken as the left let go of the tail.
     assert!(run["knot_at_release"]["knot"].is_string(), "{run}");
+    // How far its crossings spread: a knot has some, no knot none.
+    let radius = &run["knot_at_release"]["radius_m"];
+    if run["knot_at_release"]["knot"] == "unknot" {
+        assert!(radius.is_null(), "{run}");
+    } else {
+        assert!(radius.as_f64().is_some_and(|r| r > 0.0 && r < 0.25), "{run}");
+    }
     // Its legs, where the long end and the tail touch: a leg's thread spans at most its own length.
     for leg in ["exit_leg", "entry_leg"] {
         let l = &run["knot_at_release"][leg];

@@ -122,6 +122,9 @@ pub struct KnotNow {
     /// The thread outside the tissue between the stitch and the knot, m
     /// ([`KnotEvaluation::loop_outside_m`]).
     pub loop_outside_m: Option<f64>,
+    /// How far the knot's crossings lie from their centre at most, m (none for no knot): small for a
+    /// knot drawn tight, large for throws apart or loose.
+    pub radius_m: Option<f64>,
     /// The loop's leg from the exit point (the needle's side) to where the long end first touches
     /// the tail: its thread and the distance it spans ([`crate::knot::legs`]); none if they do not
     /// touch.
@@ -138,12 +141,12 @@ const TOUCH_RADII: f64 = 2.5;
 pub fn knot_now(world: &SimWorld) -> Option<KnotNow> {
     let site = stitch_site(world)?;
     let c = classify_thread(world)?;
-    let (height_m, loop_outside_m) = match &c.span {
+    let (height_m, loop_outside_m, radius_m) = match &c.span {
         Some(span) => {
             let placement = KnotPlacement::measure(span, &site.surface, &site.stitch_m);
-            (Some(placement.height_m), loop_outside(world, span))
+            (Some(placement.height_m), loop_outside(world, span), Some(span.radius_m))
         }
-        None => (None, None),
+        None => (None, None, None),
     };
     let arc_at = |flap| world.stitch.arc_at_m(&world.physics, &world.thread, &world.tissue, flap);
     let (exit_leg, entry_leg) = match (arc_at(Flap::B), arc_at(Flap::A)) {
@@ -153,7 +156,7 @@ pub fn knot_now(world: &SimWorld) -> Option<KnotNow> {
         }
         _ => (None, None),
     };
-    Some(KnotNow { knot: c.knot, height_m, loop_outside_m, exit_leg, entry_leg })
+    Some(KnotNow { knot: c.knot, height_m, loop_outside_m, radius_m, exit_leg, entry_leg })
 }
 
 fn loop_outside(world: &SimWorld, span: &KnotSpan) -> Option<f64> {

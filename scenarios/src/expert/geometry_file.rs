@@ -121,6 +121,7 @@ fn range_problems(g: &TieGeometry) -> Vec<(String, String)> {
         c.point("right_draws_to_m", p);
     }
     c.range("draw_s", g.draw_s, 0.1, 60.0);
+    c.range("pull_s", g.pull_s, 0.1, 60.0);
     if let Some(v) = g.tail_end_offered_m {
         c.range("tail_end_offered_m", v, 0.0, 0.05);
         if g.left_fetches.is_some() {
@@ -243,6 +244,9 @@ fn range_problems(g: &TieGeometry) -> Vec<(String, String)> {
         if let Some(v) = s.draw_s {
             c.range("second_throw.draw_s", v, 0.1, 60.0);
         }
+        if let Some(v) = s.pull_s {
+            c.range("second_throw.pull_s", v, 0.1, 60.0);
+        }
         for (key, force) in [
             ("second_throw.pull_force_n", s.pull_force_n),
             ("second_throw.tail_pull_force_n", s.tail_pull_force_n),
@@ -338,7 +342,7 @@ mod tests {
              right_before_draw_m = [[0.0, 0.0, 0.0], [0.0, 0.3, 0.0]]\n[second_throw]\n\
              left_jaw_direction = [0.0, 0.0, 0.0]\nwinding_lead_rad = 7.0\nloosen_m = 0.5\ntail_take_short_m = 0.5\ndraw_back_m = 0.5\n\
              right_follows_draw = -5.0\nright_draws_to_m = [0.3, 0.0, 0.0]\ndraw_s = 100.0\n\
-             right_before_draw_m = [[0.3, 0.0, 0.0]]\nleft_run_down_via_m = [[0.0, 0.0, -0.3]]\npull_force_n = 0.0\n\
+             right_before_draw_m = [[0.3, 0.0, 0.0]]\nleft_run_down_via_m = [[0.0, 0.0, -0.3]]\npull_force_n = 0.0\npull_s = 0.0\n\
              run_down_force_n = 0.0\nassist_presents = true\nleft_keeps_tail = true\n\
              tail_hold_from_end_m = -0.01\ntail_held_to_m = [0.0, 0.5, 0.0]\n\
              winding_radius_m = 0.0\nwinding_behind_m = 0.5\nwinding_pitch_m = 0.2\ntake_tail_jaw_rad = 2.0\ntail_end_offered_m = 0.1\n\
@@ -361,6 +365,7 @@ mod tests {
             "second_throw.right_before_draw_m[0].x",
             "second_throw.left_run_down_via_m[0].z",
             "second_throw.pull_force_n",
+            "second_throw.pull_s",
             "second_throw.left_jaw_direction",
             "second_throw.assist_presents",
             "second_throw.winding_lead_rad",

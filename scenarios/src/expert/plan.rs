@@ -114,6 +114,9 @@ pub struct TieGeometry {
     /// seeds 0-7: the wound 1.1-1.8 mm as both let go); pulled up and out (the left to (0, 0.05,
     /// 0.055)), the knot stayed 2-7 mm up and the wound 2.5-3.3 mm open.
     pub right_pull_to_m: [f64; 3],
+    /// How long each pull takes to its target, s (it stops sooner at its set force; a fast pull
+    /// carries the gauge's reading past the set force before the arm stops).
+    pub pull_s: f64,
     /// Where the assist retreats to.
     pub assist_retreat_m: [f64; 3],
     /// Every move is slowed until no joint needs more than this fraction of its rated speed.
@@ -198,6 +201,7 @@ impl Default for TieGeometry {
             run_down_force_n: None,
             left_pull_to_m: [0.0, 0.06, 0.01],
             right_pull_to_m: [0.0, -0.05, 0.005],
+            pull_s: 2.5,
             assist_retreat_m: [0.04, 0.04, 0.04],
             speed_fraction: 0.3,
             draw_back_m: 0.032,
@@ -769,7 +773,7 @@ fn plan_throw(world: &SimWorld, geometry: &TieGeometry, variation: &Variation, s
         // where they were going) and hold there together to the end of this plan.
         for (track, to) in [(&mut left, geometry.left_pull_to_m), (&mut right, geometry.right_pull_to_m)] {
             track.wait_until(pull_s);
-            track.go(Path::To(at(to)), d(2.5));
+            track.go(Path::To(at(to)), d(geometry.pull_s));
         }
         let end_s = left.time_s().max(right.time_s()) + 1.0;
         for (track, threshold_n) in [(&mut left, tail_pull_force_n), (&mut right, geometry.pull_force_n)] {
@@ -798,7 +802,7 @@ fn plan_throw(world: &SimWorld, geometry: &TieGeometry, variation: &Variation, s
         let from_s = pull_s;
         // The jaws keep pointing as they do: turning them along the shaft on the way passes the
         // straight wrist, where the arm crawls and the pull never reaches its force.
-        track.go(Path::To(at(to)), d(2.5));
+        track.go(Path::To(at(to)), d(geometry.pull_s));
         // The hold ends as the jaws start to open, or, with `hold_through_release`, once they are
         // open: ended before, the arm goes on towards where the pull was headed as it lets go.
         let release_s = track.time_s() + 1.0;

@@ -86,6 +86,8 @@ pub struct SecondThrow {
     pub hold_through_release: Option<bool>,
     /// The run-down's stopping force, N; `None`: as the first throw.
     pub run_down_force_n: Option<f64>,
+    /// How long each pull takes to its target, s; `None`: as the first throw.
+    pub pull_s: Option<f64>,
     /// The right's set force in the pulls, N; `None`: as the first throw.
     pub pull_force_n: Option<f64>,
     /// The left's set force on the tail in the pulls, N; `None`: as the first throw.
@@ -141,6 +143,7 @@ impl Default for SecondThrow {
             draw_s: None,
             hold_through_release: None,
             run_down_force_n: None,
+            pull_s: None,
             pull_force_n: None,
             tail_pull_force_n: None,
             winding_towards: [0.0, 0.0, -1.0],
@@ -181,6 +184,7 @@ impl SecondThrow {
             draw_s: self.draw_s.unwrap_or(first.draw_s),
             hold_through_release: self.hold_through_release.unwrap_or(first.hold_through_release),
             run_down_force_n: self.run_down_force_n.or(first.run_down_force_n),
+            pull_s: self.pull_s.unwrap_or(first.pull_s),
             pull_force_n: self.pull_force_n.unwrap_or(first.pull_force_n),
             tail_pull_force_n: self.tail_pull_force_n.or(first.tail_pull_force_n),
             winding_towards: self.winding_towards,
@@ -294,6 +298,7 @@ mod tests {
             SecondThrow { hold_through_release: Some(true), ..SecondThrow::default() }.applied_to(&first);
         assert_eq!((same.hold_through_release, held.hold_through_release), (false, true));
         let pulled = SecondThrow {
+            pull_s: Some(6.0),
             pull_force_n: Some(1.5),
             tail_pull_force_n: Some(1.2),
             left_run_down_via_m: vec![[0.0, 0.01, 0.03]],
@@ -305,6 +310,7 @@ mod tests {
             (first.pull_force_n, first.tail_pull_force_n)
         );
         assert_eq!((pulled.pull_force_n, pulled.tail_pull_force_n), (1.5, Some(1.2)));
+        assert_eq!((same.pull_s, pulled.pull_s), (first.pull_s, 6.0));
         assert_eq!(
             (same.left_run_down_via_m.len(), pulled.left_run_down_via_m),
             (0, vec![[0.0, 0.01, 0.03]])
