@@ -157,6 +157,19 @@ fn the_left_pulls_the_tail_to_its_own_set_force_when_given_one() {
 }
 
 #[test]
+fn each_pull_takes_as_long_as_told() {
+    // The pull's last move, to its target, ends where the set-force hold would otherwise run out: it
+    // starts with the pull and is `pull_s` long (the plan's pauses and the release come after).
+    let hold_ends_s =
+        |pull_s: f64| pulls(&TieGeometry { pull_s, ..TieGeometry::default() }).map(|(_, set)| set.until_s);
+    let (shipped, slow) = (hold_ends_s(TieGeometry::default().pull_s), hold_ends_s(8.0));
+    for (a, b) in shipped.iter().zip(&slow) {
+        let longer_s = b - a;
+        assert!((longer_s - (8.0 - 2.5)).abs() < 1e-6, "{longer_s} s longer for a pull 5.5 s slower");
+    }
+}
+
+#[test]
 fn while_winding_the_right_turns_its_jaws_across_the_left_as_the_geometry_says() {
     let world = SimWorld::new(scene(), Rig::shipped().expect("the shipped rig")).expect("the scene builds");
     let geometry = coils_on_the_left();
