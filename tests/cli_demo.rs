@@ -170,6 +170,53 @@ fn snapshots_zoom_to_the_half_width_asked_for() {
 }
 
 #[test]
+fn the_knot_trace_takes_the_knot_and_the_gauges_at_the_period_asked() {
+    let out = std::env::temp_dir().join(format!("knotlab-demo-trace-{}", std::process::id()));
+    let (code, stdout, err) = knotlab(&[
+        "demo",
+        "--seed",
+        "0",
+        "--until",
+        "1.0",
+        "--knot-trace",
+        "0.25",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{stdout}{err}");
+    let text = std::fs::read_to_string(out.join("knot-trace.csv")).expect("the trace was written");
+    let mut lines = text.lines();
+    let header: Vec<&str> = lines.next().expect("a header").split(',').collect();
+    let column = |name: &str| header.iter().position(|h| *h == name).unwrap_or_else(|| panic!("no {name}"));
+    let rows: Vec<Vec<&str>> = lines.map(|l| l.split(',').collect()).collect();
+    let times: Vec<f64> = rows.iter().map(|r| r[column("time_s")].parse().expect("a time")).collect();
+    assert_eq!(times.len(), 5, "0, 0.25, 0.5, 0.75 and 1 s, where it stops: {times:?}");
+    for (k, t) in times.iter().enumerate() {
+        assert!((t - 0.25 * k as f64).abs() < 0.0015, "one point every 0.25 s: {times:?}");
+    }
+    for r in &rows {
+        assert_eq!(r[column("knot")], "unknot", "no knot in the first second: {r:?}");
+        assert_eq!(r.len(), header.len(), "{r:?}");
+        // The thread passes the exit before the entry, counted from the needle end.
+        let exit: f64 = r[column("exit_arc_m")].parse().expect("the exit's arc");
+        let entry: f64 = r[column("entry_arc_m")].parse().expect("the entry's arc");
+        assert!(0.0 < exit && exit < entry, "{r:?}");
+        let gap: f64 = r[column("wound_gap_m")].parse().expect("the gap");
+        assert!(gap > 0.0 && gap < 0.01, "{r:?}");
+    }
+    let assist: Vec<f64> =
+        rows.iter().map(|r| r[column("assist_force_n")].parse().expect("a force")).collect();
+    assert!(assist.iter().all(|f| f.is_finite() && *f >= 0.0), "{assist:?}");
+    for bad in ["0", "-1", "often"] {
+        let (code, stdout, err) =
+            knotlab(&["demo", "--seed", "0", &format!("--knot-trace={bad}"), "--out", "/tmp/never"]);
+        assert_eq!(code, 2, "{bad}: {stdout}");
+        assert!(err.contains("--knot-trace"), "{bad}: {err}");
+    }
+    let _ = std::fs::remove_dir_all(&out);
+}
+
+#[test]
 fn the_experts_geometry_comes_from_a_file_and_a_bad_one_is_refused_naming_its_key() {
     let dir = std::env::temp_dir().join(format!("knotlab-demo-expert-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();

@@ -51,6 +51,11 @@ pub struct DemoArgs {
     /// Stop at this time (s from the start) and evaluate what is there (a short trial, to debug).
     #[arg(long, value_name = "S")]
     until: Option<f64>,
+    /// Every S seconds, take the knot as the thread lies and what the gauges read, into
+    /// OUT/knot-trace.csv (time, knot, height, loop outside, radius, each leg's thread and span, wound
+    /// gap, each instrument's force): when a throw loosens, or a leg gathers slack.
+    #[arg(long, value_name = "S", value_parser = parse_trace_period)]
+    knot_trace: Option<f64>,
     /// Print JSON instead of text.
     #[arg(long)]
     json: bool,
@@ -166,6 +171,7 @@ pub fn run(args: DemoArgs, out: &mut Output) -> anyhow::Result<ExitCode> {
         cycles_per_sample: 10,
         snapshot_half_width_m: args.snapshot_half_width,
         stop_after_s: args.until,
+        knot_trace_every_s: args.knot_trace,
     };
     let geometry = match &args.expert {
         Some(path) => load_tie_geometry(path)?,
@@ -210,6 +216,10 @@ pub fn run(args: DemoArgs, out: &mut Output) -> anyhow::Result<ExitCode> {
             }
             std::fs::write(&path, csv).with_context(|| path.display().to_string())?;
         }
+        if args.knot_trace.is_some() {
+            let path = dir.join("knot-trace.csv");
+            std::fs::write(&path, knot_trace_csv(&run)).with_context(|| path.display().to_string())?;
+        }
         let l = line(seed, &run, &dir);
         if !args.json {
             outln!(
@@ -249,6 +259,47 @@ pub fn run(args: DemoArgs, out: &mut Output) -> anyhow::Result<ExitCode> {
         );
     }
     Ok(ExitCode::SUCCESS)
+}
+
+/// The run's knot trace as CSV: one line per time, empty fields where there is no knot or leg.
+fn knot_trace_csv(run: &DemoRun) -> String {
+    let mut csv = String::from(
+        "time_s,knot,height_m,loop_outside_m,radius_m,exit_leg_thread_m,exit_leg_span_m,\
+         entry_leg_thread_m,entry_leg_span_m,exit_arc_m,entry_arc_m,wound_gap_m,left_force_n,right_force_n,assist_force_n\n",
+    );
+    let opt = |v: Option<f64>| v.map(|v| format!("{v:.5}")).unwrap_or_default();
+    for p in &run.knot_trace {
+        let k = p.knot.as_ref();
+        let leg =
+            |l: Option<knotlab_sim::knot::legs::Leg>| (opt(l.map(|l| l.thread_m)), opt(l.map(|l| l.span_m)));
+        let (exit_thread, exit_span) = leg(k.and_then(|k| k.exit_leg));
+        let (entry_thread, entry_span) = leg(k.and_then(|k| k.entry_leg));
+        csv.push_str(&format!(
+            "{:.3},{},{},{},{},{exit_thread},{exit_span},{entry_thread},{entry_span},{},{},{:.5},{:.3},{:.3},{:.3}\n",
+            p.time_s,
+            k.map_or("", |k| k.knot.name()),
+            opt(k.and_then(|k| k.height_m)),
+            opt(k.and_then(|k| k.loop_outside_m)),
+            opt(k.and_then(|k| k.radius_m)),
+            opt(p.stitch_arcs_m[0]),
+            opt(p.stitch_arcs_m[1]),
+            p.wound_gap_m,
+            p.force_n[0],
+            p.force_n[1],
+            p.force_n[2],
+        ));
+    }
+    csv
+}
+
+/// The knot trace's period: more than 0 s.
+fn parse_trace_period(text: &str) -> Result<f64, String> {
+    let s: f64 = text.parse().map_err(|_| format!("'{text}' is not a number of seconds"))?;
+    if s.is_finite() && s > 0.0 {
+        Ok(s)
+    } else {
+        Err(format!("{s} s: the trace's period must be more than 0 s"))
+    }
 }
 
 /// A snapshot view's half width: more than 0, at most 1 m.

@@ -19,6 +19,7 @@ use knotlab_sim::knot::{FailureMode, Verdict};
 use knotlab_sim::shapes::{SceneShapes, scene_shapes};
 use knotlab_sim::snapshot::{View, render_png};
 use knotlab_sim::thread_watch::SelfCrossing;
+use knotlab_sim::tissue::Flap;
 use knotlab_sim::world::SimWorld;
 use nalgebra::UnitQuaternion;
 
@@ -45,6 +46,25 @@ pub struct RecordOptions {
     /// Stop at this time (from the recording's start, s) and evaluate what is there (a short trial, to
     /// debug).
     pub stop_after_s: Option<f64>,
+    /// Take the knot as the thread lies ([`knot_now`]) every this many seconds into
+    /// [`DemoRun::knot_trace`] (none: no trace), to see when a throw loosens or a leg gathers slack.
+    pub knot_trace_every_s: Option<f64>,
+}
+
+/// The knot and the gauges at one time of a run ([`RecordOptions::knot_trace_every_s`]).
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+pub struct KnotTracePoint {
+    /// Time from the recording's start, s.
+    pub time_s: f64,
+    /// The knot as the thread lies (none where the centreline or the tissue is degenerate).
+    pub knot: Option<KnotNow>,
+    /// The wound's gap between the flaps' inner faces, m.
+    pub wound_gap_m: f64,
+    /// The thread's arc length from the needle end at the stitch's exit and entry points, m: how the
+    /// thread moves through the tissue.
+    pub stitch_arcs_m: [Option<f64>; 2],
+    /// What the left, right and assist instruments' gauges read, N (magnitudes, world frame).
+    pub force_n: [f64; 3],
 }
 
 fn view(world: &SimWorld, options: &RecordOptions) -> View {
@@ -107,6 +127,8 @@ pub struct DemoRun {
     pub force_events: Vec<ForceFired>,
     /// The scene at the end, after the knot's holding test.
     pub final_scene: SceneShapes,
+    /// The knot every [`RecordOptions::knot_trace_every_s`], in time order (empty when not asked).
+    pub knot_trace: Vec<KnotTracePoint>,
 }
 
 /// A force event of the skill that fired.
@@ -214,6 +236,8 @@ pub fn record_demonstration(
     let mut snapshots = Vec::new();
     let mut fault = None;
     let (mut left_held, mut knot_at_release, mut coils_at_take) = (false, None, None);
+    let mut knot_trace = Vec::new();
+    let mut next_trace_s = 0.0;
     loop {
         let record = match controller.step() {
             Ok(record) => record.clone(),
@@ -235,6 +259,20 @@ pub fn record_demonstration(
             coils_at_take = Some(CoilsAtTake::now(&world, record.time_s));
         }
         left_held = left_holds;
+        if let Some(every_s) = options.knot_trace_every_s.filter(|s| *s > 0.0)
+            && record.time_s >= next_trace_s
+        {
+            next_trace_s = record.time_s + every_s;
+            let force = |arm| record.arm(arm).map_or(0.0, |a| a.world_force_n.norm());
+            knot_trace.push(KnotTracePoint {
+                time_s: record.time_s,
+                knot: knot_now(&world),
+                wound_gap_m: world.wound_gap_m(),
+                stitch_arcs_m: [Flap::B, Flap::A]
+                    .map(|flap| world.stitch.arc_at_m(&world.physics, &world.thread, &world.tissue, flap)),
+                force_n: [force(ArmName::Left), force(ArmName::Right), force(ArmName::Assist)],
+            });
+        }
         if record.cycle % every == 0 {
             sample_instruments(&record, &world, &mut records);
         }
@@ -307,6 +345,7 @@ pub fn record_demonstration(
         events,
         force_events,
         final_scene,
+        knot_trace,
     })
 }
 
