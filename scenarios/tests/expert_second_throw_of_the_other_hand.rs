@@ -2,8 +2,9 @@
 //! 6, session 37): the left's jaws ahead of the knot along the wound, the long end wound once round
 //! them as a helix advancing towards their tips, so that its knot leg joins the turn from behind, and
 //! the tail taken where it is presented within the jaws. As the instruments let go the thread holds
-//! the surgeon's knot (a double throw, then a single of the opposite hand). It is not yet run down
-//! onto the first throw: the verdict is a failure still (see the README).
+//! the surgeon's knot (a double throw, then a single of the opposite hand), run down onto the first
+//! throw (session 38). It does not hold yet: the long end's leg from the exit to the knot is slack,
+//! and the wound opens by that much under the holding load (see the README).
 
 mod common;
 
@@ -13,12 +14,12 @@ use knotlab_sim::knot::verdict::{FailureMode, Verdict};
 
 #[test]
 fn the_second_throw_is_of_the_other_hand_and_makes_a_surgeons_knot() {
-    // Seed 0: the left takes the presented tail at 47.4 s; the instruments let go at 64.5 s.
+    // Seed 0: the left takes the presented tail at 47.3 s; the instruments let go at 75.3 s.
     let run = two_throw_run("two-throws-leg-behind.toml", 0, Vec::new(), 80.0);
     let at_release = run.knot_at_release.as_ref().expect("the left let go of the tail");
     assert_eq!(at_release.knot, KnotType::SurgeonsKnot, "{:?}", run.evaluation);
     assert_eq!(run.evaluation.knot_before, Some(KnotType::SurgeonsKnot), "{:?}", run.evaluation);
-    // Not yet down and holding.
+    // Not yet holding.
     assert!(
         matches!(
             run.evaluation.verdict,
@@ -28,8 +29,12 @@ fn the_second_throw_is_of_the_other_hand_and_makes_a_surgeons_knot() {
         run.evaluation
     );
     assert!(run.events.iter().all(|e| !e.starts_with("Slipped")), "no grip slips: {:?}", run.events);
-    // Why: the second throw stays apart from the first. At release the knot's crossings spread 17.5 mm
-    // from their centre (session 38); the first throw alone, drawn tight, about 3 mm.
+    // The second throw is down on the first: at release the knot's crossings lie within 3.4 mm of
+    // their centre (session 38; with the second throw's pulls at the first's set forces, 17.5 mm).
     let radius_m = at_release.radius_m.expect("a knot has crossings");
-    assert!(radius_m > 0.01, "the throws drawn together ({radius_m} m): assert that it holds instead");
+    assert!(radius_m < 0.005, "the throws apart ({radius_m} m)");
+    // Why it does not hold: the exit's leg holds about 40 mm of thread for 6 mm of span, gathered
+    // as the second throw was run down and pulled (`knotlab demo --knot-trace`).
+    let exit_leg = at_release.exit_leg.expect("the long end touches the tail");
+    assert!(exit_leg.slack_m() > 0.02, "the exit's leg taut ({exit_leg:?}): assert that it holds instead");
 }
