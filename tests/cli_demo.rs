@@ -187,12 +187,32 @@ fn the_knot_trace_takes_the_knot_and_the_gauges_at_the_period_asked() {
     let text = std::fs::read_to_string(out.join("knot-trace.csv")).expect("the trace was written");
     let mut lines = text.lines();
     let header: Vec<&str> = lines.next().expect("a header").split(',').collect();
+    assert_eq!(
+        header,
+        [
+            "time_s",
+            "knot",
+            "height_m",
+            "loop_outside_m",
+            "radius_m",
+            "exit_leg_thread_m",
+            "exit_leg_span_m",
+            "entry_leg_thread_m",
+            "entry_leg_span_m",
+            "exit_arc_m",
+            "entry_arc_m",
+            "wound_gap_m",
+            "left_force_n",
+            "right_force_n",
+            "assist_force_n"
+        ]
+    );
     let column = |name: &str| header.iter().position(|h| *h == name).unwrap_or_else(|| panic!("no {name}"));
     let rows: Vec<Vec<&str>> = lines.map(|l| l.split(',').collect()).collect();
     let times: Vec<f64> = rows.iter().map(|r| r[column("time_s")].parse().expect("a time")).collect();
     assert_eq!(times.len(), 5, "0, 0.25, 0.5, 0.75 and 1 s, where it stops: {times:?}");
     for (k, t) in times.iter().enumerate() {
-        assert!((t - 0.25 * k as f64).abs() < 0.0015, "one point every 0.25 s: {times:?}");
+        assert!((t - 0.25 * k as f64).abs() < 0.0011, "one point every 0.25 s, no drift: {times:?}");
     }
     for r in &rows {
         assert_eq!(r[column("knot")], "unknot", "no knot in the first second: {r:?}");
@@ -207,6 +227,12 @@ fn the_knot_trace_takes_the_knot_and_the_gauges_at_the_period_asked() {
     let assist: Vec<f64> =
         rows.iter().map(|r| r[column("assist_force_n")].parse().expect("a force")).collect();
     assert!(assist.iter().all(|f| f.is_finite() && *f >= 0.0), "{assist:?}");
+    // Not asked for, not written.
+    let untraced = out.join("untraced");
+    let (code, stdout, err) =
+        knotlab(&["demo", "--seed", "0", "--until", "0.1", "--out", untraced.to_str().unwrap()]);
+    assert_eq!(code, 0, "{stdout}{err}");
+    assert!(untraced.join("left.csv").exists() && !untraced.join("knot-trace.csv").exists());
     for bad in ["0", "-1", "often"] {
         let (code, stdout, err) =
             knotlab(&["demo", "--seed", "0", &format!("--knot-trace={bad}"), "--out", "/tmp/never"]);

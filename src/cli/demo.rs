@@ -51,9 +51,10 @@ pub struct DemoArgs {
     /// Stop at this time (s from the start) and evaluate what is there (a short trial, to debug).
     #[arg(long, value_name = "S")]
     until: Option<f64>,
-    /// Every S seconds, take the knot as the thread lies and what the gauges read, into
-    /// OUT/knot-trace.csv (time, knot, height, loop outside, radius, each leg's thread and span, wound
-    /// gap, each instrument's force): when a throw loosens, or a leg gathers slack.
+    /// Every S seconds of the skill (not the holding test after it), take the knot as the thread lies
+    /// and what the gauges read, into OUT/knot-trace.csv (time, knot, height, loop outside, radius,
+    /// each leg's thread and span, the thread's arc from the needle end at the exit and entry points,
+    /// wound gap, each instrument's force): when a throw loosens, or a leg gathers slack.
     #[arg(long, value_name = "S", value_parser = parse_trace_period)]
     knot_trace: Option<f64>,
     /// Print JSON instead of text.

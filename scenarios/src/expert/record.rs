@@ -46,8 +46,9 @@ pub struct RecordOptions {
     /// Stop at this time (from the recording's start, s) and evaluate what is there (a short trial, to
     /// debug).
     pub stop_after_s: Option<f64>,
-    /// Take the knot as the thread lies ([`knot_now`]) every this many seconds into
-    /// [`DemoRun::knot_trace`] (none: no trace), to see when a throw loosens or a leg gathers slack.
+    /// Take the knot as the thread lies ([`knot_now`]) every this many seconds of the skill (not the
+    /// holding test after it) into [`DemoRun::knot_trace`] (none: no trace), to see when a throw
+    /// loosens or a leg gathers slack.
     pub knot_trace_every_s: Option<f64>,
 }
 
@@ -262,7 +263,10 @@ pub fn record_demonstration(
         if let Some(every_s) = options.knot_trace_every_s.filter(|s| *s > 0.0)
             && record.time_s >= next_trace_s
         {
-            next_trace_s = record.time_s + every_s;
+            // On a fixed grid from 0 (not from the last point), so the times do not drift by a cycle each.
+            while next_trace_s <= record.time_s {
+                next_trace_s += every_s;
+            }
             let force = |arm| record.arm(arm).map_or(0.0, |a| a.world_force_n.norm());
             knot_trace.push(KnotTracePoint {
                 time_s: record.time_s,
