@@ -418,6 +418,32 @@ fn the_left_runs_down_through_the_points_given_after_the_right_has_run_down() {
 }
 
 #[test]
+fn the_right_runs_down_through_the_points_given_before_its_run_downs_end() {
+    let world = SimWorld::new(scene(), Rig::shipped().expect("the shipped rig")).expect("the scene builds");
+    let via = [[0.03, -0.02, 0.05], [0.02, -0.03, 0.04]];
+    let geometry = TieGeometry { right_run_down_via_m: via.to_vec(), ..TieGeometry::default() };
+    let skill = plan_instrument_tie(&world, &geometry, &Variation::none());
+    let shipped = plan_instrument_tie(&world, &TieGeometry::default(), &Variation::none());
+    let reached_s = |skill: &knotlab_hw::skill::Skill, p: [f64; 3]| {
+        let world_point = world.tissue.world_from_tissue * nalgebra::Point3::from(Vector3::from(p));
+        first_reaches(skill.track(ArmName::Right).expect("the right runs down"), &world_point.coords)
+    };
+    let first_s = reached_s(&skill, via[0]).expect("the right goes to the first point");
+    let second_s = reached_s(&skill, via[1]).expect("the right goes to the second point");
+    let end_s = reached_s(&skill, geometry.right_run_down_to_m).expect("and on to its run-down's end");
+    assert!(first_s < second_s && second_s < end_s, "in order: {first_s} s, {second_s} s, {end_s} s");
+    assert!(reached_s(&shipped, via[0]).is_none(), "the shipped right does not go there");
+    // Each leg takes the run-down's time: the right is down two legs later than the shipped one.
+    let shipped_end_s =
+        reached_s(&shipped, geometry.right_run_down_to_m).expect("the shipped right runs down");
+    assert!(
+        (end_s - shipped_end_s - 2.0 * geometry.run_down_s).abs() < 0.5,
+        "down at {end_s} s, the shipped right at {shipped_end_s} s, legs of {} s",
+        geometry.run_down_s
+    );
+}
+
+#[test]
 fn for_the_second_throw_the_assist_takes_the_tail_near_its_end_and_draws_it_where_told() {
     use knotlab_scenarios::expert::{SecondThrow, plan_second_throw};
     let world = SimWorld::new(scene(), Rig::shipped().expect("the shipped rig")).expect("the scene builds");

@@ -117,6 +117,9 @@ fn range_problems(g: &TieGeometry) -> Vec<(String, String)> {
     for (k, p) in g.left_run_down_via_m.iter().enumerate() {
         c.point(&format!("left_run_down_via_m[{k}]"), p);
     }
+    for (k, p) in g.right_run_down_via_m.iter().enumerate() {
+        c.point(&format!("right_run_down_via_m[{k}]"), p);
+    }
     if let Some(p) = &g.right_draws_to_m {
         c.point("right_draws_to_m", p);
     }
@@ -237,6 +240,9 @@ fn range_problems(g: &TieGeometry) -> Vec<(String, String)> {
         }
         for (k, p) in s.left_run_down_via_m.iter().enumerate() {
             c.point(&format!("second_throw.left_run_down_via_m[{k}]"), p);
+        }
+        for (k, p) in s.right_run_down_via_m.iter().enumerate() {
+            c.point(&format!("second_throw.right_run_down_via_m[{k}]"), p);
         }
         if let Some(p) = &s.right_draws_to_m {
             c.point("second_throw.right_draws_to_m", p);

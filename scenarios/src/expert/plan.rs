@@ -102,6 +102,10 @@ pub struct TieGeometry {
     /// leg taking `run_down_s`, while the right makes its run-down in the first leg: for a second
     /// throw whose ends cross, the tail carried over the long end once the right has drawn it clear.
     pub left_run_down_via_m: Vec<[f64; 3]>,
+    /// The right goes through these points (stitch frame) on its way to `right_run_down_to_m`, each
+    /// leg taking `run_down_s`: out of the way while the left carries the tail across, so that the
+    /// tail passes under the right's shaft, not over it.
+    pub right_run_down_via_m: Vec<[f64; 3]>,
     /// How long the run-down takes, s.
     pub run_down_s: f64,
     /// If set, each instrument stops its run-down where its gauge first reads this force, N (the
@@ -197,6 +201,7 @@ impl Default for TieGeometry {
             left_run_down_to_m: [0.0, 0.04, 0.05],
             right_run_down_to_m: [0.0, -0.012, 0.012],
             left_run_down_via_m: Vec::new(),
+            right_run_down_via_m: Vec::new(),
             run_down_s: 2.5,
             run_down_force_n: None,
             left_pull_to_m: [0.0, 0.06, 0.01],
@@ -746,6 +751,10 @@ fn plan_throw(world: &SimWorld, geometry: &TieGeometry, variation: &Variation, s
     left.wait_until(run_down_s);
     for via in &geometry.left_run_down_via_m {
         left.go(Path::To(at(*via)), d(geometry.run_down_s));
+    }
+    right.wait_until(run_down_s);
+    for via in &geometry.right_run_down_via_m {
+        right.go(Path::To(at(*via)), d(geometry.run_down_s));
     }
     for (track, to) in [(&mut left, geometry.left_run_down_to_m), (&mut right, geometry.right_run_down_to_m)]
     {

@@ -112,6 +112,8 @@ pub struct SecondThrow {
     pub right_run_down_to_m: [f64; 3],
     /// The left's way to its run-down's end ([`TieGeometry::left_run_down_via_m`]); empty: straight.
     pub left_run_down_via_m: Vec<[f64; 3]>,
+    /// The right's way to its run-down's end ([`TieGeometry::right_run_down_via_m`]); empty: straight.
+    pub right_run_down_via_m: Vec<[f64; 3]>,
     /// Then the pulls until the set force: the left towards here ...
     pub left_pull_to_m: [f64; 3],
     /// ... the right towards here.
@@ -155,6 +157,7 @@ impl Default for SecondThrow {
             left_run_down_to_m: first.left_run_down_to_m,
             right_run_down_to_m: first.right_run_down_to_m,
             left_run_down_via_m: Vec::new(),
+            right_run_down_via_m: Vec::new(),
             left_pull_to_m: first.left_pull_to_m,
             right_pull_to_m: first.right_pull_to_m,
         }
@@ -196,6 +199,7 @@ impl SecondThrow {
             left_run_down_to_m: self.left_run_down_to_m,
             right_run_down_to_m: self.right_run_down_to_m,
             left_run_down_via_m: self.left_run_down_via_m.clone(),
+            right_run_down_via_m: self.right_run_down_via_m.clone(),
             left_pull_to_m: self.left_pull_to_m,
             right_pull_to_m: self.right_pull_to_m,
             second_throw: None,
@@ -302,6 +306,7 @@ mod tests {
             pull_force_n: Some(1.5),
             tail_pull_force_n: Some(1.2),
             left_run_down_via_m: vec![[0.0, 0.01, 0.03]],
+            right_run_down_via_m: vec![[0.0, -0.01, 0.04]],
             ..SecondThrow::default()
         }
         .applied_to(&first);
@@ -314,6 +319,10 @@ mod tests {
         assert_eq!(
             (same.left_run_down_via_m.len(), pulled.left_run_down_via_m),
             (0, vec![[0.0, 0.01, 0.03]])
+        );
+        assert_eq!(
+            (same.right_run_down_via_m.len(), pulled.right_run_down_via_m),
+            (0, vec![[0.0, -0.01, 0.04]])
         );
         assert_eq!((same.tail_take_short_m, own.tail_take_short_m), (first.tail_take_short_m, 0.0045));
         let small = SecondThrow {
