@@ -204,7 +204,13 @@ fn the_knot_trace_takes_the_knot_and_the_gauges_at_the_period_asked() {
             "wound_gap_m",
             "left_force_n",
             "right_force_n",
-            "assist_force_n"
+            "assist_force_n",
+            "long_end_on_left",
+            "tail_on_left",
+            "long_end_on_right",
+            "tail_on_right",
+            "long_end_on_assist",
+            "tail_on_assist"
         ]
     );
     let column = |name: &str| header.iter().position(|h| *h == name).unwrap_or_else(|| panic!("no {name}"));
@@ -223,6 +229,17 @@ fn the_knot_trace_takes_the_knot_and_the_gauges_at_the_period_asked() {
         assert!(0.0 < exit && exit < entry, "{r:?}");
         let gap: f64 = r[column("wound_gap_m")].parse().expect("the gap");
         assert!(gap > 0.0 && gap < 0.01, "{r:?}");
+    }
+    // The left waits clear of the thread in the first second: nothing of either end on it.
+    for r in &rows {
+        for name in ["long_end_on_left", "tail_on_left"] {
+            let n: usize = r[column(name)].parse().expect("a count of segments");
+            assert_eq!(n, 0, "{name}: {r:?}");
+        }
+        for name in ["long_end_on_right", "tail_on_right", "long_end_on_assist", "tail_on_assist"] {
+            let n: usize = r[column(name)].parse().expect("a count of segments");
+            assert!(n <= 80, "{name}: {r:?}");
+        }
     }
     let assist: Vec<f64> =
         rows.iter().map(|r| r[column("assist_force_n")].parse().expect("a force")).collect();

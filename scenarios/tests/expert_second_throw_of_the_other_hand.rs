@@ -4,7 +4,8 @@
 //! the tail taken where it is presented within the jaws. As the instruments let go the thread holds
 //! the surgeon's knot (a double throw, then a single of the opposite hand), run down onto the first
 //! throw (session 38). It does not hold yet: the long end's leg from the exit to the knot is slack,
-//! and the wound opens by that much under the holding load (see the README).
+//! and the wound opens by that much under the holding load; the tail lies over the right's
+//! instrument from the second draw on (session 40; see the README).
 
 mod common;
 
@@ -37,4 +38,14 @@ fn the_second_throw_is_of_the_other_hand_and_makes_a_surgeons_knot() {
     // as the second throw was run down and pulled (`knotlab demo --knot-trace`).
     let exit_leg = at_release.exit_leg.expect("the long end touches the tail");
     assert!(exit_leg.slack_m() > 0.02, "the exit's leg taut ({exit_leg:?}): assert that it holds instead");
+    // And why it gathers (session 40): from the right's draw of the turn onto the tail to the
+    // release, the tail's standing part lies over the right's jaws, wrist and shaft (10-12 segments
+    // from 62 s, as the left carries it over the top), so that the right's instrument, not the left,
+    // sets its line from the knot.
+    let on_right = |t: f64| {
+        let p = run.knot_trace.iter().find(|p| p.time_s >= t - 1e-6).expect("the trace reaches the pulls");
+        p.ends_on_instruments[1][1]
+    };
+    let (before, pulls) = (on_right(30.0), on_right(70.0));
+    assert!(before == 0 && pulls >= 5, "the tail on the right: {before} segments at 30 s, {pulls} at 70 s");
 }

@@ -266,7 +266,8 @@ pub fn run(args: DemoArgs, out: &mut Output) -> anyhow::Result<ExitCode> {
 fn knot_trace_csv(run: &DemoRun) -> String {
     let mut csv = String::from(
         "time_s,knot,height_m,loop_outside_m,radius_m,exit_leg_thread_m,exit_leg_span_m,\
-         entry_leg_thread_m,entry_leg_span_m,exit_arc_m,entry_arc_m,wound_gap_m,left_force_n,right_force_n,assist_force_n\n",
+         entry_leg_thread_m,entry_leg_span_m,exit_arc_m,entry_arc_m,wound_gap_m,left_force_n,right_force_n,assist_force_n,\
+         long_end_on_left,tail_on_left,long_end_on_right,tail_on_right,long_end_on_assist,tail_on_assist\n",
     );
     let opt = |v: Option<f64>| v.map(|v| format!("{v:.5}")).unwrap_or_default();
     for p in &run.knot_trace {
@@ -276,7 +277,7 @@ fn knot_trace_csv(run: &DemoRun) -> String {
         let (exit_thread, exit_span) = leg(k.and_then(|k| k.exit_leg));
         let (entry_thread, entry_span) = leg(k.and_then(|k| k.entry_leg));
         csv.push_str(&format!(
-            "{:.3},{},{},{},{},{exit_thread},{exit_span},{entry_thread},{entry_span},{},{},{:.5},{:.3},{:.3},{:.3}\n",
+            "{:.3},{},{},{},{},{exit_thread},{exit_span},{entry_thread},{entry_span},{},{},{:.5},{:.3},{:.3},{:.3},{}\n",
             p.time_s,
             k.map_or("", |k| k.knot.name()),
             opt(k.and_then(|k| k.height_m)),
@@ -288,6 +289,7 @@ fn knot_trace_csv(run: &DemoRun) -> String {
             p.force_n[0],
             p.force_n[1],
             p.force_n[2],
+            p.ends_on_instruments.iter().flatten().map(|n| n.to_string()).collect::<Vec<_>>().join(","),
         ));
     }
     csv

@@ -66,6 +66,34 @@ pub struct KnotTracePoint {
     pub stitch_arcs_m: [Option<f64>; 2],
     /// What the left, right and assist instruments' gauges read, N (magnitudes, world frame).
     pub force_n: [f64; 3],
+    /// How many segments of the long end (from the needle to the stitch's exit) and of the tail (from
+    /// the stitch's entry to its free end) touch each of the left's, right's and assist's links, [long
+    /// end, tail] each: turns lying on the jaws, or an end draped over an instrument's shaft.
+    pub ends_on_instruments: [[usize; 2]; 3],
+}
+
+/// [`KnotTracePoint::ends_on_instruments`] for the world as it is, the stitch's points at `arcs_m`
+/// (exit, entry) along the thread: none of an end while the thread is not through its point.
+fn ends_on_instruments(world: &SimWorld, arcs_m: [Option<f64>; 2]) -> [[usize; 2]; 3] {
+    let segment_m = world.thread.segment_length_m;
+    let contacts = world.thread_contacts();
+    [ArmName::Left, ArmName::Right, ArmName::Assist].map(|arm| {
+        let prefix = format!("{}_", arm.as_str());
+        let on_arm = |keep: &dyn Fn(f64) -> bool| {
+            let mut segments: Vec<usize> = contacts
+                .iter()
+                .filter(|(i, link)| link.starts_with(&prefix) && keep(segment_m * (*i as f64 + 0.5)))
+                .map(|(i, _)| *i)
+                .collect();
+            segments.dedup();
+            segments.len()
+        };
+        let [exit, entry] = arcs_m;
+        [
+            exit.map_or(0, |exit_m| on_arm(&|arc_m| arc_m < exit_m)),
+            entry.map_or(0, |entry_m| on_arm(&|arc_m| arc_m > entry_m)),
+        ]
+    })
 }
 
 fn view(world: &SimWorld, options: &RecordOptions) -> View {
@@ -268,13 +296,15 @@ pub fn record_demonstration(
                 next_trace_s += every_s;
             }
             let force = |arm| record.arm(arm).map_or(0.0, |a| a.world_force_n.norm());
+            let stitch_arcs_m = [Flap::B, Flap::A]
+                .map(|flap| world.stitch.arc_at_m(&world.physics, &world.thread, &world.tissue, flap));
             knot_trace.push(KnotTracePoint {
                 time_s: record.time_s,
                 knot: knot_now(&world),
                 wound_gap_m: world.wound_gap_m(),
-                stitch_arcs_m: [Flap::B, Flap::A]
-                    .map(|flap| world.stitch.arc_at_m(&world.physics, &world.thread, &world.tissue, flap)),
+                stitch_arcs_m,
                 force_n: [force(ArmName::Left), force(ArmName::Right), force(ArmName::Assist)],
+                ends_on_instruments: ends_on_instruments(&world, stitch_arcs_m),
             });
         }
         if record.cycle % every == 0 {

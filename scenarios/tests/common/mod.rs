@@ -35,6 +35,7 @@ pub fn two_throw_run(name: &str, seed: u64, snapshot_times_s: Vec<f64>, stop_aft
         cycles_per_sample: 10,
         snapshot_times_s,
         stop_after_s: Some(stop_after_s),
+        knot_trace_every_s: Some(1.0),
         ..RecordOptions::default()
     };
     let run = demonstrate_with(
