@@ -54,7 +54,8 @@ pub struct DemoArgs {
     /// Every S seconds of the skill (not the holding test after it), take the knot as the thread lies
     /// and what the gauges read, into OUT/knot-trace.csv (time, knot, height, loop outside, radius,
     /// each leg's thread and span, the thread's arc from the needle end at the exit and entry points,
-    /// wound gap, each instrument's force): when a throw loosens, or a leg gathers slack.
+    /// wound gap, each instrument's force, how many segments of the long end and of the tail touch
+    /// each instrument): when a throw loosens, a leg gathers slack, or an end lies on an instrument.
     #[arg(long, value_name = "S", value_parser = parse_trace_period)]
     knot_trace: Option<f64>,
     /// Print JSON instead of text.
