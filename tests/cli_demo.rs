@@ -46,6 +46,13 @@ fn demo_json_reports_each_run_and_writes_loadable_demonstrations() {
             assert!(span >= 0.0 && span <= thread + 1e-9, "{leg}: {l}");
         }
     }
+    // How much each end bends inside the knot: none, or two angles that are not negative.
+    let bending = &run["knot_at_release"]["bending"];
+    if !bending.is_null() {
+        for end in ["long_end_rad", "tail_rad"] {
+            assert!(bending[end].as_f64().is_some_and(|a| a >= 0.0), "{end}: {bending}");
+        }
+    }
     // What the knot let through under the holding load: each end drawn in by at most the thread's
     // length (0.25 m), reported only when the holding test ran.
     if !run["slid"].is_null() {
@@ -210,7 +217,9 @@ fn the_knot_trace_takes_the_knot_and_the_gauges_at_the_period_asked() {
             "long_end_on_right",
             "tail_on_right",
             "long_end_on_assist",
-            "tail_on_assist"
+            "tail_on_assist",
+            "long_end_bend_rad",
+            "tail_bend_rad"
         ]
     );
     let column = |name: &str| header.iter().position(|h| *h == name).unwrap_or_else(|| panic!("no {name}"));

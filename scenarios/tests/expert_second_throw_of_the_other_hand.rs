@@ -48,4 +48,11 @@ fn the_second_throw_is_of_the_other_hand_and_makes_a_surgeons_knot() {
     };
     let (before, pulls) = (on_right(30.0), on_right(70.0));
     assert!(before == 0 && pulls >= 5, "the tail on the right: {before} segments at 30 s, {pulls} at 70 s");
+    // And the knot is capsized: at release the tail runs straight through it while the long end
+    // winds round it (a slip knot, whatever its type), so under load the tail slides through.
+    let bending = at_release.bending.expect("the ends touch");
+    assert!(
+        bending.tail_rad < 1.0 && bending.long_end_rad > std::f64::consts::TAU,
+        "the tail bends inside the knot ({bending:?}): assert that it holds instead"
+    );
 }

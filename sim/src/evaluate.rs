@@ -6,6 +6,7 @@
 use nalgebra::{Point3, Vector3};
 use serde::{Deserialize, Serialize};
 
+use crate::knot::bending::{Bending, bending};
 use crate::knot::legs::{Leg, free_ends, legs};
 use crate::knot::{
     Classification, DownLimits, FailureMode, KnotPlacement, KnotSpan, KnotType, StitchSite, TissueSurface,
@@ -131,6 +132,9 @@ pub struct KnotNow {
     pub exit_leg: Option<Leg>,
     /// ... and from the entry point (the tail's side) to where the tail first touches the long end.
     pub entry_leg: Option<Leg>,
+    /// How much each end bends inside the knot ([`crate::knot::bending`]): a tail that runs straight
+    /// through the long end's turns slides through them under load; none if the ends do not touch.
+    pub bending: Option<Bending>,
 }
 
 /// Strands closer than this many thread radii, axis to axis, touch (two radii and a quarter more).
@@ -149,14 +153,15 @@ pub fn knot_now(world: &SimWorld) -> Option<KnotNow> {
         None => (None, None, None),
     };
     let arc_at = |flap| world.stitch.arc_at_m(&world.physics, &world.thread, &world.tissue, flap);
-    let (exit_leg, entry_leg) = match (arc_at(Flap::B), arc_at(Flap::A)) {
+    let ((exit_leg, entry_leg), bending) = match (arc_at(Flap::B), arc_at(Flap::A)) {
         (Some(exit_m), Some(entry_m)) => {
             let line = world.thread.centreline(&world.physics);
-            legs(&line, exit_m, entry_m, TOUCH_RADII * world.config.thread.radius_m)
+            let touch_m = TOUCH_RADII * world.config.thread.radius_m;
+            (legs(&line, exit_m, entry_m, touch_m), bending(&line, exit_m, entry_m, touch_m))
         }
-        _ => (None, None),
+        _ => ((None, None), None),
     };
-    Some(KnotNow { knot: c.knot, height_m, loop_outside_m, radius_m, exit_leg, entry_leg })
+    Some(KnotNow { knot: c.knot, height_m, loop_outside_m, radius_m, exit_leg, entry_leg, bending })
 }
 
 fn loop_outside(world: &SimWorld, span: &KnotSpan) -> Option<f64> {

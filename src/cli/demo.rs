@@ -55,7 +55,8 @@ pub struct DemoArgs {
     /// and what the gauges read, into OUT/knot-trace.csv (time, knot, height, loop outside, radius,
     /// each leg's thread and span, the thread's arc from the needle end at the exit and entry points,
     /// wound gap, each instrument's force, how many segments of the long end and of the tail touch
-    /// each instrument): when a throw loosens, a leg gathers slack, or an end lies on an instrument.
+    /// each instrument, how much each end bends inside the knot): when a throw loosens, a leg
+    /// gathers slack, an end lies on an instrument, or the tail runs straight through the knot.
     #[arg(long, value_name = "S", value_parser = parse_trace_period)]
     knot_trace: Option<f64>,
     /// Print JSON instead of text.
@@ -268,7 +269,8 @@ fn knot_trace_csv(run: &DemoRun) -> String {
     let mut csv = String::from(
         "time_s,knot,height_m,loop_outside_m,radius_m,exit_leg_thread_m,exit_leg_span_m,\
          entry_leg_thread_m,entry_leg_span_m,exit_arc_m,entry_arc_m,wound_gap_m,left_force_n,right_force_n,assist_force_n,\
-         long_end_on_left,tail_on_left,long_end_on_right,tail_on_right,long_end_on_assist,tail_on_assist\n",
+         long_end_on_left,tail_on_left,long_end_on_right,tail_on_right,long_end_on_assist,tail_on_assist,\
+         long_end_bend_rad,tail_bend_rad\n",
     );
     let opt = |v: Option<f64>| v.map(|v| format!("{v:.5}")).unwrap_or_default();
     for p in &run.knot_trace {
@@ -278,7 +280,7 @@ fn knot_trace_csv(run: &DemoRun) -> String {
         let (exit_thread, exit_span) = leg(k.and_then(|k| k.exit_leg));
         let (entry_thread, entry_span) = leg(k.and_then(|k| k.entry_leg));
         csv.push_str(&format!(
-            "{:.3},{},{},{},{},{exit_thread},{exit_span},{entry_thread},{entry_span},{},{},{:.5},{:.3},{:.3},{:.3},{}\n",
+            "{:.3},{},{},{},{},{exit_thread},{exit_span},{entry_thread},{entry_span},{},{},{:.5},{:.3},{:.3},{:.3},{},{},{}\n",
             p.time_s,
             k.map_or("", |k| k.knot.name()),
             opt(k.and_then(|k| k.height_m)),
@@ -291,6 +293,8 @@ fn knot_trace_csv(run: &DemoRun) -> String {
             p.force_n[1],
             p.force_n[2],
             p.ends_on_instruments.iter().flatten().map(|n| n.to_string()).collect::<Vec<_>>().join(","),
+            opt(k.and_then(|k| k.bending).map(|b| b.long_end_rad)),
+            opt(k.and_then(|k| k.bending).map(|b| b.tail_rad)),
         ));
     }
     csv

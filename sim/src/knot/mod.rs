@@ -5,7 +5,8 @@
 //! ([`closure`]), look at it from [`projection::DIRECTIONS`] directions ([`projection`]), find the
 //! crossings ([`crossings`]), write the signed Gauss code ([`gauss_code`]), simplify it ([`reduce`]),
 //! compute the determinant and writhe ([`invariants`]), name the knot and vote ([`classify`]). Then
-//! where the knot sits ([`tightness`]), how slack the loop's legs lie ([`legs`]) and the trial's
+//! where the knot sits ([`tightness`]), how slack the loop's legs lie ([`legs`]), how much each end bends
+//! inside the knot ([`bending`]) and the trial's
 //! outcome ([`verdict`]). Centrelines come from the simulator or from a CSV file ([`csv`]); [`draw_through`]
 //! asks which knot a draw of the tail back along the jaws would make.
 //!
@@ -26,6 +27,7 @@
 //! # Ok::<(), knotlab_sim::knot::KnotError>(())
 //! ```
 
+pub mod bending;
 pub mod centreline;
 pub mod classify;
 pub mod closure;
