@@ -8,7 +8,9 @@
 use nalgebra::Vector3;
 use serde::Serialize;
 
-use knotlab_hw::geometry::{arc_lengths, segment_closest_parameters};
+use knotlab_hw::geometry::arc_lengths;
+
+use crate::knot::legs::{closest, ends};
 
 /// How much each end turns between its first and its last contact with the other end.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
@@ -17,14 +19,6 @@ pub struct Bending {
     pub long_end_rad: f64,
     /// The tail's turning, rad.
     pub tail_rad: f64,
-}
-
-/// Whether segments `i` and `j` of `points` pass within `touch_m` of each other.
-fn touch(points: &[Vector3<f64>], i: usize, j: usize, touch_m: f64) -> bool {
-    let (p0, q0) = (points[i], points[j]);
-    let (d1, d2) = (points[i + 1] - p0, points[j + 1] - q0);
-    let (s, t) = segment_closest_parameters(&p0, &d1, &q0, &d2);
-    ((p0 + d1 * s) - (q0 + d2 * t)).norm() < touch_m
 }
 
 /// The turning of the polyline over segments `first..=last`, rad.
@@ -46,14 +40,13 @@ pub fn bending(points: &[Vector3<f64>], exit_m: f64, entry_m: f64, touch_m: f64)
     if points.len() < 2 || exit_m.partial_cmp(&entry_m) != Some(std::cmp::Ordering::Less) {
         return None;
     }
-    let arcs = arc_lengths(points);
-    let n = points.len() - 1;
-    // Segments wholly before the exit (the long end) and wholly after the entry (the tail).
-    let long_end: Vec<usize> = (0..n).filter(|&i| arcs[i + 1] <= exit_m).collect();
-    let tail: Vec<usize> = (0..n).filter(|&j| arcs[j] >= entry_m).collect();
+    let (long_end, tail) = ends(&arc_lengths(points), exit_m, entry_m);
     let touching = |walk: &[usize], others: &[usize]| -> Option<(usize, usize)> {
-        let hits: Vec<usize> =
-            walk.iter().copied().filter(|&i| others.iter().any(|&j| touch(points, i, j, touch_m))).collect();
+        let hits: Vec<usize> = walk
+            .iter()
+            .copied()
+            .filter(|&i| others.iter().any(|&j| closest(points, i, j).2 < touch_m))
+            .collect();
         Some((*hits.first()?, *hits.last()?))
     };
     let (l0, l1) = touching(&long_end, &tail)?;
@@ -65,27 +58,9 @@ pub fn bending(points: &[Vector3<f64>], exit_m: f64, entry_m: f64, touch_m: f64)
 mod tests {
     use super::*;
 
-    /// A long end coming in along -x at height 5 mm and wound once round the tail (a vertical line
-    /// at the origin), then out to (30, 5, 1) mm and back to the exit at (10, 0, 0) mm; under the
-    /// tissue to the entry at the origin; the tail straight up through the turn. Returns the points, the exit's and the entry's
-    /// arc lengths.
+    /// The long end wound once round a straight tail ([`crate::knot::legs::tests::line`]).
     fn wound_round_a_straight_tail() -> (Vec<Vector3<f64>>, f64, f64) {
-        let mut p = vec![Vector3::new(-0.05, 0.0, 0.005)];
-        // The turn: a circle of 1 mm radius round the z axis at z = 5 mm, starting at (-1 mm, 0).
-        for k in 0..=16 {
-            let a = std::f64::consts::PI + std::f64::consts::TAU * k as f64 / 16.0;
-            p.push(Vector3::new(0.001 * a.cos(), 0.001 * a.sin(), 0.005));
-        }
-        p.push(Vector3::new(0.03, 0.005, 0.001));
-        p.push(Vector3::new(0.01, 0.0, 0.0));
-        let exit_m = arc_lengths(&p)[p.len() - 1];
-        p.push(Vector3::new(0.005, 0.0, -0.003));
-        p.push(Vector3::new(0.0, 0.0, 0.0));
-        let entry_m = arc_lengths(&p)[p.len() - 1];
-        for k in 1..=10 {
-            p.push(Vector3::new(0.0, 0.0, 0.002 * k as f64));
-        }
-        (p, exit_m, entry_m)
+        crate::knot::legs::tests::line()
     }
 
     #[test]

@@ -34,7 +34,7 @@ fn point_at(points: &[Vector3<f64>], arcs: &[f64], arc_m: f64) -> Vector3<f64> {
 }
 
 /// The closest points of segments `i` and `j`: their parameters along each (0 to 1) and distance, m.
-fn closest(points: &[Vector3<f64>], i: usize, j: usize) -> (f64, f64, f64) {
+pub(crate) fn closest(points: &[Vector3<f64>], i: usize, j: usize) -> (f64, f64, f64) {
     let (p0, q0) = (points[i], points[j]);
     let (d1, d2) = (points[i + 1] - p0, points[j + 1] - q0);
     let (s, t) = segment_closest_parameters(&p0, &d1, &q0, &d2);
@@ -62,6 +62,15 @@ fn first_contact_arc(
     })
 }
 
+/// The segments of a polyline with arc lengths `arcs` wholly before the stitch's exit at `exit_m`
+/// (the long end) and wholly after its entry at `entry_m` (the tail), in order along the thread.
+pub(crate) fn ends(arcs: &[f64], exit_m: f64, entry_m: f64) -> (Vec<usize>, Vec<usize>) {
+    let n = arcs.len().saturating_sub(1);
+    let long_end = (0..n).filter(|&i| arcs[i + 1] <= exit_m).collect();
+    let tail = (0..n).filter(|&j| arcs[j] >= entry_m).collect();
+    (long_end, tail)
+}
+
 /// The two legs of a centreline (needle end first) whose stitch leaves the tissue at arc length
 /// `exit_m` and enters it again at `entry_m` (`exit_m < entry_m`): `(exit leg, entry leg)`, each `None`
 /// when its end touches nothing of the other within `touch_m` (segment to segment). Each leg ends at
@@ -72,10 +81,7 @@ pub fn legs(points: &[Vector3<f64>], exit_m: f64, entry_m: f64, touch_m: f64) ->
         return (None, None);
     }
     let arcs = arc_lengths(points);
-    let n = points.len() - 1;
-    // Segments wholly before the exit (the long end) and wholly after the entry (the tail).
-    let long_end: Vec<usize> = (0..n).filter(|&i| arcs[i + 1] <= exit_m).collect();
-    let tail: Vec<usize> = (0..n).filter(|&j| arcs[j] >= entry_m).collect();
+    let (long_end, tail) = ends(&arcs, exit_m, entry_m);
     let exit_point = point_at(points, &arcs, exit_m);
     let entry_point = point_at(points, &arcs, entry_m);
     // Walking back from the exit: the first long-end segment touching the tail, at its contact
@@ -104,8 +110,7 @@ pub fn free_ends(points: &[Vector3<f64>], exit_m: f64, entry_m: f64, touch_m: f6
     }
     let arcs = arc_lengths(points);
     let n = points.len() - 1;
-    let long_end: Vec<usize> = (0..n).filter(|&i| arcs[i + 1] <= exit_m).collect();
-    let tail: Vec<usize> = (0..n).filter(|&j| arcs[j] >= entry_m).collect();
+    let (long_end, tail) = ends(&arcs, exit_m, entry_m);
     let long_end_m = first_contact_arc(points, &arcs, long_end.iter().copied(), &tail, touch_m, true)?;
     let tail_from_m =
         first_contact_arc(points, &arcs, tail.iter().rev().copied(), &long_end, touch_m, false)?;
@@ -113,13 +118,14 @@ pub fn free_ends(points: &[Vector3<f64>], exit_m: f64, entry_m: f64, touch_m: f6
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
 
     /// A long end coming in along -x at height 5 mm, wound round the tail (a vertical line at the
     /// origin) once, then a slack leg: out to x = 30 mm and back to the exit at (10, 0, 0); under the
-    /// tissue to the entry at (0, 0, 0); the tail straight up through the wrap.
-    fn line() -> (Vec<Vector3<f64>>, f64, f64) {
+    /// tissue to the entry at (0, 0, 0); the tail straight up through the wrap. Returns the points,
+    /// the exit's and the entry's arc lengths.
+    pub(crate) fn line() -> (Vec<Vector3<f64>>, f64, f64) {
         let mut p = vec![Vector3::new(-0.05, 0.0, 0.005)];
         // The wrap: a circle of 1 mm radius round the z axis at z = 5 mm, starting at (-1 mm, 0).
         for k in 0..=16 {
