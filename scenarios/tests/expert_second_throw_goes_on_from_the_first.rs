@@ -2,7 +2,7 @@
 //! first throw's pulls hold the ends, then the second throw is planned from the world they left and
 //! recorded on in the same demonstration. The assist takes the tail between the knot and the left's
 //! jaws, then the left lets go of it to be wound round. (Not yet a knot: the first throw leaves the
-//! long end too short to wind, and the right loses the needle; see the README.)
+//! long end too short to wind, and the right loses the needle; see docs/knot-tying-notes.md.)
 
 use knotlab_hw::rig::ArmName;
 use knotlab_learner::demonstration::GraspState;

@@ -5,7 +5,7 @@
 //! the surgeon's knot (a double throw, then a single of the opposite hand), run down onto the first
 //! throw (session 38). It does not hold yet: the long end's leg from the exit to the knot is slack,
 //! and the wound opens by that much under the holding load; the tail lies over the right's
-//! instrument from the second draw on (session 40; see the README).
+//! instrument from the second draw on (session 40; see docs/knot-tying-notes.md).
 
 mod common;
 

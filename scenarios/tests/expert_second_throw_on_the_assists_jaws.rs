@@ -3,7 +3,7 @@
 //! assist takes the tail by its end and draws it up, the left takes it back nearer the knot and the
 //! assist lets go; the long end is wound once round the assist's jaws (level along -x, where the
 //! left's cannot point), the left presents the tail and the assist takes it. (Not yet a second throw:
-//! drawn through, this turn leaves the first throw's knot; see the README.)
+//! drawn through, this turn leaves the first throw's knot; see docs/knot-tying-notes.md.)
 
 mod common;
 

@@ -3,7 +3,7 @@
 //! first throw the assist takes the tail near its free end, the left lets go of it, and the long end
 //! is wound once round the left's open jaws, the left takes the presented tail and draws it back, and
 //! the turn lies round the tail's standing part. (Not yet a knot: in the pulls the turn comes off over
-//! the tail's free end; see the README.)
+//! the tail's free end; see docs/knot-tying-notes.md.)
 
 mod common;
 

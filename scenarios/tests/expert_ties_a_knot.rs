@@ -57,7 +57,7 @@ fn seed_0_ties_a_surgeons_knot_down_at_the_stitch() {
     // As the left takes the tail, the long end lies wound twice round its jaws (seed 0: -1.80 turns
     // about their direction). The same loops go round the right's jaws too (+1.90 about theirs, which
     // point back at the left's): each turn is a 40 mm loop round both instruments, not a coil on the
-    // left's jaws (README, session 30). A winding round the left's jaws only will move that figure
+    // left's jaws (docs/knot-tying-notes.md, session 30). A winding round the left's jaws only will move that figure
     // towards 0: assert it here then.
     let coils = run.coils_at_take.expect("the left took the tail, the long end through the stitch");
     assert!((1.5..2.5).contains(&coils.left_turns.abs()), "{coils:?}");
