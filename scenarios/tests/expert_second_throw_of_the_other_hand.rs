@@ -42,12 +42,20 @@ fn the_second_throw_is_of_the_other_hand_and_makes_a_surgeons_knot() {
     // release, the tail's standing part lies over the right's jaws, wrist and shaft (10-12 segments
     // from 62 s, as the left carries it over the top), so that the right's instrument, not the left,
     // sets its line from the knot.
-    let on_right = |t: f64| {
-        let p = run.knot_trace.iter().find(|p| p.time_s >= t - 1e-6).expect("the trace reaches the pulls");
-        p.ends_on_instruments[1][1]
+    // (`ends_on_instruments[arm][end]`: arms left, right, assist; ends long end, tail.)
+    let on = |t: f64| {
+        run.knot_trace
+            .iter()
+            .find(|p| p.time_s >= t - 1e-6)
+            .expect("the trace reaches the pulls")
+            .ends_on_instruments
     };
-    let (before, pulls) = (on_right(30.0), on_right(70.0));
-    assert!(before == 0 && pulls >= 5, "the tail on the right: {before} segments at 30 s, {pulls} at 70 s");
+    let (before, pulls) = (on(30.0)[1][1], on(70.0)[1][1]);
+    assert!(before == 0 && pulls >= 8, "the tail on the right: {before} segments at 30 s, {pulls} at 70 s");
+    // Which end is which: at 42 s the second turn (the long end) is wound round the left's empty jaws
+    // (7 segments), none of the tail on them.
+    let [long_end_on_left, tail_on_left] = on(42.0)[0];
+    assert!(long_end_on_left >= 3 && tail_on_left == 0, "on the left at 42 s: {:?}", on(42.0)[0]);
     // And the knot is capsized: at release the tail runs straight through it while the long end
     // winds round it (a slip knot, whatever its type), so under load the tail slides through.
     let bending = at_release.bending.expect("the ends touch");

@@ -345,10 +345,11 @@ mod tests {
         let Err(GeometryFileError::Invalid { problems, .. }) = parse_tie_geometry(
             "tail_pull_force_n = 0.0\nright_jaws_across_winding = 1.5\nwinding_pitch_m = 0.5\ndraw_s = 0.0\ntail_end_offered_m = 0.01\n\
              run_down_force_n = -1.0\nright_draws_to_m = [0.0, 0.0, 0.3]\n\
-             right_before_draw_m = [[0.0, 0.0, 0.0], [0.0, 0.3, 0.0]]\n[second_throw]\n\
+             right_before_draw_m = [[0.0, 0.0, 0.0], [0.0, 0.3, 0.0]]\nright_run_down_via_m = [[0.4, 0.0, 0.0]]\n[second_throw]\n\
              left_jaw_direction = [0.0, 0.0, 0.0]\nwinding_lead_rad = 7.0\nloosen_m = 0.5\ntail_take_short_m = 0.5\ndraw_back_m = 0.5\n\
              right_follows_draw = -5.0\nright_draws_to_m = [0.3, 0.0, 0.0]\ndraw_s = 100.0\n\
-             right_before_draw_m = [[0.3, 0.0, 0.0]]\nleft_run_down_via_m = [[0.0, 0.0, -0.3]]\npull_force_n = 0.0\npull_s = 0.0\n\
+             right_before_draw_m = [[0.3, 0.0, 0.0]]\nleft_run_down_via_m = [[0.0, 0.0, -0.3]]\n\
+             right_run_down_via_m = [[0.0, 0.0, 0.0], [0.0, -0.3, 0.0]]\npull_force_n = 0.0\npull_s = 0.0\n\
              run_down_force_n = 0.0\nassist_presents = true\nleft_keeps_tail = true\n\
              tail_hold_from_end_m = -0.01\ntail_held_to_m = [0.0, 0.5, 0.0]\n\
              winding_radius_m = 0.0\nwinding_behind_m = 0.5\nwinding_pitch_m = 0.2\ntake_tail_jaw_rad = 2.0\ntail_end_offered_m = 0.1\n\
@@ -370,6 +371,8 @@ mod tests {
             "right_before_draw_m[1].y",
             "second_throw.right_before_draw_m[0].x",
             "second_throw.left_run_down_via_m[0].z",
+            "right_run_down_via_m[0].x",
+            "second_throw.right_run_down_via_m[1].y",
             "second_throw.pull_force_n",
             "second_throw.pull_s",
             "second_throw.left_jaw_direction",

@@ -103,8 +103,8 @@ pub struct TieGeometry {
     /// throw whose ends cross, the tail carried over the long end once the right has drawn it clear.
     pub left_run_down_via_m: Vec<[f64; 3]>,
     /// The right goes through these points (stitch frame) on its way to `right_run_down_to_m`, each
-    /// leg taking `run_down_s`: out of the way while the left carries the tail across, so that the
-    /// tail passes under the right's shaft, not over it.
+    /// leg taking `run_down_s`: for example out of the way while the left carries the tail across
+    /// (tried in session 40: drawn away before the left crossed, the second throw's turn came off).
     pub right_run_down_via_m: Vec<[f64; 3]>,
     /// How long the run-down takes, s.
     pub run_down_s: f64,
