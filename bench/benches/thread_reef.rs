@@ -11,10 +11,16 @@
 //! holds at 0.5, 0.7 and 1.0 on itself (under 0.3 N it settles 0.5-25 mm, then stays), in some layouts
 //! only at 0.3 and 0.4; 1.56 mm segments need 1.0.
 //!
+//! A second table lays the same knots flat and capsized (after the snug, red's ends pulled apart for 1
+//! s: red drawn straight, blue's collar wound round it, as every knot the expert ties lies), loaded
+//! at 0.3 N with the free ends let go: how much further a capsized knot slides before it holds
+//! (session 41: 4.1 mm flat against 19.3 mm capsized at 0.5, 6 mm spread).
+//!
 //! `cargo bench -p knotlab-bench --bench thread_reef`
 
+use knotlab_sim::physics::HealthError;
 use knotlab_sim::physics::SolverParams;
-use knotlab_sim::reef::{ReefParams, run_reef};
+use knotlab_sim::reef::{ReefOutcome, ReefParams, run_reef};
 use knotlab_sim::thread::ThreadParams;
 
 /// The loose knots' spreads, m.
@@ -59,15 +65,7 @@ fn main() {
                             .iter()
                             .map(|&spread_m| {
                                 let params = ReefParams::snug_then_load(spread_m, load_n, release_free);
-                                // "off": the knot came apart (a strand that slid out and flew away
-                                // trips the speed check).
-                                match run_reef(&solver, &strand, &params) {
-                                    Ok(o) if o.knot_end == o.knot_laid => {
-                                        format!("{:.1} mm ({:.1})", 1e3 * o.slip_m, 1e3 * o.late_slip_m)
-                                    }
-                                    Ok(o) => format!("off ({})", o.knot_end.name()),
-                                    Err(_) => "off (flew)".to_owned(),
-                                }
+                                outcome(run_reef(&solver, &strand, &params))
                             })
                             .collect();
                         runs.join(", ")
@@ -76,5 +74,41 @@ fn main() {
                 println!("| {name} | {friction} | {load_n} N | {} |", cells.join(" | "));
             }
         }
+    }
+    println!();
+    println!(
+        "the same knots on the shipped thread, loaded at 0.3 N with their free ends let go, laid flat or capsized (red's ends pulled apart for 1 s after the snug): how far the loaded end moved (in the last second)"
+    );
+    println!("| friction on itself | flat | capsized |");
+    println!("|---|---|---|");
+    for friction in [0.5, 0.7, 1.0] {
+        let strand = ThreadParams { friction_on_itself: Some(friction), ..thread };
+        let cells: Vec<String> = [0.0, 1.0]
+            .into_iter()
+            .map(|capsize_s| {
+                let runs: Vec<String> = SPREADS_M
+                    .iter()
+                    .map(|&spread_m| {
+                        let params =
+                            ReefParams { capsize_s, ..ReefParams::snug_then_load(spread_m, 0.3, true) };
+                        outcome(run_reef(&solver, &strand, &params))
+                    })
+                    .collect();
+                runs.join(", ")
+            })
+            .collect();
+        println!("| {friction} | {} |", cells.join(" | "));
+    }
+}
+
+/// One cell's run: how far the loaded end moved (in the last second), or "off" where the knot came
+/// apart (a strand that slid out and flew away trips the speed check).
+fn outcome(run: Result<ReefOutcome, HealthError>) -> String {
+    match run {
+        Ok(o) if o.knot_end == o.knot_laid => {
+            format!("{:.1} mm ({:.1})", 1e3 * o.slip_m, 1e3 * o.late_slip_m)
+        }
+        Ok(o) => format!("off ({})", o.knot_end.name()),
+        Err(_) => "off (flew)".to_owned(),
     }
 }

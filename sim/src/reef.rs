@@ -104,6 +104,11 @@ pub struct ReefParams {
     /// ... every segment's velocity damped at this rate meanwhile, 1/s (the slack drawn in slowly,
     /// so that no strand passes through another on the way).
     pub snug_damping_per_s: f64,
+    /// Then, if not zero, red's two ends are pulled apart with `snug_n` for this long, s (its free end
+    /// to +x, in line with its standing part, blue's ends slack, the damping kept): red is drawn
+    /// straight and blue's collar lies wound round it. The knot capsizes, as a surgeon's capsizes when
+    /// one end is pulled in line with its own leg; its type does not change.
+    pub capsize_s: f64,
     /// Then red's standing part is held where it is and blue's pulled with this tension, N ...
     pub load_n: f64,
     /// ... for this long, s.
@@ -123,6 +128,7 @@ impl ReefParams {
             snug_n: 1.0,
             snug_s: 2.0,
             snug_damping_per_s: 200.0,
+            capsize_s: 0.0,
             load_n,
             hold_s: 2.0,
             release_free,
@@ -138,8 +144,11 @@ pub struct ReefOutcome {
     pub clearance_m: f64,
     /// The knot as laid, ...
     pub knot_laid: KnotType,
-    /// ... after the snug, ...
+    /// ... after the snug (and the capsize, if any), ...
     pub knot_snug: KnotType,
+    /// How far red's two ends lie apart along red, as a fraction of red's length, as the load
+    /// begins: about 1 once red is drawn straight (capsized), well under 1 while it is a bight.
+    pub red_straightness: f64,
     /// ... and after the load.
     pub knot_end: KnotType,
     /// How far blue's standing part moved along its pull while loaded, m ...
@@ -211,14 +220,18 @@ pub fn run_reef(
         }
     };
     damp(&mut physics, params.snug_damping_per_s);
-    let snug_steps = (params.snug_s / physics.dt_s()).round() as usize;
+    let capsize_steps = (params.capsize_s / physics.dt_s()).round() as usize;
+    let snug_steps = (params.snug_s / physics.dt_s()).round() as usize + capsize_steps;
     let hold_steps = (params.hold_s / physics.dt_s()).round() as usize;
     let along = |physics: &Physics| physics.bodies[blue_stand].translation().x;
-    let (mut at_start, mut at_half, mut knot_snug) = (0.0, 0.0, KnotType::Unknown);
+    let red_length_m = red.segment_length_m * red.segments.len() as f64;
+    let (mut at_start, mut at_half, mut knot_snug, mut red_straightness) = (0.0, 0.0, KnotType::Unknown, 0.0);
     for step in 0..snug_steps + hold_steps {
         if step == snug_steps {
             at_start = along(&physics);
             knot_snug = knot_of(&physics, &red, &blue);
+            let ends = physics.bodies[red_free].translation() - physics.bodies[red_stand].translation();
+            red_straightness = ends.length() / red_length_m;
             damp(&mut physics, thread.linear_damping_per_s);
             clamp(&mut physics, red_stand);
             for h in [red_free, blue_free] {
@@ -232,8 +245,11 @@ pub fn run_reef(
         if step == snug_steps + hold_steps / 2 {
             at_half = along(&physics);
         }
-        let ramp = (2.0 * step as f64 / snug_steps as f64).min(1.0);
-        let forces: [(RigidBodyHandle, f64); 4] = if step < snug_steps {
+        let ramp = (2.0 * step as f64 / (snug_steps - capsize_steps) as f64).min(1.0);
+        let forces: [(RigidBodyHandle, f64); 4] = if step >= snug_steps - capsize_steps && step < snug_steps {
+            let f = params.snug_n;
+            [(red_stand, -f), (red_free, f), (blue_stand, 0.0), (blue_free, 0.0)]
+        } else if step < snug_steps {
             let f = params.snug_n * ramp;
             [(red_stand, -f), (red_free, -f), (blue_stand, f), (blue_free, f)]
         } else {
@@ -251,6 +267,7 @@ pub fn run_reef(
         clearance_m,
         knot_laid,
         knot_snug,
+        red_straightness,
         knot_end: knot_of(&physics, &red, &blue),
         slip_m: at_end - at_start,
         late_slip_m: at_end - at_half,
