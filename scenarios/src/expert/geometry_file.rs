@@ -127,7 +127,7 @@ fn range_problems(g: &TieGeometry) -> Vec<(String, String)> {
     c.range("pull_s", g.pull_s, 0.1, 60.0);
     if let Some(v) = g.tail_end_offered_m {
         c.range("tail_end_offered_m", v, 0.0, 0.05);
-        if g.left_fetches.is_some() {
+        if g.fetch().is_some() {
             c.0.push((
                 "tail_end_offered_m".to_owned(),
                 "cannot be set with left_fetches: the left fetches the tail, nothing is offered".to_owned(),
@@ -303,6 +303,24 @@ mod tests {
             },
             shipped
         );
+    }
+
+    #[test]
+    fn where_the_assist_presents_the_tail_the_left_fetches_nothing_and_the_tail_end_may_be_offered() {
+        // Shipped, the left fetches: nothing is offered.
+        assert!(TieGeometry::default().fetch().is_some());
+        let refused = parse_tie_geometry("tail_end_offered_m = 0.004\n", "x.toml");
+        assert!(
+            matches!(&refused, Err(GeometryFileError::Invalid { problems, .. }) if problems[0].0 == "tail_end_offered_m"),
+            "{refused:?}"
+        );
+        let g = parse_tie_geometry("assist_presents = true\ntail_end_offered_m = 0.004\n", "x.toml").unwrap();
+        assert!(g.fetch().is_none());
+        assert_eq!(g.tail_end_offered_m, Some(0.004));
+        // The second throw does not inherit it: its own keys decide who brings the tail.
+        let first = TieGeometry { assist_presents: true, ..TieGeometry::default() };
+        let fetching = crate::expert::SecondThrow::default().applied_to(&first);
+        assert!(fetching.fetch().is_some(), "{fetching:?}");
     }
 
     #[test]

@@ -36,6 +36,12 @@ pub struct TieGeometry {
     pub winding_towards: [f64; 3],
     /// If set, the left takes its coils to the tail instead of the assist bringing the tail.
     pub left_fetches: Option<LeftFetch>,
+    /// The assist presents the tail to the left's jaws where they wound, as in the paper's task,
+    /// instead of the left fetching it: `left_fetches` is then not used (a file cannot unset it, the
+    /// shipped plan fetches). For a first throw laid flat: taken with the jaws level along the wound,
+    /// the tail runs across the coils' axis, not along it as a fetch with the jaws turned down lays it
+    /// (session 41).
+    pub assist_presents: bool,
     /// Where the left's jaws point while the long end is wound around them (stitch frame); `None`: at
     /// the right's trocar, so that the right's shaft circles them at a distance.
     pub left_jaw_direction: Option<[f64; 3]>,
@@ -180,6 +186,7 @@ impl Default for TieGeometry {
                 stop_short_m: 0.0,
                 as_one_body: false,
             }),
+            assist_presents: false,
             right_jaws_across_winding: 0.0,
             winding_behind_m: 0.003,
             winding_pitch_m: 0.0,
@@ -222,6 +229,13 @@ impl Default for TieGeometry {
             hold_through_release: false,
             second_throw: None,
         }
+    }
+}
+
+impl TieGeometry {
+    /// How the left fetches the tail, if it does (not where the assist presents it).
+    pub fn fetch(&self) -> Option<&LeftFetch> {
+        self.left_fetches.as_ref().filter(|_| !self.assist_presents)
     }
 }
 
@@ -591,7 +605,7 @@ fn plan_throw(world: &SimWorld, geometry: &TieGeometry, variation: &Variation, s
     if left_keeps_tail {
         // The left holds the tail already: the turn lies round its jaws behind the tail.
         left.wait_until(wound_s + pause[3]);
-    } else if let Some(fetch) = &geometry.left_fetches {
+    } else if let Some(fetch) = geometry.fetch() {
         // The left takes its coils to the tail where the assist holds it (the right follows, so the
         // coils stay as they are): to a point behind the tail along the new jaw direction, then onto
         // the tail, jaws open.
@@ -733,7 +747,7 @@ fn plan_throw(world: &SimWorld, geometry: &TieGeometry, variation: &Variation, s
     let drawn_to = left.position_m() + draw;
     let shaft = (drawn_to - trocar_of(&world.config, left.arm())).normalize();
     let relaxed = left.jaw_direction().lerp(&shaft, geometry.draw_relax);
-    if geometry.left_fetches.as_ref().is_some_and(|f| f.as_one_body) {
+    if geometry.fetch().is_some_and(|f| f.as_one_body) {
         // The left holds a whole frame since the fetch: it turns that frame, the roll going with it
         // (handed to the solver, the roll flipped: the jaws jumped at 400-530 mm/s and tore the
         // needle out of the right's jaws).

@@ -175,6 +175,8 @@ impl SecondThrow {
             } else {
                 self.left_fetches.clone().or_else(|| first.left_fetches.clone())
             },
+            // The second throw's own keys decide who brings the tail, not the first's.
+            assist_presents: self.assist_presents,
             tail_ahead_m: self.tail_ahead_m.unwrap_or(first.tail_ahead_m),
             tail_take_short_m: self.tail_take_short_m.unwrap_or(first.tail_take_short_m),
             take_tail_jaw_rad: self.take_tail_jaw_rad.unwrap_or(first.take_tail_jaw_rad),
