@@ -13,8 +13,10 @@
 //!
 //! A second table lays the same knots flat and capsized (after the snug, red's ends pulled apart for 1
 //! s: red drawn straight, blue's collar wound round it, as every knot the expert ties lies), loaded
-//! at 0.3 N with the free ends let go: how much further a capsized knot slides before it holds
-//! (session 41: 4.1 mm flat against 19.3 mm capsized at 0.5, 6 mm spread).
+//! at 0.3 N with the free ends let go: how much further a capsized knot slides before it holds.
+//! Found (session 41): further in six of the nine cells (by 3-15 mm, or it came apart), about as far
+//! in one, less in two; at 0.5, 0.5/4.1/13.7 mm flat against 7.5/19.3/11.4 mm capsized. Flat, the
+//! knots settle 0.5-25 mm before they hold.
 //!
 //! `cargo bench -p knotlab-bench --bench thread_reef`
 
