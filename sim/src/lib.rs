@@ -20,6 +20,7 @@
 //! - [`thread`]: the suture as a chain of capsules.
 //! - [`cinch`]: a strand wound twice round another and pulled: how much tension the contacts hold.
 //! - [`reef`]: a square knot of two strands, loaded with its free ends let go: does it hold?
+//! - [`laid_knot`]: a square knot laid over the stitch and snugged: does it pass the holding test?
 //! - [`tunnelling`]: detecting one capsule passing through another.
 
 pub mod backend;
@@ -29,6 +30,7 @@ pub mod gauge;
 pub mod grasp;
 pub mod hooks;
 pub mod knot;
+pub mod laid_knot;
 pub mod layout;
 pub mod needle;
 pub mod physics;

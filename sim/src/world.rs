@@ -170,6 +170,28 @@ impl SimWorld {
     /// its needle held by the right instrument and its tail by the assist (where `config.start` says);
     /// the left instrument and the endoscope are parked 4 cm inside their trocars.
     pub fn new(config: SceneConfig, rig: Rig) -> Result<Self, WorldError> {
+        let mut world = Self::with_thread_laid(config, rig, |config, tissue, physics| {
+            start_layout(config, tissue, physics)
+        })?;
+        // The start condition: the right jaws on the needle, the assist's on the tail.
+        for (arm, key) in [(ArmName::Right, "needle_m"), (ArmName::Assist, "tail_m")] {
+            let poses = world.link_poses();
+            if !world.try_grasp(arm, &poses) {
+                return Err(WorldError::StartNotHeld { key, arm });
+            }
+        }
+        Ok(world)
+    }
+
+    /// Builds the scene with the thread laid along the path `layout` gives (world frame, needle end
+    /// first, from the scene, its tissue and its physics as built), through the stitch where the path
+    /// passes its points, and held by no instrument; the instruments stand as in [`Self::new`]. For
+    /// trials of a thread placed by hand, such as a knot laid over the stitch (`crate::laid_knot`).
+    pub fn with_thread_laid(
+        config: SceneConfig,
+        rig: Rig,
+        layout: impl FnOnce(&SceneConfig, &Tissue, &Physics) -> Vec<Vector3<f64>>,
+    ) -> Result<Self, WorldError> {
         let mut physics = Physics::new(&config.solver);
         let arms: Vec<SimArm> = ArmName::ALL
             .iter()
@@ -274,7 +296,7 @@ impl SimWorld {
                 jaw_colliders.iter().filter(|(name, _)| name.starts_with(&prefix)).map(|(_, h)| *h).collect();
         }
         let tissue = Tissue::build(&mut physics, &config.tissue, &config.stitch);
-        let layout = start_layout(&config, &tissue, &physics);
+        let layout = layout(&config, &tissue, &physics);
         let thread = Thread::build(&mut physics, &config.thread, &layout[0], &(layout[1] - layout[0]));
         thread.lay_along(&mut physics, &layout);
         let needle = Needle::attach(&config.needle, &mut physics, &thread);
@@ -282,7 +304,7 @@ impl SimWorld {
         let stitch = Stitch::anchor(&mut physics, &thread, &mut tissue, config.stitch.slide_friction_n);
         let grip_force_n = config.sensor.grip_force_n;
         let thread_watch = ThreadWatch::new(&physics, &thread, config.solver.prediction_distance_m);
-        let mut world = Self {
+        Ok(Self {
             physics,
             rig,
             arms,
@@ -299,15 +321,7 @@ impl SimWorld {
             jaw_closed_rad: 0.05,
             grip_force_n,
             noise: ChaCha8Rng::seed_from_u64(0),
-        };
-        // The start condition: the right jaws on the needle, the assist's on the tail.
-        for (arm, key) in [(ArmName::Right, "needle_m"), (ArmName::Assist, "tail_m")] {
-            let poses = world.link_poses();
-            if !world.try_grasp(arm, &poses) {
-                return Err(WorldError::StartNotHeld { key, arm });
-            }
-        }
-        Ok(world)
+        })
     }
 
     /// Joints that put `arm`'s jaw centre at `jaw_centre_m` (world), nearest its last command, the jaw

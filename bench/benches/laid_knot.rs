@@ -1,0 +1,75 @@
+//! Benchmark: does a square knot laid flat over the stitch hold the wound in the holding test? The
+//! scene's thread is laid as a loose square knot a few millimetres over the wound, drawn down by its
+//! free ends (ramped up over 1 s, held 1 s more), with or without the flaps held together meanwhile
+//! (as an assistant closes the wound), then let go, and the evaluator's holding test pulls the flaps
+//! apart (`knotlab_sim::laid_knot`). Printed per friction of the thread on itself, spread, closing
+//! force and snug: the wound's gap as snugged and after the load (the evaluator accepts 1.5 mm), the
+//! knot after. What no expert's knot can beat in this thread: if a knot laid by hand does not hold,
+//! the expert's will not either.
+//!
+//! `cargo bench -p knotlab-bench --bench laid_knot`
+
+use knotlab_hw::rig::Rig;
+use knotlab_sim::laid_knot::{LaidKnotParams, run_laid_knot};
+use knotlab_sim::scene::{SceneConfig, parse_scene};
+use knotlab_sim::thread::ThreadParams;
+
+fn main() {
+    let scene: SceneConfig = match parse_scene(
+        include_str!("../../scenarios/short-suture-friction-0.5.toml"),
+        "scenarios/short-suture-friction-0.5.toml",
+    ) {
+        Ok(scene) => scene,
+        Err(e) => {
+            eprintln!("{e}");
+            std::process::exit(1);
+        }
+    };
+    let rig = match Rig::shipped() {
+        Ok(rig) => rig,
+        Err(e) => {
+            eprintln!("{e}");
+            std::process::exit(1);
+        }
+    };
+    println!(
+        "a square knot laid over the stitch of scenarios/short-suture-friction-0.5.toml, drawn down by its free ends for 2 s, then the holding test (0.3 N a flap for 1 s); one core"
+    );
+    println!(
+        "| friction on itself | spread | flaps held together | snug | gap as snugged | gap after the load | knot after |"
+    );
+    println!("|---|---|---|---|---|---|---|");
+    for friction in [0.5, 1.0] {
+        let thread = ThreadParams { friction_on_itself: Some(friction), ..scene.thread };
+        for (spread_m, lift_m, height_m) in [(0.003, 0.0015, 0.003), (0.005, 0.002, 0.008)] {
+            for closing_n in [0.0, 0.3] {
+                for snug_n in [1.0, 2.0] {
+                    let params = LaidKnotParams {
+                        spread_m,
+                        lift_m,
+                        height_m,
+                        free_end_m: 0.02,
+                        snug_n,
+                        closing_n,
+                        ..LaidKnotParams::default()
+                    };
+                    let config = SceneConfig { thread, ..scene.clone() };
+                    let cells = match run_laid_knot(config, rig.clone(), &params) {
+                        Ok(o) => format!(
+                            "{:.2} mm | {} | {}",
+                            o.gap_snug_m * 1e3,
+                            o.gap_after_m.map_or("unstable".to_owned(), |g| format!("{:.1} mm", g * 1e3)),
+                            o.knot_after.name()
+                        ),
+                        Err(e) => format!("{e} | | "),
+                    };
+                    println!(
+                        "| {friction} | {:.0} mm | {} | {snug_n} N | {cells} |",
+                        spread_m * 1e3,
+                        if closing_n > 0.0 { format!("{closing_n} N") } else { "no".to_owned() }
+                    );
+                }
+            }
+        }
+    }
+}

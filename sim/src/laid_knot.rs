@@ -1,0 +1,224 @@
+//! A knot laid by hand over the stitch, snugged by its free ends and put to the evaluator's holding
+//! test: what a well-laid knot does in the scene's thread, apart from any expert. The thread is laid
+//! (no instrument holds it) as [`crate::reef::loose_knot`]'s square knot a few millimetres over the
+//! wound: the tail's strand (red) from the entry point, the long end's (blue) from the exit point,
+//! the long end's spare thread straight on beyond its free end. Both free ends are pulled out, each
+//! alongside its own standing part as a square knot's lie (the tail's over its flap, the long end's
+//! over the other), until the knot is snug; then they are let go and the holding test pulls the
+//! wound open ([`crate::evaluate::hold`]). If such a knot cannot keep the wound within the
+//! evaluator's gap, no expert's can.
+
+use knotlab_hw::rig::Rig;
+use nalgebra::{Isometry3, Point3, Vector3};
+use rapier3d::prelude::*;
+
+use crate::evaluate::{hold, knot_now};
+use crate::knot::KnotType;
+use crate::physics::Physics;
+use crate::reef::loose_knot;
+use crate::scene::SceneConfig;
+use crate::tissue::{Flap, Tissue};
+use crate::world::{SimWorld, WorldError};
+
+/// How the knot is laid and snugged.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LaidKnotParams {
+    /// The loose knot's features this far apart (red's legs twice this apart), m.
+    pub spread_m: f64,
+    /// The strands cross this far above and below each other, m.
+    pub lift_m: f64,
+    /// The knot's plane this far over the tissue's surface, m.
+    pub height_m: f64,
+    /// Straight strand from the knot to the tail's free end, m.
+    pub free_end_m: f64,
+    /// Each free end pulled out with this force, N ...
+    pub snug_n: f64,
+    /// ... for this long, s (ramped up over the first half), ...
+    pub snug_s: f64,
+    /// ... every segment's velocity damped at this rate meanwhile, 1/s (the slack drawn in slowly),
+    /// ...
+    pub snug_damping_per_s: f64,
+    /// ... and each flap pushed towards the other with this force, N (as a surgeon's assistant holds
+    /// the wound closed while the knot is drawn tight; 0: the thread alone closes it).
+    pub closing_n: f64,
+}
+
+impl Default for LaidKnotParams {
+    /// A 5 mm spread, 2 mm lift, 8 mm over the tissue, a 30 mm tail; snugged at 1 N for 2 s under
+    /// 200/s damping, as the reef trial snugs its knots.
+    fn default() -> Self {
+        Self {
+            spread_m: 0.005,
+            lift_m: 0.002,
+            height_m: 0.008,
+            free_end_m: 0.03,
+            snug_n: 1.0,
+            snug_s: 2.0,
+            snug_damping_per_s: 200.0,
+            closing_n: 0.0,
+        }
+    }
+}
+
+/// What the trial measured.
+#[derive(Clone, Debug, PartialEq)]
+pub struct LaidKnotOutcome {
+    /// The knot as laid, ...
+    pub knot_laid: KnotType,
+    /// ... as snugged, ...
+    pub knot_snug: KnotType,
+    /// ... and after the holding test.
+    pub knot_after: KnotType,
+    /// The knot's lowest crossing over the tissue as snugged, m (none for no knot).
+    pub height_snug_m: Option<f64>,
+    /// The wound's gap as snugged, m, ...
+    pub gap_snug_m: f64,
+    /// ... and after the holding test, m (none: the thread went unstable).
+    pub gap_after_m: Option<f64>,
+}
+
+/// The thread's path, needle end first (world frame): the long end's spare thread, blue from its
+/// free end to its standing part, down to the exit point, under the wound, up from the entry point,
+/// red from its standing part to its free end. `None` if the thread is too short for it.
+pub fn laid_knot_layout(
+    config: &SceneConfig,
+    tissue: &Tissue,
+    physics: &Physics,
+    params: &LaidKnotParams,
+) -> Option<Vec<Vector3<f64>>> {
+    let s = params.spread_m;
+    let knot = loose_knot(s, params.lift_m, params.free_end_m);
+    // The reef's frame in the tissue's: its x (blue's standing part's side) across the wound towards
+    // the exit's flap (-y), its y along the wound, its z up; lifted to the knot's height.
+    let tissue_from_reef = Isometry3::from_parts(
+        nalgebra::Translation3::new(0.0, 0.0, params.height_m),
+        nalgebra::UnitQuaternion::from_rotation_matrix(&nalgebra::Rotation3::from_basis_unchecked(&[
+            -Vector3::y(),
+            Vector3::x(),
+            Vector3::z(),
+        ])),
+    );
+    let world = |p: Vector3<f64>| (tissue.world_from_tissue * tissue_from_reef * Point3::from(p)).coords;
+    let in_reef = |p: Vector3<f64>| (tissue.world_from_tissue * tissue_from_reef).inverse() * Point3::from(p);
+    let (exit, entry) = (tissue.hole_m(physics, Flap::B), tissue.hole_m(physics, Flap::A));
+    let (deep_exit, deep_entry) = (tissue.deep_m(physics, Flap::B), tissue.deep_m(physics, Flap::A));
+    // Each standing part leaves the knot along its line and runs down to its point once past it:
+    // red's (along reef y = s, towards -x) where the entry point lies across the wound; blue's
+    // (along y = 0.4 s, z = -lift, from +x) outside red's bend (reef x = 2.5 s) or the exit's line.
+    let entry_x = in_reef(entry).x.min(-1.5 * s);
+    let exit_x = in_reef(exit).x.max(2.5 * s);
+    let red_leg = Vector3::new(entry_x, knot.red[1].y, knot.red[1].z);
+    let blue_leg = Vector3::new(exit_x, knot.blue[1].y, knot.blue[1].z);
+    let mut path: Vec<Vector3<f64>> = Vec::new();
+    // Blue from its free end back to where its standing part turns down.
+    path.extend(knot.blue[1..].iter().rev().map(|p| world(*p)));
+    path.push(world(blue_leg));
+    path.extend([exit, deep_exit, deep_entry, entry]);
+    path.push(world(red_leg));
+    path.extend(knot.red[1..].iter().map(|p| world(*p)));
+    let used_m: f64 = path.windows(2).map(|w| (w[1] - w[0]).norm()).sum();
+    let spare_m = config.thread.length_m - used_m;
+    if spare_m <= 0.0 {
+        return None;
+    }
+    // The long end's spare thread straight on beyond blue's free end.
+    let outward = (path[0] - path[1]).normalize();
+    path.insert(0, path[0] + outward * spare_m);
+    Some(path)
+}
+
+/// Lays the knot over the stitch of `config`'s scene and snugs it by its free ends (then lets them
+/// go): the world ready for the holding test, and the knot as it was laid. An error if the scene
+/// cannot be built, its thread is too short for the knot, or the thread went unstable.
+pub fn lay_and_snug(
+    config: SceneConfig,
+    rig: Rig,
+    params: &LaidKnotParams,
+) -> Result<(SimWorld, KnotType), LaidKnotError> {
+    let mut too_short = false;
+    let mut world = SimWorld::with_thread_laid(config, rig, |config, tissue, physics| {
+        laid_knot_layout(config, tissue, physics, params).unwrap_or_else(|| {
+            too_short = true;
+            crate::layout::start_layout(config, tissue, physics)
+        })
+    })?;
+    if too_short {
+        return Err(LaidKnotError::ThreadTooShort);
+    }
+    let knot_laid = knot_now(&world).map_or(KnotType::Unknown, |k| k.knot);
+    let segments = world.thread.segments.clone();
+    let (long_end, tail) = (segments[0], segments[segments.len() - 1]);
+    // Each free end out alongside its own standing part: the tail over its flap (+y), the long end
+    // over the other (-y), level with the tissue.
+    let across = world.tissue.world_from_tissue.rotation * Vector3::y();
+    let damp = |world: &mut SimWorld, per_s: f64| {
+        for h in &segments {
+            world.physics.bodies[*h].set_linear_damping(per_s);
+        }
+    };
+    damp(&mut world, params.snug_damping_per_s);
+    let steps = (params.snug_s / world.config.solver.dt_s).round() as usize;
+    for step in 0..steps {
+        let f = params.snug_n * (2.0 * step as f64 / steps as f64).min(1.0);
+        for (h, sign) in [(tail, 1.0), (long_end, -1.0)] {
+            push(&mut world, h, across * (f * sign));
+        }
+        for flap in Flap::ALONG_THREAD {
+            let h = world.tissue.flaps[flap.index()];
+            push(&mut world, h, across * (-flap.side() * params.closing_n));
+        }
+        world.step().map_err(|_| LaidKnotError::Unstable)?;
+    }
+    let flaps = world.tissue.flaps;
+    for h in [tail, long_end].into_iter().chain(flaps) {
+        world.physics.bodies[h].reset_forces(true);
+    }
+    let linear_damping_per_s = world.config.thread.linear_damping_per_s;
+    damp(&mut world, linear_damping_per_s);
+    Ok((world, knot_laid))
+}
+
+/// [`lay_and_snug`], then the holding test with the scene's evaluation parameters. `None` in
+/// `gap_after_m` if the thread went unstable in it.
+pub fn run_laid_knot(
+    config: SceneConfig,
+    rig: Rig,
+    params: &LaidKnotParams,
+) -> Result<LaidKnotOutcome, LaidKnotError> {
+    let (mut world, knot_laid) = lay_and_snug(config, rig, params)?;
+    let snug = knot_now(&world);
+    let knot_snug = snug.as_ref().map_or(KnotType::Unknown, |k| k.knot);
+    let height_snug_m = snug.and_then(|k| k.height_m);
+    let gap_snug_m = world.wound_gap_m();
+    let evaluation = world.config.evaluation.clone();
+    let gap_after_m = hold(&mut world, &evaluation);
+    Ok(LaidKnotOutcome {
+        knot_laid,
+        knot_snug,
+        knot_after: knot_now(&world).map_or(KnotType::Unknown, |k| k.knot),
+        height_snug_m,
+        gap_snug_m,
+        gap_after_m,
+    })
+}
+
+/// Sets the force on `body` to `force_n` (world frame, N) for the next step.
+fn push(world: &mut SimWorld, body: RigidBodyHandle, force_n: Vector3<f64>) {
+    let body = &mut world.physics.bodies[body];
+    body.reset_forces(true);
+    body.add_force(Vector::new(force_n.x, force_n.y, force_n.z), true);
+}
+
+/// Why a laid-knot trial could not run.
+#[derive(Debug, thiserror::Error)]
+pub enum LaidKnotError {
+    /// The scene does not build.
+    #[error(transparent)]
+    World(#[from] WorldError),
+    /// The scene's thread is shorter than the knot's path.
+    #[error("thread.length_m: too short for the laid knot's path")]
+    ThreadTooShort,
+    /// The thread went unstable while the knot was snugged.
+    #[error("the thread went unstable while the knot was snugged")]
+    Unstable,
+}
