@@ -7,7 +7,9 @@
 //! reaches round the part under the wound (laid straight from point to point on the surface, that
 //! part was where the expert's coils slid down to and cinched: a knot in the wound's gap). After
 //! each step the joints move on to the neighbouring segment when a point has slid past the
-//! segment's end, so the whole thread can be pulled through. Between the two surface points the
+//! segment's end, so the whole thread can be pulled through; a point slides at most 0.5 mm past its
+//! segment's end, so where the thread bends back at it (a knot drawn down onto the hole) it stops
+//! there instead of leaving the thread. Between the two surface points the
 //! thread runs inside the tissue, so contacts between those segments and the flaps are filtered
 //! out.
 
