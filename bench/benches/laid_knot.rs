@@ -48,7 +48,6 @@ fn main() {
                         spread_m,
                         lift_m,
                         height_m,
-                        free_end_m: 0.02,
                         snug_n,
                         closing_n,
                         ..LaidKnotParams::default()

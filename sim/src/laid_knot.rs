@@ -44,14 +44,15 @@ pub struct LaidKnotParams {
 }
 
 impl Default for LaidKnotParams {
-    /// A 5 mm spread, 2 mm lift, 8 mm over the tissue, a 30 mm tail; snugged at 1 N for 2 s under
-    /// 200/s damping, as the reef trial snugs its knots.
+    /// A 3 mm spread, 1.5 mm lift, 3 mm over the tissue (the knot about as wide as the stitch), a 20
+    /// mm tail (room for it on a 0.2 m suture); snugged at 1 N for 2 s under 200/s damping, as the
+    /// reef trial snugs its knots; the flaps not held.
     fn default() -> Self {
         Self {
-            spread_m: 0.005,
-            lift_m: 0.002,
-            height_m: 0.008,
-            free_end_m: 0.03,
+            spread_m: 0.003,
+            lift_m: 0.0015,
+            height_m: 0.003,
+            free_end_m: 0.02,
             snug_n: 1.0,
             snug_s: 2.0,
             snug_damping_per_s: 200.0,

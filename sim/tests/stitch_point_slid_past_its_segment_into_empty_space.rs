@@ -21,13 +21,7 @@ fn the_flaps_part_no_further_than_the_thread_between_the_stitch_points_allows() 
     )
     .expect("shipped scene");
     // A square knot laid 3 mm over the wound and drawn down onto it by its free ends at 1 N.
-    let params = LaidKnotParams {
-        spread_m: 0.003,
-        lift_m: 0.0015,
-        height_m: 0.003,
-        free_end_m: 0.02,
-        ..Default::default()
-    };
+    let params = LaidKnotParams::default();
     let (mut world, _) =
         lay_and_snug(scene, Rig::shipped().expect("shipped rig"), &params).expect("laid and snugged");
     let evaluation = world.config.evaluation.clone();
