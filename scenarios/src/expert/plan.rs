@@ -38,9 +38,11 @@ pub struct TieGeometry {
     pub left_fetches: Option<LeftFetch>,
     /// The assist presents the tail to the left's jaws where they wound, as in the paper's task,
     /// instead of the left fetching it: `left_fetches` is then not used (a file cannot unset it, the
-    /// shipped plan fetches). For a first throw laid flat: taken with the jaws level along the wound,
-    /// the tail runs across the coils' axis, not along it as a fetch with the jaws turned down lays it
-    /// (session 41).
+    /// shipped plan fetches). Meant for a first throw that forms flat, the jaws level along the wound
+    /// (a fetch with the jaws turned down draws the tail straight through the coils). Tried in
+    /// session 41 with the second throw's winding on a 47 mm tail: two turns reached the jaws and
+    /// the left took the tail, but its free end lay back along the jaws inside the coils
+    /// (`knotlab knot draw-through`: no knot).
     pub assist_presents: bool,
     /// Where the left's jaws point while the long end is wound around them (stitch frame); `None`: at
     /// the right's trocar, so that the right's shaft circles them at a distance.
