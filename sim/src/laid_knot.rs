@@ -1,12 +1,13 @@
 //! A knot laid by hand over the stitch, snugged by its free ends and put to the evaluator's holding
 //! test: what a well-laid knot does in the scene's thread, apart from any expert. The thread is laid
-//! (no instrument holds it) as [`crate::reef::loose_knot`]'s square knot a few millimetres over the
-//! wound: the tail's strand (red) from the entry point, the long end's (blue) from the exit point,
-//! the long end's spare thread straight on beyond its free end. Both free ends are pulled out, each
-//! alongside its own standing part as a square knot's lie (the tail's over its flap, the long end's
-//! over the other), until the knot is snug; then they are let go and the holding test pulls the
-//! wound open ([`crate::evaluate::hold`]). If such a knot cannot keep the wound within the
-//! evaluator's gap, no expert's can.
+//! (no instrument holds it) as [`crate::reef::loose_knot`]'s square knot or as a surgeon's knot (two
+//! double helices) a few millimetres over the wound, the tail's strand from the entry point and the
+//! long end's from the exit point, the long end's spare thread straight on beyond its free end. Both
+//! free ends are pulled out, each alongside its own standing part (the tail's over its flap, the long
+//! end's over the other), until the knot is snug; then they are let go and the holding test pulls
+//! the wound open ([`crate::evaluate::hold`]). If such a knot cannot keep the wound within the
+//! evaluator's gap, no expert's can (session 41: none has; `cargo bench -p knotlab-bench --bench
+//! laid_knot`).
 
 use knotlab_hw::rig::Rig;
 use nalgebra::{Isometry3, Point3, Vector3};
@@ -20,12 +21,27 @@ use crate::scene::SceneConfig;
 use crate::tissue::{Flap, Tissue};
 use crate::world::{SimWorld, WorldError};
 
+/// Which knot is laid.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum LaidKnotKind {
+    /// [`crate::reef::loose_knot`]'s square knot: two bights collaring each other.
+    Square,
+    /// A surgeon's knot, the knot the evaluator accepts: the tail and the long end wound round each
+    /// other twice, then once the other way; laid as two double helices across the wound,
+    /// the first (two turns) at the knot's height, the second (one turn, the other hand) above it.
+    SurgeonsKnot,
+}
+
 /// How the knot is laid and snugged.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct LaidKnotParams {
-    /// The loose knot's features this far apart (red's legs twice this apart), m.
+    /// Which knot.
+    pub kind: LaidKnotKind,
+    /// The loose knot's features this far apart (red's legs twice this apart), m; for the surgeon's
+    /// knot, each helix runs this far either side of the wound's line.
     pub spread_m: f64,
-    /// The strands cross this far above and below each other, m.
+    /// The strands cross this far above and below each other, m; for the surgeon's knot, the
+    /// helices' radius.
     pub lift_m: f64,
     /// The knot's plane this far over the tissue's surface, m.
     pub height_m: f64,
@@ -49,6 +65,7 @@ impl Default for LaidKnotParams {
     /// reef trial snugs its knots; the flaps not held.
     fn default() -> Self {
         Self {
+            kind: LaidKnotKind::Square,
             spread_m: 0.003,
             lift_m: 0.0015,
             height_m: 0.003,
@@ -87,6 +104,68 @@ pub fn laid_knot_layout(
     physics: &Physics,
     params: &LaidKnotParams,
 ) -> Option<Vec<Vector3<f64>>> {
+    let path = match params.kind {
+        LaidKnotKind::Square => square_knot_path(tissue, physics, params),
+        LaidKnotKind::SurgeonsKnot => surgeons_knot_path(tissue, physics, params),
+    };
+    with_spare_thread(path, config.thread.length_m)
+}
+
+/// The long end's spare thread straight on beyond its free end (the path's start), so that the path
+/// is as long as the thread; `None` if the thread is too short for it.
+fn with_spare_thread(mut path: Vec<Vector3<f64>>, length_m: f64) -> Option<Vec<Vector3<f64>>> {
+    let used_m: f64 = path.windows(2).map(|w| (w[1] - w[0]).norm()).sum();
+    let spare_m = length_m - used_m;
+    if spare_m <= 0.0 || path.len() < 2 {
+        return None;
+    }
+    let outward = (path[0] - path[1]).normalize();
+    path.insert(0, path[0] + outward * spare_m);
+    Some(path)
+}
+
+/// The surgeon's knot's path (world frame, the long end's free end first): in the tissue frame, the
+/// tail runs from the entry point up into a double helix along -y at the knot's height (two turns
+/// round the long end, which runs the other way), then up and back along +y in a single helix of
+/// the other hand above it, and out over its flap; the long end the same the other way round, down
+/// to the exit point. (Classified as laid: `surgeons_knot`; the test below.)
+fn surgeons_knot_path(tissue: &Tissue, physics: &Physics, params: &LaidKnotParams) -> Vec<Vector3<f64>> {
+    let (y, r, low) = (params.spread_m, params.lift_m, params.height_m);
+    let high = low + 3.0 * r;
+    let past = 0.5 * y;
+    let helix = |y0: f64, y1: f64, z: f64, turns: f64, phase: f64| -> Vec<Vector3<f64>> {
+        (0..=HELIX_POINTS)
+            .map(|k| {
+                let t = k as f64 / HELIX_POINTS as f64;
+                let a = phase + std::f64::consts::TAU * turns * t;
+                Vector3::new(r * a.cos(), y0 + (y1 - y0) * t, z + r * a.sin())
+            })
+            .collect()
+    };
+    let world = |p: Vector3<f64>| (tissue.world_from_tissue * Point3::from(p)).coords;
+    let pi = std::f64::consts::PI;
+    let mut long_end = vec![Vector3::new(0.0, -y - past - params.free_end_m, high)];
+    long_end.extend(helix(-y, y + past, high, 1.0, pi));
+    long_end.extend(helix(y, -y, low, 2.0, pi));
+    let mut tail = helix(y, -y, low, 2.0, 0.0);
+    tail.extend(helix(-y - past, y, high, 1.0, 0.0));
+    tail.push(Vector3::new(0.0, y + params.free_end_m, high));
+    let mut path: Vec<Vector3<f64>> = long_end.into_iter().map(world).collect();
+    path.extend([
+        tissue.hole_m(physics, Flap::B),
+        tissue.deep_m(physics, Flap::B),
+        tissue.deep_m(physics, Flap::A),
+        tissue.hole_m(physics, Flap::A),
+    ]);
+    path.extend(tail.into_iter().map(world));
+    path
+}
+
+/// Points along each helix of the laid surgeon's knot.
+const HELIX_POINTS: usize = 40;
+
+/// The square knot's path (world frame, the long end's free end first).
+fn square_knot_path(tissue: &Tissue, physics: &Physics, params: &LaidKnotParams) -> Vec<Vector3<f64>> {
     let s = params.spread_m;
     let knot = loose_knot(s, params.lift_m, params.free_end_m);
     // The reef's frame in the tissue's: its x (blue's standing part's side) across the wound towards
@@ -117,15 +196,7 @@ pub fn laid_knot_layout(
     path.extend([exit, deep_exit, deep_entry, entry]);
     path.push(world(red_leg));
     path.extend(knot.red[1..].iter().map(|p| world(*p)));
-    let used_m: f64 = path.windows(2).map(|w| (w[1] - w[0]).norm()).sum();
-    let spare_m = config.thread.length_m - used_m;
-    if spare_m <= 0.0 {
-        return None;
-    }
-    // The long end's spare thread straight on beyond blue's free end.
-    let outward = (path[0] - path[1]).normalize();
-    path.insert(0, path[0] + outward * spare_m);
-    Some(path)
+    path
 }
 
 /// Lays the knot over the stitch of `config`'s scene and snugs it by its free ends (then lets them

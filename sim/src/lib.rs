@@ -20,7 +20,8 @@
 //! - [`thread`]: the suture as a chain of capsules.
 //! - [`cinch`]: a strand wound twice round another and pulled: how much tension the contacts hold.
 //! - [`reef`]: a square knot of two strands, loaded with its free ends let go: does it hold?
-//! - [`laid_knot`]: a square knot laid over the stitch and snugged: does it pass the holding test?
+//! - [`laid_knot`]: a square or surgeon's knot laid over the stitch and snugged: does it pass the
+//!   holding test?
 //! - [`tunnelling`]: detecting one capsule passing through another.
 
 pub mod backend;

@@ -1,11 +1,11 @@
 //! The laid-knot trial's layout (`knotlab_sim::laid_knot`, the `laid_knot` benchmark): the scene's
-//! thread laid as a loose square knot over the wound, through both stitch points, and a clear error
-//! where the thread is too short for it.
+//! thread laid as a loose square knot or surgeon's knot over the wound, through both stitch points,
+//! and a clear error where the thread is too short for it.
 
 use knotlab_hw::rig::Rig;
 use knotlab_sim::evaluate::knot_now;
 use knotlab_sim::knot::KnotType;
-use knotlab_sim::laid_knot::{LaidKnotError, LaidKnotParams, laid_knot_layout, lay_and_snug};
+use knotlab_sim::laid_knot::{LaidKnotError, LaidKnotKind, LaidKnotParams, laid_knot_layout, lay_and_snug};
 use knotlab_sim::scene::{SceneConfig, parse_scene};
 use knotlab_sim::world::SimWorld;
 
@@ -34,6 +34,22 @@ fn the_thread_is_laid_as_a_square_knot_through_both_stitch_points() {
     assert!(world.stitch.holes.iter().chain(&world.stitch.guides).all(|h| h.segment.is_some()));
     // No instrument holds it.
     assert!(world.arms.iter().all(|a| a.grasp.is_none()));
+}
+
+#[test]
+fn the_surgeons_knot_is_laid_as_two_helices_the_evaluator_names_a_surgeons_knot() {
+    let params = LaidKnotParams {
+        kind: LaidKnotKind::SurgeonsKnot,
+        spread_m: 0.008,
+        lift_m: 0.0012,
+        height_m: 0.004,
+        ..LaidKnotParams::default()
+    };
+    let world = SimWorld::with_thread_laid(scene(), Rig::shipped().expect("shipped rig"), |c, t, p| {
+        laid_knot_layout(c, t, p, &params).expect("the thread is long enough")
+    })
+    .expect("the scene builds");
+    assert_eq!(knot_now(&world).map(|k| k.knot), Some(KnotType::SurgeonsKnot));
 }
 
 #[test]
