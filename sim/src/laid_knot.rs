@@ -128,7 +128,8 @@ fn with_spare_thread(mut path: Vec<Vector3<f64>>, length_m: f64) -> Option<Vec<V
 /// tail runs from the entry point up into a double helix along -y at the knot's height (two turns
 /// round the long end, which runs the other way), then up and back along +y in a single helix of
 /// the other hand above it, and out over its flap; the long end the same the other way round, down
-/// to the exit point. (Classified as laid: `surgeons_knot`; the test below.)
+/// to the exit point. (Laid, the thread classifies as `surgeons_knot`:
+/// `sim/tests/laid_knot_lays_its_knot_through_the_stitch.rs`.)
 fn surgeons_knot_path(tissue: &Tissue, physics: &Physics, params: &LaidKnotParams) -> Vec<Vector3<f64>> {
     let (y, r, low) = (params.spread_m, params.lift_m, params.height_m);
     let high = low + 3.0 * r;

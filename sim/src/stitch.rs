@@ -73,7 +73,9 @@ pub struct Stitch {
 }
 
 /// How far past its segment's end a stitch point may slide before `follow` hands it on, m: a
-/// pulled thread slides about 0.1 mm a step.
+/// pulled thread slides about 0.1 mm a step. It also caps how fast the thread can be drawn through
+/// the tissue: this much a step (0.5 m/s at the scenes' 1 ms steps; the expert draws the tail at a few
+/// centimetres a second).
 const SLIDE_PAST_END_M: f64 = 0.0005;
 
 fn to_na(v: Vector) -> Vector3<f64> {
