@@ -36,6 +36,7 @@ pub mod layout;
 pub mod needle;
 pub mod physics;
 pub mod reef;
+pub mod rope;
 pub mod scene;
 pub mod servo;
 pub mod shapes;

@@ -1,0 +1,235 @@
+//! A suture as an XPBD rope (position-based dynamics in small steps): particles joined by
+//! inextensible segments, an optional bending stiffness, and capsule contacts between all
+//! non-neighbouring segments with Coulomb friction solved on positions (below the static bound a
+//! contact's slip is undone entirely, so a wrap holds without creeping). A prototype beside the
+//! Rapier capsule chain ([`crate::thread`]): the chain lets every laid knot slip, the more so the
+//! better its solver converges (session 42, `docs/knot-tying-notes.md`); this rope holds a square
+//! knot (`cargo bench -p knotlab-bench --bench rope_knot`). It does not yet touch instruments or
+//! tissue.
+
+mod broad_phase;
+mod contact;
+pub mod trials;
+
+use std::ops::Range;
+
+use nalgebra::Vector3;
+
+pub use contact::closest_on_segments;
+
+/// The rope's material and how it is integrated.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RopeParams {
+    /// Collision radius, m.
+    pub radius_m: f64,
+    /// Mass per metre, kg/m: far heavier than suture (3-0 polypropylene is about 3e-5 kg/m), so
+    /// that a 1 N pull moves a particle by a small part of its spacing in a substep; with
+    /// [`Self::damping_per_s`] the rope moves quasi-statically. (At a tenth of it, 0.3 mm spacing,
+    /// 40 substeps, the rope stretched 4-5 % under 1 N and a wrap held a tenth of what it holds.)
+    pub mass_per_m_kg: f64,
+    /// Static friction coefficient of the rope on itself.
+    pub static_friction: f64,
+    /// Kinetic friction coefficient of the rope on itself.
+    pub kinetic_friction: f64,
+    /// Bending compliance of each particle's two segments (XPBD, on the distance between its
+    /// neighbours), m/N; infinite: no bending stiffness.
+    pub bend_compliance_m_per_n: f64,
+    /// Substeps per step.
+    pub substeps: usize,
+    /// Gauss-Seidel sweeps over the segments' lengths in each substep.
+    pub stretch_iterations: usize,
+    /// Velocity damping, 1/s.
+    pub damping_per_s: f64,
+    /// Pairs of segments closer than this beyond touching are watched for contact through a step, m.
+    pub contact_margin_m: f64,
+}
+
+impl Default for RopeParams {
+    fn default() -> Self {
+        Self {
+            radius_m: 0.0002,
+            mass_per_m_kg: 0.67,
+            static_friction: 1.0,
+            kinetic_friction: 0.8,
+            bend_compliance_m_per_n: f64::INFINITY,
+            substeps: 20,
+            stretch_iterations: 2,
+            damping_per_s: 100.0,
+            contact_margin_m: 0.001,
+        }
+    }
+}
+
+/// Ropes (strands) and their state.
+#[derive(Clone, Debug)]
+pub struct Ropes {
+    /// The material.
+    pub params: RopeParams,
+    /// Particle positions, m (strand after strand, each from its first end).
+    pub x: Vec<Vector3<f64>>,
+    /// Particle velocities, m/s.
+    pub v: Vec<Vector3<f64>>,
+    /// Inverse masses, 1/kg (0: pinned).
+    pub w: Vec<f64>,
+    /// External force on each particle for the next step, N.
+    pub force_n: Vec<Vector3<f64>>,
+    /// Each strand's particles.
+    pub strands: Vec<Range<usize>>,
+    /// Segments (particle pairs) and their rest lengths, m.
+    segments: Vec<([usize; 2], f64)>,
+    /// Bending triples (neighbour, particle, neighbour) and their rest spans, m.
+    bends: Vec<([usize; 2], f64)>,
+    /// Segment pairs near enough to touch within a step (found at its start).
+    candidates: Vec<(usize, usize)>,
+    /// Contacts that touched in the last substep.
+    pub contacts_last: usize,
+}
+
+impl Ropes {
+    /// No strands yet.
+    pub fn new(params: RopeParams) -> Self {
+        Self {
+            params,
+            x: Vec::new(),
+            v: Vec::new(),
+            w: Vec::new(),
+            force_n: Vec::new(),
+            strands: Vec::new(),
+            segments: Vec::new(),
+            bends: Vec::new(),
+            candidates: Vec::new(),
+            contacts_last: 0,
+        }
+    }
+
+    /// Adds a strand along `path` with particles `spacing_m` apart (chords of the path). Returns its
+    /// particle range.
+    pub fn add_strand_along(&mut self, path: &[Vector3<f64>], spacing_m: f64) -> Range<usize> {
+        let length_m: f64 = path.windows(2).map(|w| (w[1] - w[0]).norm()).sum();
+        let count = (length_m / spacing_m).floor() as usize + 1;
+        self.add_strand(&crate::layout::chord_points(path, spacing_m, count.max(2)))
+    }
+
+    /// Adds a strand through `points` (its particles, at rest; each segment's rest length is its
+    /// length as laid, each bend at rest straight; each particle weighs the rope's mass per metre
+    /// times half its two segments). Returns its particle range.
+    pub fn add_strand(&mut self, points: &[Vector3<f64>]) -> Range<usize> {
+        let start = self.x.len();
+        for (k, p) in points.iter().enumerate() {
+            let before = if k > 0 { (p - points[k - 1]).norm() } else { 0.0 };
+            let after = if k + 1 < points.len() { (points[k + 1] - p).norm() } else { 0.0 };
+            let mass_kg = self.params.mass_per_m_kg * 0.5 * (before + after);
+            self.x.push(*p);
+            self.v.push(Vector3::zeros());
+            self.w.push(if mass_kg > 0.0 { 1.0 / mass_kg } else { 0.0 });
+            self.force_n.push(Vector3::zeros());
+        }
+        let range = start..self.x.len();
+        for i in start..range.end.saturating_sub(1) {
+            let rest = (self.x[i + 1] - self.x[i]).norm();
+            self.segments.push(([i, i + 1], rest));
+        }
+        for i in start + 1..range.end.saturating_sub(1) {
+            let rest = (self.x[i] - self.x[i - 1]).norm() + (self.x[i + 1] - self.x[i]).norm();
+            self.bends.push(([i - 1, i + 1], rest));
+        }
+        self.strands.push(range.clone());
+        range
+    }
+
+    /// The strand a particle belongs to.
+    fn strand_of(&self, particle: usize) -> usize {
+        self.strands.iter().position(|r| r.contains(&particle)).unwrap_or(usize::MAX)
+    }
+
+    /// Advances by `dt_s`, applying `force_n` throughout.
+    pub fn step(&mut self, dt_s: f64) {
+        self.find_candidates();
+        let h = dt_s / self.params.substeps as f64;
+        for _ in 0..self.params.substeps {
+            let x_prev = self.x.clone();
+            for i in 0..self.x.len() {
+                if self.w[i] > 0.0 {
+                    self.v[i] += self.force_n[i] * (self.w[i] * h);
+                    self.x[i] += self.v[i] * h;
+                }
+            }
+            for _ in 0..self.params.stretch_iterations {
+                self.solve_stretch();
+            }
+            self.solve_bending(h);
+            self.contacts_last = contact::solve_contacts(self, &x_prev);
+            let damp = 1.0 / (1.0 + h * self.params.damping_per_s);
+            for ((v, x), x_prev) in self.v.iter_mut().zip(&self.x).zip(&x_prev) {
+                *v = (x - x_prev) / h * damp;
+            }
+        }
+    }
+
+    fn solve_stretch(&mut self) {
+        for k in 0..self.segments.len() {
+            let ([a, b], rest) = self.segments[k];
+            let (wa, wb) = (self.w[a], self.w[b]);
+            let wsum = wa + wb;
+            if wsum == 0.0 {
+                continue;
+            }
+            let d = self.x[b] - self.x[a];
+            let len = d.norm();
+            if len < 1e-12 {
+                continue;
+            }
+            let n = d / len;
+            let c = len - rest;
+            self.x[a] += n * (wa * c / wsum);
+            self.x[b] -= n * (wb * c / wsum);
+        }
+    }
+
+    fn solve_bending(&mut self, h: f64) {
+        let compliance = self.params.bend_compliance_m_per_n;
+        if !compliance.is_finite() {
+            return;
+        }
+        let alpha = compliance / (h * h);
+        for k in 0..self.bends.len() {
+            let ([a, b], rest) = self.bends[k];
+            let (wa, wb) = (self.w[a], self.w[b]);
+            let d = self.x[b] - self.x[a];
+            let len = d.norm();
+            if len < 1e-12 || len >= rest {
+                continue;
+            }
+            let n = d / len;
+            let c = len - rest;
+            let dl = -c / (wa + wb + alpha);
+            self.x[a] -= n * (wa * dl);
+            self.x[b] += n * (wb * dl);
+        }
+    }
+
+    /// The segment pairs that may touch during the next step: not neighbours in one strand, their
+    /// boxes within two radii and the margin of each other.
+    fn find_candidates(&mut self) {
+        let reach = self.params.radius_m + 0.5 * self.params.contact_margin_m;
+        let segments: Vec<[usize; 2]> = self.segments.iter().map(|(s, _)| *s).collect();
+        let strand_of: Vec<usize> = (0..self.x.len()).map(|p| self.strand_of(p)).collect();
+        self.candidates = broad_phase::candidate_pairs(&self.x, &segments, reach, |i, j| {
+            let ([a, b], [c, _]) = (segments[i], segments[j]);
+            strand_of[a] == strand_of[c] && c <= b + 1
+        });
+    }
+
+    /// The strand's polyline, m.
+    pub fn polyline(&self, strand: usize) -> Vec<Vector3<f64>> {
+        self.x[self.strands[strand].clone()].to_vec()
+    }
+
+    /// The largest stretch of any segment, as a fraction of its rest length.
+    pub fn max_stretch(&self) -> f64 {
+        self.segments
+            .iter()
+            .map(|([a, b], rest)| ((self.x[*b] - self.x[*a]).norm() - rest) / rest)
+            .fold(0.0, f64::max)
+    }
+}

@@ -1,0 +1,57 @@
+//! The XPBD rope (`knotlab_sim::rope`) holds by friction what the capsule chain lets slip: a strand
+//! wound twice round another holds a tension ratio of 30 at friction 1.0 (the chain slides 10 mm
+//! at 5 and to its end at 10: `cargo bench -p knotlab-bench --bench thread_capstan`), and loses it
+//! all without friction; a square knot loaded by its standing parts with its free ends let go holds
+//! within 2 mm (the chain's: 5-25 mm or apart, `thread_reef`). The same run twice gives the same
+//! bits.
+
+use knotlab_sim::knot::KnotType;
+use knotlab_sim::rope::RopeParams;
+use knotlab_sim::rope::trials::{capstan, reef};
+
+#[test]
+fn a_double_wrap_holds_a_tension_ratio_of_30_at_friction_1() {
+    let slide = capstan(RopeParams::default(), 0.3, 30.0);
+    // Measured: 2.9 mm of settling, then 0.02 mm in the last second.
+    assert!(slide.slip_m < 0.005, "slid {:.2} mm", slide.slip_m * 1e3);
+    assert!(
+        slide.late_slip_m.abs() < 0.0005,
+        "still sliding: {:.3} mm in the last second",
+        slide.late_slip_m * 1e3
+    );
+}
+
+#[test]
+fn without_friction_the_wrap_lets_go_at_a_ratio_of_1_5() {
+    let params = RopeParams { static_friction: 0.0, kinetic_friction: 0.0, ..RopeParams::default() };
+    let slide = capstan(params, 0.3, 1.5);
+    assert!(slide.slip_m > 0.02, "slid only {:.2} mm", slide.slip_m * 1e3);
+}
+
+#[test]
+fn a_square_knot_holds_its_standing_parts_with_its_free_ends_let_go() {
+    let slide = reef(RopeParams::default(), 0.003, 0.001, 1.0, 0.3, 1.0);
+    assert_eq!(slide.knot_after, Some(KnotType::Square));
+    // Measured (2 s hold): 0.8 mm, 0.01 mm in the last second.
+    assert!(slide.slip_m.abs() < 0.002, "the standing parts drew {:.2} mm apart", slide.slip_m * 1e3);
+    assert!(
+        slide.late_slip_m.abs() < 0.0005,
+        "still sliding: {:.3} mm in the last half",
+        slide.late_slip_m * 1e3
+    );
+}
+
+#[test]
+fn without_friction_the_square_knot_comes_apart() {
+    let params = RopeParams { static_friction: 0.0, kinetic_friction: 0.0, ..RopeParams::default() };
+    let slide = reef(params, 0.003, 0.001, 1.0, 0.3, 1.0);
+    assert!(slide.slip_m > 0.01, "the standing parts drew only {:.2} mm apart", slide.slip_m * 1e3);
+}
+
+#[test]
+fn the_same_trial_twice_gives_the_same_bits() {
+    let params = RopeParams::default();
+    let (a, b) = (capstan(params, 0.3, 5.0), capstan(params, 0.3, 5.0));
+    assert_eq!(a.slip_m.to_bits(), b.slip_m.to_bits());
+    assert_eq!(a.late_slip_m.to_bits(), b.late_slip_m.to_bits());
+}
