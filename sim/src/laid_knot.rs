@@ -131,6 +131,22 @@ fn with_spare_thread(mut path: Vec<Vector3<f64>>, length_m: f64) -> Option<Vec<V
 /// to the exit point. (Laid, the thread classifies as `surgeons_knot`:
 /// `sim/tests/laid_knot_lays_its_knot_through_the_stitch.rs`.)
 fn surgeons_knot_path(tissue: &Tissue, physics: &Physics, params: &LaidKnotParams) -> Vec<Vector3<f64>> {
+    let stitch = [
+        tissue.hole_m(physics, Flap::B),
+        tissue.deep_m(physics, Flap::B),
+        tissue.deep_m(physics, Flap::A),
+        tissue.hole_m(physics, Flap::A),
+    ];
+    surgeons_knot_through(&tissue.world_from_tissue, stitch, params)
+}
+
+/// [`surgeons_knot_path`] through given stitch points (world frame: the exit, the exit's deep
+/// point, the entry's deep point, the entry) in a tissue whose frame is `world_from_tissue`.
+pub fn surgeons_knot_through(
+    world_from_tissue: &Isometry3<f64>,
+    stitch: [Vector3<f64>; 4],
+    params: &LaidKnotParams,
+) -> Vec<Vector3<f64>> {
     let (y, r, low) = (params.spread_m, params.lift_m, params.height_m);
     let high = low + 3.0 * r;
     let past = 0.5 * y;
@@ -143,7 +159,7 @@ fn surgeons_knot_path(tissue: &Tissue, physics: &Physics, params: &LaidKnotParam
             })
             .collect()
     };
-    let world = |p: Vector3<f64>| (tissue.world_from_tissue * Point3::from(p)).coords;
+    let world = |p: Vector3<f64>| (world_from_tissue * Point3::from(p)).coords;
     let pi = std::f64::consts::PI;
     let mut long_end = vec![Vector3::new(0.0, -y - past - params.free_end_m, high)];
     long_end.extend(helix(-y, y + past, high, 1.0, pi));
@@ -152,12 +168,7 @@ fn surgeons_knot_path(tissue: &Tissue, physics: &Physics, params: &LaidKnotParam
     tail.extend(helix(-y - past, y, high, 1.0, 0.0));
     tail.push(Vector3::new(0.0, y + params.free_end_m, high));
     let mut path: Vec<Vector3<f64>> = long_end.into_iter().map(world).collect();
-    path.extend([
-        tissue.hole_m(physics, Flap::B),
-        tissue.deep_m(physics, Flap::B),
-        tissue.deep_m(physics, Flap::A),
-        tissue.hole_m(physics, Flap::A),
-    ]);
+    path.extend(stitch);
     path.extend(tail.into_iter().map(world));
     path
 }

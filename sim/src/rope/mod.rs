@@ -5,11 +5,27 @@
 //! Rapier capsule chain ([`crate::thread`]): the chain lets every laid knot slip, the more so the
 //! better its solver converges (session 42, `docs/knot-tying-notes.md`); this rope holds a square
 //! knot (`cargo bench -p knotlab-bench --bench rope_knot`). It does not yet touch instruments or
-//! tissue.
+//! tissue beyond [`wound`]'s flaps.
 
 mod broad_phase;
 mod contact;
 pub mod trials;
+pub mod wound;
+
+/// What the rope lies in: moves pinned particles before each substep, and after the rope's own
+/// constraints resolves the rope against itself (contacts, reactions) and steps itself.
+pub trait Surroundings {
+    /// Before a substep of `h_s` seconds (pinned particles moved to where they are held).
+    fn before(&mut self, ropes: &mut Ropes, h_s: f64);
+    /// After the rope's constraints in a substep that started from `x_prev`.
+    fn after(&mut self, ropes: &mut Ropes, x_prev: &[Vector3<f64>], h_s: f64);
+}
+
+/// Empty space.
+impl Surroundings for () {
+    fn before(&mut self, _: &mut Ropes, _: f64) {}
+    fn after(&mut self, _: &mut Ropes, _: &[Vector3<f64>], _: f64) {}
+}
 
 use std::ops::Range;
 
@@ -142,11 +158,17 @@ impl Ropes {
         self.strands.iter().position(|r| r.contains(&particle)).unwrap_or(usize::MAX)
     }
 
-    /// Advances by `dt_s`, applying `force_n` throughout.
+    /// Advances by `dt_s` in empty space, applying `force_n` throughout.
     pub fn step(&mut self, dt_s: f64) {
+        self.step_in(dt_s, &mut ());
+    }
+
+    /// Advances by `dt_s` in `surroundings`, applying `force_n` throughout.
+    pub fn step_in(&mut self, dt_s: f64, surroundings: &mut dyn Surroundings) {
         self.find_candidates();
         let h = dt_s / self.params.substeps as f64;
         for _ in 0..self.params.substeps {
+            surroundings.before(self, h);
             let x_prev = self.x.clone();
             for i in 0..self.x.len() {
                 if self.w[i] > 0.0 {
@@ -159,6 +181,7 @@ impl Ropes {
             }
             self.solve_bending(h);
             self.contacts_last = contact::solve_contacts(self, &x_prev);
+            surroundings.after(self, &x_prev, h);
             let damp = 1.0 / (1.0 + h * self.params.damping_per_s);
             for ((v, x), x_prev) in self.v.iter_mut().zip(&self.x).zip(&x_prev) {
                 *v = (x - x_prev) / h * damp;

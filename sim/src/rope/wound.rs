@@ -1,0 +1,296 @@
+//! The laid-knot trial of [`crate::laid_knot`] in the rope: a surgeon's knot laid over a stitch
+//! through two tissue flaps, snugged by its free ends, then the evaluator's holding test (each flap
+//! pulled open for a while with the free ends let go) — the yardstick for the rope as the scene's
+//! thread. The flaps are as [`crate::tissue`] makes them (each a box sliding across the wound on a
+//! spring that pulls it back to the rest gap), here integrated beside the rope instead of in Rapier;
+//! the tissue frame is the world frame (x along the wound, y across it towards flap A, z up, the
+//! surface at z = 0). The stitch is four points (exit, its deep point, the entry's deep point,
+//! entry), each moving with its flap: the rope passes through each, free to slide along itself
+//! through it (no slide friction), and pulls the flap with the push it takes.
+
+use nalgebra::{Isometry3, Vector3};
+
+use super::{RopeParams, Ropes, Surroundings};
+use crate::knot::{KnotType, classify};
+use crate::laid_knot::{LaidKnotParams, surgeons_knot_through};
+use crate::scene::{StitchParams, TissueParams};
+
+/// Particle spacing of the trial's rope, m.
+pub const SPACING_M: f64 = 0.0003;
+/// Step of the trial, s.
+pub const DT_S: f64 = 0.001;
+/// Deep points lie this far in from a flap's inner face (as [`crate::tissue`] lays them), m.
+const DEEP_INSET_M: f64 = 0.001;
+
+/// How the trial loads the knot.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct WoundTrialParams {
+    /// The rope's weight per metre, N/m (gravity on the suture's real mass; the rope's mass per
+    /// metre is inflated for its solver and would weigh far more).
+    pub weight_per_m_n: f64,
+    /// Friction of the rope on the tissue.
+    pub tissue_friction: f64,
+    /// Each flap pulled open with this force in the holding test, N ...
+    pub holding_load_n: f64,
+    /// ... for this long, s.
+    pub settle_s: f64,
+    /// The wound's gap as the knot is laid (the flaps start there), m; the tissue's rest gap if
+    /// none.
+    pub laid_gap_m: Option<f64>,
+}
+
+impl Default for WoundTrialParams {
+    /// The nominal scene's: a 10 g, 0.2 m thread's weight, 0.3 N a flap for 1 s.
+    fn default() -> Self {
+        Self {
+            weight_per_m_n: 0.05 * 9.81,
+            tissue_friction: 0.3,
+            holding_load_n: 0.3,
+            settle_s: 1.0,
+            laid_gap_m: None,
+        }
+    }
+}
+
+/// What the trial measured.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct WoundOutcome {
+    /// The knot as laid, snugged and after the holding test (none: the classifier failed).
+    pub knot_laid: Option<KnotType>,
+    /// ...
+    pub knot_snug: Option<KnotType>,
+    /// ...
+    pub knot_after: Option<KnotType>,
+    /// The wound's gap as snugged, m ...
+    pub gap_snug_m: f64,
+    /// ... and after the holding test, m.
+    pub gap_after_m: f64,
+    /// Particles in the rope.
+    pub particles: usize,
+}
+
+/// The two flaps beside the rope.
+struct Flaps {
+    tissue: TissueParams,
+    friction: f64,
+    /// Outward displacement of [B, A] from rest, m, and its rate, m/s.
+    u_m: [f64; 2],
+    v_m_s: [f64; 2],
+    /// Outward force on [B, A] besides the spring and the rope, N.
+    load_n: [f64; 2],
+    /// Where the rope passes each stitch point [exit, exit deep, entry deep, entry]: a particle
+    /// index plus the fraction of the way to the next; and where each point sits at rest.
+    guides: [(f64, Vector3<f64>); 4],
+}
+
+/// +1 for flap A (index 1), -1 for B.
+fn side(flap: usize) -> f64 {
+    if flap == 1 { 1.0 } else { -1.0 }
+}
+
+impl Flaps {
+    fn inner_y(&self, flap: usize) -> f64 {
+        side(flap) * (0.5 * self.tissue.rest_gap_m + self.u_m[flap])
+    }
+
+    fn gap_m(&self) -> f64 {
+        self.tissue.rest_gap_m + self.u_m[0] + self.u_m[1]
+    }
+
+    /// Guide `k` where its flap holds it now.
+    fn guide_m(&self, k: usize) -> Vector3<f64> {
+        let flap = if k < 2 { 0 } else { 1 };
+        self.guides[k].1 + Vector3::y() * (side(flap) * self.u_m[flap])
+    }
+}
+
+impl Flaps {
+    /// Particles in the tissue, between the exit's and the entry's points: no contact with the
+    /// flaps.
+    fn inside(&self) -> std::ops::RangeInclusive<usize> {
+        (self.guides[0].0.floor() as usize)..=(self.guides[3].0.ceil() as usize)
+    }
+
+    /// Puts the rope through each stitch point: the point of the rope there moved onto it across
+    /// the rope (not along it: the rope slides through), then the point's place on the rope
+    /// updated. Returns the outward pull of the rope on each flap, N.
+    fn thread_through(&mut self, ropes: &mut Ropes, h_s: f64) -> [f64; 2] {
+        let mut outward_n = [0.0; 2];
+        let last = ropes.x.len() - 1;
+        for k in 0..4 {
+            let flap = if k < 2 { 0 } else { 1 };
+            let target = self.guide_m(k);
+            let sigma = self.guides[k].0.clamp(0.0, (last - 1) as f64 + 0.999_999);
+            let i = sigma.floor() as usize;
+            let t = sigma - i as f64;
+            let (a, b) = (i, i + 1);
+            let along = (ropes.x[b] - ropes.x[a]).normalize();
+            let at = ropes.x[a] * (1.0 - t) + ropes.x[b] * t;
+            let miss = target - at;
+            let across = miss - along * miss.dot(&along);
+            let weights = [(a, 1.0 - t), (b, t)];
+            let wsum: f64 = weights.iter().map(|(p, f)| ropes.w[*p] * f * f).sum();
+            if wsum > 0.0 {
+                for (p, f) in weights {
+                    let dx = across * (ropes.w[p] * f / wsum);
+                    ropes.x[p] += dx;
+                    if ropes.w[p] > 0.0 {
+                        outward_n[flap] -= side(flap) * dx.y / (ropes.w[p] * h_s * h_s);
+                    }
+                }
+            }
+            self.guides[k].0 = nearest_on_rope(ropes, target, i, last);
+        }
+        outward_n
+    }
+}
+
+/// The place on the rope (particle index plus fraction) nearest `target`, searched over the
+/// segments within two of segment `near`.
+fn nearest_on_rope(ropes: &Ropes, target: Vector3<f64>, near: usize, last: usize) -> f64 {
+    let mut best = (f64::INFINITY, near as f64);
+    for i in near.saturating_sub(2)..(near + 3).min(last) {
+        let (a, b) = (ropes.x[i], ropes.x[i + 1]);
+        let d = b - a;
+        let t = ((target - a).dot(&d) / d.norm_squared().max(1e-18)).clamp(0.0, 1.0);
+        let distance = (a + d * t - target).norm();
+        if distance < best.0 {
+            best = (distance, i as f64 + t);
+        }
+    }
+    best.1
+}
+
+impl Surroundings for Flaps {
+    fn before(&mut self, _ropes: &mut Ropes, _h_s: f64) {}
+
+    fn after(&mut self, ropes: &mut Ropes, x_prev: &[Vector3<f64>], h_s: f64) {
+        let r = ropes.params.radius_m;
+        let [along, _, thickness] = self.tissue.flap_size_m;
+        let mut outward_n = self.thread_through(ropes, h_s);
+        let inside = self.inside();
+        for (p, x_before) in x_prev.iter().enumerate() {
+            if inside.contains(&p) || ropes.w[p] == 0.0 {
+                continue;
+            }
+            let x = ropes.x[p];
+            if x.x.abs() > 0.5 * along + r || x.z < -thickness - r {
+                continue;
+            }
+            let flap = if x.y >= 0.0 { 1 } else { 0 };
+            let s = side(flap);
+            let depth_top = r - x.z;
+            let depth_inner = s * (x.y - self.inner_y(flap)) + r;
+            if depth_top <= 0.0 || depth_inner <= 0.0 {
+                continue;
+            }
+            let (normal, depth) = if depth_top <= depth_inner {
+                (Vector3::z(), depth_top)
+            } else {
+                (-Vector3::y() * s, depth_inner)
+            };
+            let mut dx = normal * depth;
+            // Friction against the flap's own motion over the substep.
+            let moved = (x + dx - x_before) - Vector3::y() * (s * self.v_m_s[flap] * h_s);
+            let tangential = moved - normal * moved.dot(&normal);
+            let slip = tangential.norm();
+            if slip > 0.0 {
+                dx -= tangential * (self.friction * depth / slip).min(1.0);
+            }
+            ropes.x[p] += dx;
+            // The flap takes the opposite of the push, along its slide.
+            let mass_kg = 1.0 / ropes.w[p];
+            outward_n[flap] -= s * mass_kg * dx.y / (h_s * h_s);
+        }
+        for (flap, rope_n) in outward_n.into_iter().enumerate() {
+            let spring_n = -self.tissue.opening_stiffness_n_per_m * self.u_m[flap]
+                - self.tissue.opening_damping_n_s_per_m * self.v_m_s[flap];
+            let a = (rope_n + spring_n + self.load_n[flap]) / self.tissue.flap_mass_kg;
+            self.v_m_s[flap] += a * h_s;
+            self.u_m[flap] += self.v_m_s[flap] * h_s;
+            let closed = -0.5 * self.tissue.rest_gap_m;
+            if self.u_m[flap] < closed {
+                self.u_m[flap] = closed;
+                self.v_m_s[flap] = self.v_m_s[flap].max(0.0);
+            }
+        }
+    }
+}
+
+/// Lays `knot` (a surgeon's knot; its `kind` is not read) over the stitch of `tissue` and
+/// `stitch`, snugs it by its free ends as [`crate::laid_knot::lay_and_snug`] does, lets go and
+/// runs the holding test.
+pub fn laid_surgeons_knot_in_wound(
+    rope: RopeParams,
+    tissue: &TissueParams,
+    stitch: &StitchParams,
+    knot: &LaidKnotParams,
+    trial: &WoundTrialParams,
+) -> WoundOutcome {
+    let inset = (0.5 * tissue.rest_gap_m + DEEP_INSET_M).min(stitch.bite_m);
+    let at_rest = [
+        Vector3::new(stitch.along_m, -stitch.bite_m, 0.0),
+        Vector3::new(stitch.along_m, -inset, -stitch.depth_m),
+        Vector3::new(stitch.along_m, inset, -stitch.depth_m),
+        Vector3::new(stitch.along_m, stitch.bite_m, 0.0),
+    ];
+    // Each flap moved in by half the difference from the rest gap, its points with it.
+    let u0_m = 0.5 * (trial.laid_gap_m.unwrap_or(tissue.rest_gap_m) - tissue.rest_gap_m);
+    let stitch_points = at_rest.map(|p| p + Vector3::y() * (p.y.signum() * u0_m));
+    let path = surgeons_knot_through(&Isometry3::identity(), stitch_points, knot);
+    let mut ropes = Ropes::new(rope);
+    let strand = ropes.add_strand_along(&path, SPACING_M);
+    let last = strand.end - 1;
+    let nearest = |target: &Vector3<f64>| {
+        strand.clone().min_by(|a, b| (ropes.x[*a] - target).norm().total_cmp(&(ropes.x[*b] - target).norm()))
+    };
+    let guides: Vec<(f64, Vector3<f64>)> = stitch_points
+        .iter()
+        .zip(at_rest)
+        .map(|(q, rest)| (nearest_on_rope(&ropes, *q, nearest(q).unwrap_or(strand.start), last), rest))
+        .collect();
+    let mut flaps = Flaps {
+        tissue: *tissue,
+        friction: trial.tissue_friction,
+        u_m: [u0_m; 2],
+        v_m_s: [0.0; 2],
+        load_n: [0.0; 2],
+        guides: [guides[0], guides[1], guides[2], guides[3]],
+    };
+    let classify_now = |ropes: &Ropes| classify(&ropes.polyline(0)).ok().map(|c| c.knot);
+    let knot_laid = classify_now(&ropes);
+    let (long_end, tail) = (strand.start, strand.end - 1);
+    let weight: Vec<Vector3<f64>> = (0..ropes.x.len())
+        .map(|p| {
+            if ropes.w[p] > 0.0 {
+                -Vector3::z() * (trial.weight_per_m_n * SPACING_M)
+            } else {
+                Vector3::zeros()
+            }
+        })
+        .collect();
+    let snug_steps = (knot.snug_s / DT_S).round() as usize;
+    for step in 0..snug_steps {
+        ropes.force_n.copy_from_slice(&weight);
+        let f = knot.snug_n * (2.0 * step as f64 / snug_steps as f64).min(1.0);
+        ropes.force_n[tail] += Vector3::y() * f;
+        ropes.force_n[long_end] -= Vector3::y() * f;
+        flaps.load_n = [-knot.closing_n, -knot.closing_n];
+        ropes.step_in(DT_S, &mut flaps);
+    }
+    let gap_snug_m = flaps.gap_m();
+    let knot_snug = classify_now(&ropes);
+    ropes.force_n.copy_from_slice(&weight);
+    flaps.load_n = [trial.holding_load_n; 2];
+    for _ in 0..(trial.settle_s / DT_S).round() as usize {
+        ropes.step_in(DT_S, &mut flaps);
+    }
+    WoundOutcome {
+        knot_laid,
+        knot_snug,
+        knot_after: classify_now(&ropes),
+        gap_snug_m,
+        gap_after_m: flaps.gap_m(),
+        particles: ropes.x.len(),
+    }
+}
