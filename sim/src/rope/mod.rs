@@ -1,37 +1,34 @@
 //! A suture as an XPBD rope (position-based dynamics in small steps): particles joined by
-//! inextensible segments, an optional bending stiffness, and capsule contacts between all
-//! non-neighbouring segments with Coulomb friction solved on positions (below the static bound a
-//! contact's slip is undone entirely, so a wrap holds without creeping). A prototype beside the
-//! Rapier capsule chain ([`crate::thread`]): the chain lets every laid knot slip, the more so the
-//! better its solver converges (session 42, `docs/knot-tying-notes.md`); this rope holds a square
-//! knot (`cargo bench -p knotlab-bench --bench rope_knot`). It does not yet touch instruments or
-//! tissue beyond [`wound`]'s flaps.
+//! inextensible segments, no bending stiffness (the chain's is slight), and capsule contacts
+//! between all non-neighbouring segments with Coulomb friction solved on positions (below the
+//! static bound a contact's slip is undone entirely, so a wrap holds without creeping). A
+//! prototype beside the Rapier capsule chain ([`crate::thread`]): the chain lets every laid knot
+//! slip, the more so the better its solver converges (session 42, `docs/knot-tying-notes.md`);
+//! this rope holds a square knot (`cargo bench -p knotlab-bench --bench rope_knot`). It does not
+//! yet touch instruments or tissue beyond [`wound`]'s flaps.
 
 mod broad_phase;
 mod contact;
 pub mod trials;
 pub mod wound;
 
-/// What the rope lies in: moves pinned particles before each substep, and after the rope's own
-/// constraints resolves the rope against itself (contacts, reactions) and steps itself.
-pub trait Surroundings {
-    /// Before a substep of `h_s` seconds (pinned particles moved to where they are held).
-    fn before(&mut self, ropes: &mut Ropes, h_s: f64);
-    /// After the rope's constraints in a substep that started from `x_prev`.
-    fn after(&mut self, ropes: &mut Ropes, x_prev: &[Vector3<f64>], h_s: f64);
-}
-
-/// Empty space.
-impl Surroundings for () {
-    fn before(&mut self, _: &mut Ropes, _: f64) {}
-    fn after(&mut self, _: &mut Ropes, _: &[Vector3<f64>], _: f64) {}
-}
-
 use std::ops::Range;
 
 use nalgebra::Vector3;
 
 pub use contact::closest_on_segments;
+
+/// What the rope lies in: after the rope's own constraints in each substep, it resolves the rope
+/// against itself (contacts, reactions) and steps itself.
+pub trait Surroundings {
+    /// After the rope's constraints in a substep of `h_s` seconds that started from `x_prev`.
+    fn after(&mut self, ropes: &mut Ropes, x_prev: &[Vector3<f64>], h_s: f64);
+}
+
+/// Empty space.
+impl Surroundings for () {
+    fn after(&mut self, _: &mut Ropes, _: &[Vector3<f64>], _: f64) {}
+}
 
 /// The rope's material and how it is integrated.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -47,9 +44,6 @@ pub struct RopeParams {
     pub static_friction: f64,
     /// Kinetic friction coefficient of the rope on itself.
     pub kinetic_friction: f64,
-    /// Bending compliance of each particle's two segments (XPBD, on the distance between its
-    /// neighbours), m/N; infinite: no bending stiffness.
-    pub bend_compliance_m_per_n: f64,
     /// Substeps per step.
     pub substeps: usize,
     /// Gauss-Seidel sweeps over the segments' lengths in each substep.
@@ -67,7 +61,6 @@ impl Default for RopeParams {
             mass_per_m_kg: 0.67,
             static_friction: 1.0,
             kinetic_friction: 0.8,
-            bend_compliance_m_per_n: f64::INFINITY,
             substeps: 20,
             stretch_iterations: 2,
             damping_per_s: 100.0,
@@ -93,8 +86,6 @@ pub struct Ropes {
     pub strands: Vec<Range<usize>>,
     /// Segments (particle pairs) and their rest lengths, m.
     segments: Vec<([usize; 2], f64)>,
-    /// Bending triples (neighbour, particle, neighbour) and their rest spans, m.
-    bends: Vec<([usize; 2], f64)>,
     /// Segment pairs near enough to touch within a step (found at its start).
     candidates: Vec<(usize, usize)>,
     /// Contacts that touched in the last substep.
@@ -112,7 +103,6 @@ impl Ropes {
             force_n: Vec::new(),
             strands: Vec::new(),
             segments: Vec::new(),
-            bends: Vec::new(),
             candidates: Vec::new(),
             contacts_last: 0,
         }
@@ -127,8 +117,8 @@ impl Ropes {
     }
 
     /// Adds a strand through `points` (its particles, at rest; each segment's rest length is its
-    /// length as laid, each bend at rest straight; each particle weighs the rope's mass per metre
-    /// times half its two segments). Returns its particle range.
+    /// length as laid; each particle weighs the rope's mass per metre times half its two segments).
+    /// Returns its particle range.
     pub fn add_strand(&mut self, points: &[Vector3<f64>]) -> Range<usize> {
         let start = self.x.len();
         for (k, p) in points.iter().enumerate() {
@@ -144,10 +134,6 @@ impl Ropes {
         for i in start..range.end.saturating_sub(1) {
             let rest = (self.x[i + 1] - self.x[i]).norm();
             self.segments.push(([i, i + 1], rest));
-        }
-        for i in start + 1..range.end.saturating_sub(1) {
-            let rest = (self.x[i] - self.x[i - 1]).norm() + (self.x[i + 1] - self.x[i]).norm();
-            self.bends.push(([i - 1, i + 1], rest));
         }
         self.strands.push(range.clone());
         range
@@ -168,7 +154,6 @@ impl Ropes {
         self.find_candidates();
         let h = dt_s / self.params.substeps as f64;
         for _ in 0..self.params.substeps {
-            surroundings.before(self, h);
             let x_prev = self.x.clone();
             for i in 0..self.x.len() {
                 if self.w[i] > 0.0 {
@@ -179,7 +164,6 @@ impl Ropes {
             for _ in 0..self.params.stretch_iterations {
                 self.solve_stretch();
             }
-            self.solve_bending(h);
             self.contacts_last = contact::solve_contacts(self, &x_prev);
             surroundings.after(self, &x_prev, h);
             let damp = 1.0 / (1.0 + h * self.params.damping_per_s);
@@ -206,28 +190,6 @@ impl Ropes {
             let c = len - rest;
             self.x[a] += n * (wa * c / wsum);
             self.x[b] -= n * (wb * c / wsum);
-        }
-    }
-
-    fn solve_bending(&mut self, h: f64) {
-        let compliance = self.params.bend_compliance_m_per_n;
-        if !compliance.is_finite() {
-            return;
-        }
-        let alpha = compliance / (h * h);
-        for k in 0..self.bends.len() {
-            let ([a, b], rest) = self.bends[k];
-            let (wa, wb) = (self.w[a], self.w[b]);
-            let d = self.x[b] - self.x[a];
-            let len = d.norm();
-            if len < 1e-12 || len >= rest {
-                continue;
-            }
-            let n = d / len;
-            let c = len - rest;
-            let dl = -c / (wa + wb + alpha);
-            self.x[a] -= n * (wa * dl);
-            self.x[b] += n * (wb * dl);
         }
     }
 

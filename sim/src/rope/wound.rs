@@ -162,8 +162,6 @@ fn nearest_on_rope(ropes: &Ropes, target: Vector3<f64>, near: usize, last: usize
 }
 
 impl Surroundings for Flaps {
-    fn before(&mut self, _ropes: &mut Ropes, _h_s: f64) {}
-
     fn after(&mut self, ropes: &mut Ropes, x_prev: &[Vector3<f64>], h_s: f64) {
         let r = ropes.params.radius_m;
         let [along, _, thickness] = self.tissue.flap_size_m;
