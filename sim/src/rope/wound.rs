@@ -34,9 +34,6 @@ pub struct WoundTrialParams {
     pub holding_load_n: f64,
     /// ... for this long, s.
     pub settle_s: f64,
-    /// The wound's gap as the knot is laid (the flaps start there), m; the tissue's rest gap if
-    /// none.
-    pub laid_gap_m: Option<f64>,
 }
 
 impl Default for WoundTrialParams {
@@ -47,7 +44,6 @@ impl Default for WoundTrialParams {
             tissue_friction: 0.3,
             holding_load_n: 0.3,
             settle_s: 1.0,
-            laid_gap_m: None,
         }
     }
 }
@@ -226,15 +222,12 @@ pub fn laid_surgeons_knot_in_wound(
     trial: &WoundTrialParams,
 ) -> WoundOutcome {
     let inset = (0.5 * tissue.rest_gap_m + DEEP_INSET_M).min(stitch.bite_m);
-    let at_rest = [
+    let stitch_points = [
         Vector3::new(stitch.along_m, -stitch.bite_m, 0.0),
         Vector3::new(stitch.along_m, -inset, -stitch.depth_m),
         Vector3::new(stitch.along_m, inset, -stitch.depth_m),
         Vector3::new(stitch.along_m, stitch.bite_m, 0.0),
     ];
-    // Each flap moved in by half the difference from the rest gap, its points with it.
-    let u0_m = 0.5 * (trial.laid_gap_m.unwrap_or(tissue.rest_gap_m) - tissue.rest_gap_m);
-    let stitch_points = at_rest.map(|p| p + Vector3::y() * (p.y.signum() * u0_m));
     let path = surgeons_knot_through(&Isometry3::identity(), stitch_points, knot);
     let mut ropes = Ropes::new(rope);
     let strand = ropes.add_strand_along(&path, SPACING_M);
@@ -244,13 +237,12 @@ pub fn laid_surgeons_knot_in_wound(
     };
     let guides: Vec<(f64, Vector3<f64>)> = stitch_points
         .iter()
-        .zip(at_rest)
-        .map(|(q, rest)| (nearest_on_rope(&ropes, *q, nearest(q).unwrap_or(strand.start), last), rest))
+        .map(|q| (nearest_on_rope(&ropes, *q, nearest(q).unwrap_or(strand.start), last), *q))
         .collect();
     let mut flaps = Flaps {
         tissue: *tissue,
         friction: trial.tissue_friction,
-        u_m: [u0_m; 2],
+        u_m: [0.0; 2],
         v_m_s: [0.0; 2],
         load_n: [0.0; 2],
         guides: [guides[0], guides[1], guides[2], guides[3]],
