@@ -39,12 +39,7 @@ pub struct WoundTrialParams {
 impl Default for WoundTrialParams {
     /// The nominal scene's: a 10 g, 0.2 m thread's weight, 0.3 N a flap for 1 s.
     fn default() -> Self {
-        Self {
-            weight_per_m_n: 0.05 * 9.81,
-            tissue_friction: 0.3,
-            holding_load_n: 0.3,
-            settle_s: 1.0,
-        }
+        Self { weight_per_m_n: 0.05 * 9.81, tissue_friction: 0.3, holding_load_n: 0.3, settle_s: 1.0 }
     }
 }
 
