@@ -56,6 +56,10 @@ pub struct WoundOutcome {
     pub gap_snug_m: f64,
     /// ... and after the holding test, m.
     pub gap_after_m: f64,
+    /// The thread in the tissue, from the exit to the entry, as snugged, m ...
+    pub inside_snug_m: f64,
+    /// ... and after the holding test, m (more: the knot gave thread to the loop).
+    pub inside_after_m: f64,
     /// Particles in the rope.
     pub particles: usize,
 }
@@ -86,6 +90,24 @@ impl Flaps {
 
     fn gap_m(&self) -> f64 {
         self.tissue.rest_gap_m + self.u_m[0] + self.u_m[1]
+    }
+
+    /// The thread between the exit and the entry, m.
+    fn inside_m(&self, ropes: &Ropes) -> f64 {
+        let at = |sigma: f64| {
+            let i = (sigma.floor() as usize).min(ropes.x.len() - 2);
+            let t = sigma - i as f64;
+            (i, ropes.x[i] * (1.0 - t) + ropes.x[i + 1] * t)
+        };
+        let ((i, from), (j, to)) = (at(self.guides[0].0), at(self.guides[3].0));
+        if j <= i {
+            return (to - from).norm();
+        }
+        let mut length = (ropes.x[i + 1] - from).norm() + (to - ropes.x[j]).norm();
+        for k in i + 1..j {
+            length += (ropes.x[k + 1] - ropes.x[k]).norm();
+        }
+        length
     }
 
     /// Guide `k` where its flap holds it now.
@@ -264,6 +286,7 @@ pub fn laid_surgeons_knot_in_wound(
         ropes.step_in(DT_S, &mut flaps);
     }
     let gap_snug_m = flaps.gap_m();
+    let inside_snug_m = flaps.inside_m(&ropes);
     let knot_snug = classify_now(&ropes);
     ropes.force_n.copy_from_slice(&weight);
     flaps.load_n = [trial.holding_load_n; 2];
@@ -276,6 +299,8 @@ pub fn laid_surgeons_knot_in_wound(
         knot_after: classify_now(&ropes),
         gap_snug_m,
         gap_after_m: flaps.gap_m(),
+        inside_snug_m,
+        inside_after_m: flaps.inside_m(&ropes),
         particles: ropes.x.len(),
     }
 }
