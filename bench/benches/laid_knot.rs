@@ -19,20 +19,11 @@
 use knotlab_hw::rig::Rig;
 use knotlab_sim::laid_knot::{LaidKnotKind, LaidKnotParams, run_laid_knot};
 use knotlab_sim::physics::SolverParams;
-use knotlab_sim::scene::{SceneConfig, parse_scene};
+use knotlab_sim::scene::SceneConfig;
 use knotlab_sim::thread::ThreadParams;
 
 fn main() {
-    let scene: SceneConfig = match parse_scene(
-        include_str!("../../scenarios/short-suture-friction-0.5.toml"),
-        "scenarios/short-suture-friction-0.5.toml",
-    ) {
-        Ok(scene) => scene,
-        Err(e) => {
-            eprintln!("{e}");
-            std::process::exit(1);
-        }
-    };
+    let scene = knotlab_bench::short_suture_scene();
     let rig = match Rig::shipped() {
         Ok(rig) => rig,
         Err(e) => {

@@ -32,7 +32,6 @@ use knotlab_sim::laid_knot::{LaidKnotKind, LaidKnotParams};
 use knotlab_sim::rope::RopeParams;
 use knotlab_sim::rope::trials::{Slide, capstan, reef};
 use knotlab_sim::rope::wound::{WoundTrialParams, laid_surgeons_knot_in_wound};
-use knotlab_sim::scene::parse_scene;
 
 const FRICTIONS: [f64; 3] = [0.3, 0.5, 1.0];
 const RATIOS: [f64; 4] = [3.0, 10.0, 30.0, 100.0];
@@ -93,16 +92,7 @@ fn main() {
 
 /// The laid surgeon's knot over the stitch, in the rope.
 fn wound(params: &dyn Fn(f64) -> RopeParams) {
-    let scene = match parse_scene(
-        include_str!("../../scenarios/short-suture-friction-0.5.toml"),
-        "scenarios/short-suture-friction-0.5.toml",
-    ) {
-        Ok(scene) => scene,
-        Err(e) => {
-            eprintln!("{e}");
-            std::process::exit(1);
-        }
-    };
+    let scene = knotlab_bench::short_suture_scene();
     println!(
         "the surgeon's knot laid over the stitch, snugged at 2 N, 0.3 N a flap for 1 s: the wound's gap as snugged / after (knot after), wall time"
     );

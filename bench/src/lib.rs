@@ -7,10 +7,21 @@ pub mod report;
 /// The shipped nominal scene (`scenarios/default.toml`, compiled in) for a benchmark; exits with the
 /// scene's error if it does not parse.
 pub fn shipped_scene() -> knotlab_sim::scene::SceneConfig {
-    match knotlab_sim::scene::parse_scene(
-        include_str!("../../scenarios/default.toml"),
-        "scenarios/default.toml",
-    ) {
+    scene_or_exit(include_str!("../../scenarios/default.toml"), "scenarios/default.toml")
+}
+
+/// `scenarios/short-suture-friction-0.5.toml` (the two-throw expert's scene, the laid knots'), or
+/// exit with its error.
+pub fn short_suture_scene() -> knotlab_sim::scene::SceneConfig {
+    scene_or_exit(
+        include_str!("../../scenarios/short-suture-friction-0.5.toml"),
+        "scenarios/short-suture-friction-0.5.toml",
+    )
+}
+
+/// The scene in `text` (read from `name`), or exit with its error.
+fn scene_or_exit(text: &str, name: &str) -> knotlab_sim::scene::SceneConfig {
+    match knotlab_sim::scene::parse_scene(text, name) {
         Ok(scene) => scene,
         Err(e) => {
             eprintln!("{e}");

@@ -16,8 +16,6 @@ use std::ops::Range;
 
 use nalgebra::Vector3;
 
-pub use contact::closest_on_segments;
-
 /// What the rope lies in: after the rope's own constraints in each substep, it resolves the rope
 /// against itself (contacts, reactions) and steps itself.
 pub trait Surroundings {
