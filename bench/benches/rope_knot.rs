@@ -15,7 +15,7 @@
 //!   in its nine layouts over the stitch of `scenarios/short-suture-friction-0.5.toml`, snugged by
 //!   its free ends at 2 N, then the holding test (0.3 N a flap for 1 s). The chain leaves the wound
 //!   2.3-19.3 mm open (median 16; `laid_knot`'s second table); the evaluator allows 1.5 mm. Found
-//!   (session 42): 1.1-5.6 mm at friction 0.5, 0.7-6.5 mm at 0.7, 4.9-11.4 mm at 1.0, one layout
+//!   (session 42): 1.1-7.8 mm at friction 0.5, 1.3-6.5 mm at 0.7, 4.9-11.4 mm at 1.0, one layout
 //!   in nine within 1.5 mm at 0.5 and 0.7. Not yet trustworthy: with the rope damped at 10/s
 //!   instead of 100/s a layout that ends 0.7 mm open ends 8.6 mm open, as it does without friction
 //!   (where the knot jams), so part of this holding is the damping's; and the figures are chaotic

@@ -111,12 +111,14 @@ impl Ropes {
         }
     }
 
-    /// Adds a strand along `path` with particles `spacing_m` apart (chords of the path). Returns its
-    /// particle range.
+    /// Adds a strand along `path` with particles `spacing_m` apart (chords of the path; at least two
+    /// particles: a spacing that is not positive and finite lays two). Returns its particle
+    /// range.
     pub fn add_strand_along(&mut self, path: &[Vector3<f64>], spacing_m: f64) -> Range<usize> {
         let length_m: f64 = path.windows(2).map(|w| (w[1] - w[0]).norm()).sum();
-        let count = (length_m / spacing_m).floor() as usize + 1;
-        self.add_strand(&crate::layout::chord_points(path, spacing_m, count.max(2)))
+        let spacing_m = if spacing_m > 0.0 && spacing_m.is_finite() { spacing_m } else { length_m.max(1e-6) };
+        let count = ((length_m / spacing_m).floor() as usize + 1).max(2);
+        self.add_strand(&crate::layout::chord_points(path, spacing_m, count))
     }
 
     /// Adds a strand through `points` (its particles, at rest; each segment's rest length is its
@@ -221,5 +223,21 @@ impl Ropes {
             .iter()
             .map(|([a, b], rest)| ((self.x[*b] - self.x[*a]).norm() - rest) / rest)
             .fold(0.0, f64::max)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_strand_is_laid_at_its_spacing_and_a_bad_spacing_lays_two_particles() {
+        let path = [Vector3::zeros(), Vector3::new(0.003, 0.0, 0.0)];
+        let mut ropes = Ropes::new(RopeParams::default());
+        assert_eq!(ropes.add_strand_along(&path, 0.0003).len(), 11);
+        for bad in [0.0, -1.0, f64::NAN, f64::INFINITY] {
+            assert_eq!(ropes.add_strand_along(&path, bad).len(), 2, "spacing {bad}");
+        }
+        assert!(ropes.x.iter().all(|p| p.iter().all(|c| c.is_finite())));
     }
 }
