@@ -42,29 +42,42 @@ fn cell(slide: &Slide, seconds: f64) -> String {
     format!("{:.2} mm ({:.2}), {seconds:.1} s", slide.slip_m * 1e3, slide.late_slip_m * 1e3)
 }
 
-fn main() {
-    let params = |friction: f64| RopeParams {
-        static_friction: friction,
-        kinetic_friction: 0.8 * friction,
+/// The rope models compared: session 42's string (no bending stiffness, lengths by two
+/// Gauss-Seidel sweeps) and the default (a suture's bending stiffness, lengths solved directly).
+fn models() -> [(&'static str, RopeParams); 2] {
+    let string = RopeParams {
+        bending_stiffness_n_m2: 0.0,
+        direct_stretch: false,
+        stretch_iterations: 2,
         ..RopeParams::default()
     };
+    [("string", string), ("stiff", RopeParams::default())]
+}
+
+fn with_friction(rope: RopeParams, friction: f64) -> RopeParams {
+    RopeParams { static_friction: friction, kinetic_friction: 0.8 * friction, ..rope }
+}
+
+fn main() {
     println!(
         "capstan: a strand wound twice round another, 0.3 N against 0.3 N / ratio for 2 s: slip (last second), wall time"
     );
     let header: Vec<String> = RATIOS.iter().map(|r| format!("ratio {r}")).collect();
-    println!("| friction (static; kinetic 0.8 of it) | bound | {} |", header.join(" | "));
-    println!("|---|---|{}", "---|".repeat(RATIOS.len()));
-    for friction in FRICTIONS {
-        let cells: Vec<String> = RATIOS
-            .iter()
-            .map(|ratio| {
-                let start = Instant::now();
-                let slide = capstan(params(friction), 0.3, *ratio);
-                cell(&slide, start.elapsed().as_secs_f64())
-            })
-            .collect();
-        let bound = (friction * 4.0 * std::f64::consts::PI).exp();
-        println!("| {friction} | {bound:.0} | {} |", cells.join(" | "));
+    println!("| rope | friction (static; kinetic 0.8 of it) | bound | {} |", header.join(" | "));
+    println!("|---|---|---|{}", "---|".repeat(RATIOS.len()));
+    for (name, rope) in models() {
+        for friction in FRICTIONS {
+            let cells: Vec<String> = RATIOS
+                .iter()
+                .map(|ratio| {
+                    let start = Instant::now();
+                    let slide = capstan(with_friction(rope, friction), 0.3, *ratio);
+                    cell(&slide, start.elapsed().as_secs_f64())
+                })
+                .collect();
+            let bound = (friction * 4.0 * std::f64::consts::PI).exp();
+            println!("| {name} | {friction} | {bound:.0} | {} |", cells.join(" | "));
+        }
     }
     println!();
     println!(
@@ -72,70 +85,80 @@ fn main() {
     );
     let header: Vec<String> =
         LAYOUTS.iter().map(|(s, l)| format!("spread {:.0} mm, lift {:.1} mm", s * 1e3, l * 1e3)).collect();
-    println!("| friction | {} |", header.join(" | "));
-    println!("|---|{}", "---|".repeat(LAYOUTS.len()));
-    for friction in FRICTIONS {
-        let cells: Vec<String> = LAYOUTS
-            .iter()
-            .map(|(spread_m, lift_m)| {
-                let start = Instant::now();
-                let slide = reef(params(friction), *spread_m, *lift_m, 1.0, 0.3, 2.0);
-                let knot = slide.knot_after.map_or("unclassified", |k| k.name());
-                format!("{}, {knot}", cell(&slide, start.elapsed().as_secs_f64()))
-            })
-            .collect();
-        println!("| {friction} | {} |", cells.join(" | "));
+    println!("| rope | friction | {} |", header.join(" | "));
+    println!("|---|---|{}", "---|".repeat(LAYOUTS.len()));
+    for (name, rope) in models() {
+        for friction in FRICTIONS {
+            let cells: Vec<String> = LAYOUTS
+                .iter()
+                .map(|(spread_m, lift_m)| {
+                    let start = Instant::now();
+                    let slide = reef(with_friction(rope, friction), *spread_m, *lift_m, 1.0, 0.3, 2.0);
+                    let knot = slide.knot_after.map_or("unclassified", |k| k.name());
+                    format!("{}, {knot}", cell(&slide, start.elapsed().as_secs_f64()))
+                })
+                .collect();
+            println!("| {name} | {friction} | {} |", cells.join(" | "));
+        }
     }
     println!();
-    wound(&params);
+    let loose: Vec<(f64, f64)> =
+        [0.006, 0.008, 0.010].into_iter().flat_map(|s| [0.001, 0.0012, 0.0015].map(|l| (s, l))).collect();
+    wound("laid loose, 4 mm over the tissue", &loose, 0.004);
+    println!();
+    let tight: Vec<(f64, f64)> =
+        [0.001, 0.0016, 0.002].into_iter().flat_map(|s| [0.00022, 0.0003].map(|l| (s, l))).collect();
+    wound("laid tight, 1 mm over the tissue", &tight, 0.001);
 }
 
-/// The laid surgeon's knot over the stitch, in the rope.
-fn wound(params: &dyn Fn(f64) -> RopeParams) {
+/// The laid surgeon's knot over the stitch in each rope, in `layouts` (spread, helix radius) at
+/// `height_m`, the rope damped at 10/s.
+fn wound(title: &str, layouts: &[(f64, f64)], height_m: f64) {
     let scene = knotlab_bench::short_suture_scene();
     println!(
-        "the surgeon's knot laid over the stitch, snugged at 2 N, 0.3 N a flap for 1 s: the wound's gap as snugged / after (knot after), wall time"
+        "the surgeon's knot {title}, snugged at 2 N, 0.3 N a flap for 1 s, rope damped at 10/s: the wound's gap as snugged / after (knot after), wall time"
     );
-    let layouts: Vec<(f64, f64)> =
-        [0.006, 0.008, 0.010].into_iter().flat_map(|s| [0.001, 0.0012, 0.0015].map(|l| (s, l))).collect();
     let header: Vec<String> =
-        layouts.iter().map(|(s, l)| format!("{:.0} mm, {:.1} mm", s * 1e3, l * 1e3)).collect();
-    println!("| friction | {} | within 1.5 mm |", header.join(" | "));
-    println!("|---|{}---|", "---|".repeat(layouts.len()));
-    for friction in [0.5, 0.7, 1.0] {
-        let mut within = 0;
-        let cells: Vec<String> = layouts
-            .iter()
-            .map(|(spread_m, lift_m)| {
-                let knot = LaidKnotParams {
-                    kind: LaidKnotKind::SurgeonsKnot,
-                    spread_m: *spread_m,
-                    lift_m: *lift_m,
-                    height_m: 0.004,
-                    snug_n: 2.0,
-                    ..LaidKnotParams::default()
-                };
-                let start = Instant::now();
-                let o = laid_surgeons_knot_in_wound(
-                    params(friction),
-                    &scene.tissue,
-                    &scene.stitch,
-                    &knot,
-                    &WoundTrialParams::default(),
-                );
-                let accepted = o.knot_after.is_some_and(|k| k.name().starts_with("surgeons"));
-                if accepted && o.gap_after_m <= 0.0015 {
-                    within += 1;
-                }
-                format!(
-                    "{:.2} / {:.2} mm ({}), {:.1} s",
-                    o.gap_snug_m * 1e3,
-                    o.gap_after_m * 1e3,
-                    o.knot_after.map_or("unclassified", |k| k.name()),
-                    start.elapsed().as_secs_f64()
-                )
-            })
-            .collect();
-        println!("| {friction} | {} | {within} of {} |", cells.join(" | "), layouts.len());
+        layouts.iter().map(|(s, l)| format!("{:.1} mm, {:.2} mm", s * 1e3, l * 1e3)).collect();
+    println!("| rope | friction | {} | within 1.5 mm |", header.join(" | "));
+    println!("|---|---|{}---|", "---|".repeat(layouts.len()));
+    for (name, rope) in models() {
+        for friction in [0.3, 0.5] {
+            let rope = RopeParams { damping_per_s: 10.0, ..with_friction(rope, friction) };
+            let mut within = 0;
+            let cells: Vec<String> = layouts
+                .iter()
+                .map(|(spread_m, lift_m)| {
+                    let knot = LaidKnotParams {
+                        kind: LaidKnotKind::SurgeonsKnot,
+                        spread_m: *spread_m,
+                        lift_m: *lift_m,
+                        height_m,
+                        snug_n: 2.0,
+                        ..LaidKnotParams::default()
+                    };
+                    let start = Instant::now();
+                    let o = laid_surgeons_knot_in_wound(
+                        rope,
+                        &scene.tissue,
+                        &scene.stitch,
+                        &knot,
+                        &WoundTrialParams::default(),
+                    );
+                    let accepted = o.knot_after.is_some_and(|k| k.name().starts_with("surgeons"));
+                    if accepted && o.gap_after_m <= 0.0015 {
+                        within += 1;
+                    }
+                    format!(
+                        "{:.2} / {:.2} mm ({}), {:.1} s",
+                        o.gap_snug_m * 1e3,
+                        o.gap_after_m * 1e3,
+                        o.knot_after.map_or("unclassified", |k| k.name()),
+                        start.elapsed().as_secs_f64()
+                    )
+                })
+                .collect();
+            println!("| {name} | {friction} | {} | {within} of {} |", cells.join(" | "), layouts.len());
+        }
     }
 }

@@ -1,14 +1,17 @@
 //! A suture as an XPBD rope (position-based dynamics in small steps): particles joined by
-//! inextensible segments, no bending stiffness (the chain's is slight), and capsule contacts
-//! between all non-neighbouring segments with Coulomb friction solved on positions (below the
-//! static bound a contact's slip is undone entirely, so a wrap holds without creeping). A
-//! prototype beside the Rapier capsule chain ([`crate::thread`]): the chain lets every laid knot
-//! slip, the more so the better its solver converges (session 42, `docs/knot-tying-notes.md`);
-//! this rope holds a square knot (`cargo bench -p knotlab-bench --bench rope_knot`). It does not
-//! yet touch instruments or tissue beyond [`wound`]'s flaps.
+//! inextensible segments (solved directly along each strand), a suture's bending stiffness, and
+//! capsule contacts between all non-neighbouring segments with Coulomb friction solved on
+//! positions (below the static bound a contact's slip is undone entirely, so a wrap holds without
+//! creeping). A prototype beside the Rapier capsule chain ([`crate::thread`]): the chain lets
+//! every laid knot slip, the more so the better its solver converges (session 42,
+//! `docs/knot-tying-notes.md`); this rope holds a square knot, and a surgeon's knot over the
+//! wound within 0.2 mm where a rope without bending stiffness lets it open 2-7 mm (session 43;
+//! `cargo bench -p knotlab-bench --bench rope_knot`). It does not yet touch instruments or tissue
+//! beyond [`wound`]'s flaps.
 
 mod broad_phase;
 mod contact;
+mod stretch;
 pub mod trials;
 pub mod wound;
 
@@ -44,8 +47,12 @@ pub struct RopeParams {
     pub kinetic_friction: f64,
     /// Substeps per step.
     pub substeps: usize,
-    /// Gauss-Seidel sweeps over the segments' lengths in each substep.
+    /// Passes over the segments' lengths in each substep: Gauss-Seidel sweeps, or with
+    /// [`Self::direct_stretch`] exact projections of each strand (Newton steps).
     pub stretch_iterations: usize,
+    /// Whether each strand's lengths are solved directly ([`stretch::project_strand`]) instead of
+    /// by Gauss-Seidel.
+    pub direct_stretch: bool,
     /// Passes over the contacts in each substep. More let friction act closer to its coefficient:
     /// with 4 the reef trial's square knot at friction 0.5 holds within 0.1-0.8 mm where with 1 it
     /// creeps 1.4-2.2 mm a second, at three times the cost (session 42).
@@ -54,6 +61,12 @@ pub struct RopeParams {
     pub damping_per_s: f64,
     /// Pairs of segments closer than this beyond touching are watched for contact through a step, m.
     pub contact_margin_m: f64,
+    /// Bending stiffness EI, N m² (0: a string). Each joint between two segments resists its
+    /// turn as a compliant XPBD constraint on the difference of the segments' directions. With its
+    /// free ends slack a string's knot presses on itself only as hard as its loop pulls it; a stiff
+    /// rope's bends keep pressing, and its friction holds the knot (session 43). The default, 1e-7,
+    /// is below a 3-0 monofilament's (polypropylene, 0.2 mm: about 3e-7).
+    pub bending_stiffness_n_m2: f64,
 }
 
 impl Default for RopeParams {
@@ -64,10 +77,12 @@ impl Default for RopeParams {
             static_friction: 1.0,
             kinetic_friction: 0.8,
             substeps: 20,
-            stretch_iterations: 2,
+            stretch_iterations: 1,
+            direct_stretch: true,
             contact_passes: 1,
             damping_per_s: 100.0,
             contact_margin_m: 0.001,
+            bending_stiffness_n_m2: 1e-7,
         }
     }
 }
@@ -169,6 +184,9 @@ impl Ropes {
             for _ in 0..self.params.stretch_iterations {
                 self.solve_stretch();
             }
+            if self.params.bending_stiffness_n_m2 > 0.0 {
+                self.solve_bending(h);
+            }
             for _ in 0..self.params.contact_passes.max(1) {
                 self.contacts_last = contact::solve_contacts(self, &x_prev);
             }
@@ -180,7 +198,57 @@ impl Ropes {
         }
     }
 
+    /// One XPBD pass over the joints: at joint `b` between segments `a b` and `b c` (rest lengths
+    /// `l1`, `l2`) the constraint `C = (x_c - x_b)/l2 - (x_b - x_a)/l1` (the turn, about the angle for
+    /// a small one) with stiffness `EI / l̄`, `l̄` their mean: the energy of a rod's curvature
+    /// `|C|/l̄` over `l̄`. The constraint is linear in the positions, so one pass from `λ = 0` is a
+    /// substep's implicit spring.
+    fn solve_bending(&mut self, h_s: f64) {
+        for range in self.strands.clone() {
+            for b in range.start + 1..range.end.saturating_sub(1) {
+                let (a, c) = (b - 1, b + 1);
+                let l1 = self.segments[a - self.segment_offset(range.start)].1;
+                let l2 = self.segments[b - self.segment_offset(range.start)].1;
+                if l1 <= 0.0 || l2 <= 0.0 {
+                    continue;
+                }
+                let stiffness = self.params.bending_stiffness_n_m2 / (0.5 * (l1 + l2));
+                let compliance = 1.0 / (stiffness * h_s * h_s);
+                let g = [1.0 / l1, -(1.0 / l1 + 1.0 / l2), 1.0 / l2];
+                let p = [a, b, c];
+                let turn = (self.x[c] - self.x[b]) / l2 - (self.x[b] - self.x[a]) / l1;
+                let weight: f64 = (0..3).map(|k| self.w[p[k]] * g[k] * g[k]).sum();
+                let dlambda = -turn / (weight + compliance);
+                for k in 0..3 {
+                    self.x[p[k]] += dlambda * (self.w[p[k]] * g[k]);
+                }
+            }
+        }
+    }
+
+    /// How many strands precede the one starting at particle `start`: its segments' indices are
+    /// its particles' less this.
+    fn segment_offset(&self, start: usize) -> usize {
+        self.strands.iter().take_while(|r| r.start < start).count()
+    }
+
     fn solve_stretch(&mut self) {
+        let mut singular = false;
+        if self.params.direct_stretch {
+            for (s, range) in self.strands.iter().enumerate() {
+                // Strand s's segments follow those of the strands before it, one fewer than their
+                // particles each.
+                let first_segment = range.start - s;
+                let count = range.len().saturating_sub(1);
+                let rest: Vec<f64> =
+                    self.segments[first_segment..first_segment + count].iter().map(|(_, r)| *r).collect();
+                singular |=
+                    !stretch::project_strand(&mut self.x[range.clone()], &self.w[range.clone()], &rest);
+            }
+            if !singular {
+                return;
+            }
+        }
         for k in 0..self.segments.len() {
             let ([a, b], rest) = self.segments[k];
             let (wa, wb) = (self.w[a], self.w[b]);
@@ -239,5 +307,29 @@ mod tests {
             assert_eq!(ropes.add_strand_along(&path, bad).len(), 2, "spacing {bad}");
         }
         assert!(ropes.x.iter().all(|p| p.iter().all(|c| c.is_finite())));
+    }
+
+    /// A strand bent at a right angle in its middle, left to itself for 0.2 s: how far its ends
+    /// lie apart, as a fraction of its length.
+    fn straightened(bending_stiffness_n_m2: f64) -> f64 {
+        let params = RopeParams { bending_stiffness_n_m2, ..RopeParams::default() };
+        let mut ropes = Ropes::new(params);
+        let path = [Vector3::new(-0.003, 0.0, 0.0), Vector3::zeros(), Vector3::new(0.0, 0.003, 0.0)];
+        let strand = ropes.add_strand_along(&path, 0.0003);
+        for _ in 0..200 {
+            ropes.step(0.001);
+        }
+        (ropes.x[strand.end - 1] - ropes.x[strand.start]).norm() / 0.006
+    }
+
+    #[test]
+    fn a_stiff_strand_straightens_and_a_string_stays_bent() {
+        // At rest the ends lie 0.71 of the length apart.
+        let (stiff, string) = (straightened(1e-7), straightened(0.0));
+        assert!(stiff > 0.9, "the stiff strand's ends lie {stiff:.3} of its length apart");
+        assert!(
+            (string - 0.5f64.sqrt()).abs() < 0.01,
+            "the string's ends lie {string:.3} of its length apart"
+        );
     }
 }

@@ -11,7 +11,8 @@
 use nalgebra::{Isometry3, Vector3};
 
 use super::{RopeParams, Ropes, Surroundings};
-use crate::knot::{KnotType, classify};
+use crate::knot::legs::free_ends;
+use crate::knot::{KnotPlacement, KnotType, TissueSurface, classify};
 use crate::laid_knot::{LaidKnotParams, surgeons_knot_through};
 use crate::scene::{StitchParams, TissueParams};
 
@@ -60,6 +61,24 @@ pub struct WoundOutcome {
     pub inside_snug_m: f64,
     /// ... and after the holding test, m (more: the knot gave thread to the loop).
     pub inside_after_m: f64,
+    /// Where the rope passes the exit and the entry, along it from the long end, as snugged, m ...
+    pub through_snug_m: [f64; 2],
+    /// ... and after the holding test, m.
+    pub through_after_m: [f64; 2],
+    /// The long end's and the tail's free ends (from each end to where it first touches the other
+    /// side's strand, [`crate::knot::legs::free_ends`]) as snugged, m (none: they do not touch) ...
+    pub free_ends_snug_m: Option<(f64, f64)>,
+    /// ... and after the holding test, m.
+    pub free_ends_after_m: Option<(f64, f64)>,
+    /// The rope's length as laid, snugged and after the holding test, m (an inextensible rope keeps
+    /// it; the solver's stretch under load shows as more).
+    pub length_m: [f64; 3],
+    /// The knot's lowest crossing above the tissue as snugged and after the holding test, m (none:
+    /// no knot) ...
+    pub height_m: [Option<f64>; 2],
+    /// ... and the thread outside the tissue between the stitch and the knot, both sides, m
+    /// ([`crate::knot::KnotSpan::loop_outside_m`]).
+    pub loop_outside_m: [Option<f64>; 2],
     /// Particles in the rope.
     pub particles: usize,
 }
@@ -86,6 +105,11 @@ fn side(flap: usize) -> f64 {
 impl Flaps {
     fn inner_y(&self, flap: usize) -> f64 {
         side(flap) * (0.5 * self.tissue.rest_gap_m + self.u_m[flap])
+    }
+
+    /// Where the rope passes the exit and the entry, along it from its first particle, m.
+    fn through_m(&self, spacing_m: f64) -> [f64; 2] {
+        [self.guides[0].0 * spacing_m, self.guides[3].0 * spacing_m]
     }
 
     fn gap_m(&self) -> f64 {
@@ -228,6 +252,22 @@ impl Surroundings for Flaps {
     }
 }
 
+/// The knot in the rope, its lowest crossing over the tissue and the loop outside it, m (none:
+/// unclassified, or no knot), the rope passing the exit and the entry at `through_m`.
+fn observe(ropes: &Ropes, through_m: [f64; 2]) -> (Option<KnotType>, Option<f64>, Option<f64>) {
+    let Ok(c) = classify(&ropes.polyline(0)) else { return (None, None, None) };
+    let (Some(span), Ok(surface)) = (&c.span, TissueSurface::new(Vector3::zeros(), Vector3::z())) else {
+        return (Some(c.knot), None, None);
+    };
+    let height_m = KnotPlacement::measure(span, &surface, &Vector3::zeros()).height_m;
+    (Some(c.knot), Some(height_m), span.loop_outside_m(through_m[0], through_m[1]))
+}
+
+/// The rope's length along its polyline, m.
+fn length_m(ropes: &Ropes) -> f64 {
+    ropes.polyline(0).windows(2).map(|w| (w[1] - w[0]).norm()).sum()
+}
+
 /// Lays `knot` (a surgeon's knot; its `kind` is not read) over the stitch of `tissue` and
 /// `stitch`, snugs it by its free ends as [`crate::laid_knot::lay_and_snug`] does, lets go and
 /// runs the holding test.
@@ -264,8 +304,8 @@ pub fn laid_surgeons_knot_in_wound(
         load_n: [0.0; 2],
         guides: [guides[0], guides[1], guides[2], guides[3]],
     };
-    let classify_now = |ropes: &Ropes| classify(&ropes.polyline(0)).ok().map(|c| c.knot);
-    let knot_laid = classify_now(&ropes);
+    let knot_laid = observe(&ropes, flaps.through_m(SPACING_M)).0;
+    let length_laid_m = length_m(&ropes);
     let (long_end, tail) = (strand.start, strand.end - 1);
     let weight: Vec<Vector3<f64>> = (0..ropes.x.len())
         .map(|p| {
@@ -287,20 +327,35 @@ pub fn laid_surgeons_knot_in_wound(
     }
     let gap_snug_m = flaps.gap_m();
     let inside_snug_m = flaps.inside_m(&ropes);
-    let knot_snug = classify_now(&ropes);
+    let touch_m = 2.5 * ropes.params.radius_m;
+    let free_ends_now =
+        |ropes: &Ropes, through: [f64; 2]| free_ends(&ropes.polyline(0), through[0], through[1], touch_m);
+    let through_snug_m = flaps.through_m(SPACING_M);
+    let length_snug_m = length_m(&ropes);
+    let (knot_snug, height_snug_m, loop_snug_m) = observe(&ropes, through_snug_m);
+    let free_ends_snug_m = free_ends_now(&ropes, through_snug_m);
     ropes.force_n.copy_from_slice(&weight);
     flaps.load_n = [trial.holding_load_n; 2];
     for _ in 0..(trial.settle_s / DT_S).round() as usize {
         ropes.step_in(DT_S, &mut flaps);
     }
+    let through_after_m = flaps.through_m(SPACING_M);
+    let (knot_after, height_after_m, loop_after_m) = observe(&ropes, through_after_m);
     WoundOutcome {
         knot_laid,
         knot_snug,
-        knot_after: classify_now(&ropes),
+        knot_after,
         gap_snug_m,
         gap_after_m: flaps.gap_m(),
         inside_snug_m,
         inside_after_m: flaps.inside_m(&ropes),
+        through_snug_m,
+        through_after_m,
+        free_ends_snug_m,
+        free_ends_after_m: free_ends_now(&ropes, through_after_m),
+        height_m: [height_snug_m, height_after_m],
+        loop_outside_m: [loop_snug_m, loop_after_m],
+        length_m: [length_laid_m, length_snug_m, length_m(&ropes)],
         particles: ropes.x.len(),
     }
 }
