@@ -11,6 +11,7 @@
 
 mod broad_phase;
 mod contact;
+pub mod rigid;
 mod stretch;
 pub mod trials;
 pub mod wound;

@@ -1,0 +1,225 @@
+//! The rope among Rapier's rigid bodies: each substep, every particle near a collider is pushed out
+//! of it to the rope's radius, with Coulomb friction against the collider's own motion over the
+//! substep (the rope's contact rule, [`super::contact`], against a solid), and particles attached to
+//! a body (a grasp, the needle's eye) follow it. The bodies move as Rapier will move them in the
+//! step (a kinematic body from its pose to its next one, a dynamic body on its velocities), and
+//! what the rope does to each body is summed as an impulse: applied to the dynamic ones before
+//! their step ([`RigidContacts::apply_impulses`]), read as the instruments' gauges would on the
+//! kinematic ones.
+
+use std::ops::Range;
+
+use nalgebra::Vector3;
+use rapier3d::math::{Pose, Rotation, Vector};
+use rapier3d::prelude::*;
+
+use super::{Ropes, Surroundings};
+
+/// A particle held at a point fixed in a body.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Attachment {
+    /// The rope's particle.
+    pub particle: usize,
+    /// The body.
+    pub body: RigidBodyHandle,
+    /// The point in the body's frame, m.
+    pub local_m: Vector3<f64>,
+}
+
+/// What the rope touches among the rigid bodies, and what it did to them.
+#[derive(Clone, Debug, Default)]
+pub struct RigidContacts {
+    /// The colliders the rope collides with, each with particles it lets through (the thread in
+    /// a flap's stitch, say; an empty range for none).
+    pub colliders: Vec<(ColliderHandle, Range<usize>)>,
+    /// Friction of the rope on them.
+    pub friction: f64,
+    /// The particles held by bodies.
+    pub attachments: Vec<Attachment>,
+    /// The impulse the rope gave each body over the last step, N s, and its moment about the body's
+    /// centre of mass, N m s (world frame), in the order the rope first touched them.
+    pub impulses: Vec<(RigidBodyHandle, Vector3<f64>, Vector3<f64>)>,
+    /// Collider-particle pairs in contact in the last substep.
+    pub contacts_last: usize,
+}
+
+/// Rapier's vector from nalgebra's.
+fn v(p: &Vector3<f64>) -> Vector {
+    Vector::new(p.x, p.y, p.z)
+}
+
+/// nalgebra's vector from Rapier's.
+fn na(p: Vector) -> Vector3<f64> {
+    Vector3::new(p.x, p.y, p.z)
+}
+
+/// Where `body` will be after `dt_s` as Rapier steps it: a kinematic body at its next pose, a
+/// dynamic one moved by its velocities, a fixed one where it is.
+fn pose_after(body: &RigidBody, dt_s: f64) -> Pose {
+    if body.is_kinematic() {
+        *body.next_position()
+    } else if body.is_dynamic() {
+        let now = body.position();
+        let turn = Rotation::from_scaled_axis(body.angvel() * dt_s);
+        // About the centre of mass: it moves with the linear velocity, the body turns about it.
+        let com = body.center_of_mass();
+        let com_after = com + body.linvel() * dt_s;
+        let rotation = (turn * now.rotation).normalize();
+        let translation = com_after + turn * (now.translation - com);
+        Pose::from_parts(translation, rotation)
+    } else {
+        *body.position()
+    }
+}
+
+impl RigidContacts {
+    /// Clears the impulses summed over the last step.
+    pub fn clear_impulses(&mut self) {
+        self.impulses.clear();
+    }
+
+    /// The impulse the rope gave `body` over the last step, N s.
+    pub fn impulse_on(&self, body: RigidBodyHandle) -> Vector3<f64> {
+        self.impulses.iter().find(|(h, _, _)| *h == body).map_or(Vector3::zeros(), |(_, i, _)| *i)
+    }
+
+    /// Applies the summed impulses to the dynamic bodies (call between the rope's step and Rapier's).
+    pub fn apply_impulses(&self, bodies: &mut RigidBodySet) {
+        for (handle, impulse, moment) in &self.impulses {
+            if let Some(body) = bodies.get_mut(*handle)
+                && body.is_dynamic()
+            {
+                body.apply_impulse(v(impulse), true);
+                body.apply_torque_impulse(v(moment), true);
+            }
+        }
+    }
+
+    /// Steps `ropes` by `dt_s` among `bodies` and `colliders` as they stand before Rapier's step
+    /// (kinematic bodies with their next poses set), summing the impulses anew.
+    pub fn step(&mut self, ropes: &mut Ropes, dt_s: f64, bodies: &RigidBodySet, colliders: &ColliderSet) {
+        self.step_with(ropes, dt_s, bodies, colliders, &mut ());
+    }
+
+    /// [`Self::step`] with `more` surroundings resolved after the bodies each substep.
+    pub fn step_with(
+        &mut self,
+        ropes: &mut Ropes,
+        dt_s: f64,
+        bodies: &RigidBodySet,
+        colliders: &ColliderSet,
+        more: &mut dyn Surroundings,
+    ) {
+        self.clear_impulses();
+        let substeps = ropes.params.substeps.max(1);
+        let mut among = Among { contacts: self, bodies, colliders, dt_s, substeps, substep: 0, more };
+        ropes.step_in(dt_s, &mut among);
+    }
+}
+
+/// The bodies as the rope's [`Surroundings`] through one step.
+struct Among<'a> {
+    contacts: &'a mut RigidContacts,
+    bodies: &'a RigidBodySet,
+    colliders: &'a ColliderSet,
+    dt_s: f64,
+    substeps: usize,
+    substep: usize,
+    more: &'a mut dyn Surroundings,
+}
+
+impl Among<'_> {
+    /// The pose of `body` a fraction `f` of the way through the step.
+    fn body_pose(&self, body: RigidBodyHandle, f: f64) -> Option<Pose> {
+        let body = self.bodies.get(body)?;
+        Some(body.position().lerp(&pose_after(body, self.dt_s), f))
+    }
+
+    fn push(&mut self, body: RigidBodyHandle, impulse: Vector3<f64>, at: Vector3<f64>, f: f64) {
+        let com = self
+            .bodies
+            .get(body)
+            .map(|b| na(b.center_of_mass() + b.linvel() * (self.dt_s * f)))
+            .unwrap_or(at);
+        let impulses = &mut self.contacts.impulses;
+        let k = match impulses.iter().position(|(h, _, _)| *h == body) {
+            Some(k) => k,
+            None => {
+                impulses.push((body, Vector3::zeros(), Vector3::zeros()));
+                impulses.len() - 1
+            }
+        };
+        impulses[k].1 += impulse;
+        impulses[k].2 += (at - com).cross(&impulse);
+    }
+}
+
+impl Surroundings for Among<'_> {
+    fn after(&mut self, ropes: &mut Ropes, x_prev: &[Vector3<f64>], h_s: f64) {
+        let (f0, f1) =
+            (self.substep as f64 / self.substeps as f64, (self.substep + 1) as f64 / self.substeps as f64);
+        self.substep += 1;
+        let r = ropes.params.radius_m;
+        let friction = self.contacts.friction;
+        let mut touching = 0;
+        let colliders = self.contacts.colliders.clone();
+        for (handle, exempt) in &colliders {
+            let Some(collider) = self.colliders.get(*handle) else { continue };
+            let Some(body) = collider.parent() else { continue };
+            let local = collider.position_wrt_parent().copied().unwrap_or_default();
+            let (Some(body_then), Some(body_now)) = (self.body_pose(body, f0), self.body_pose(body, f1))
+            else {
+                continue;
+            };
+            let (then, now) = (body_then * local, body_now * local);
+            let aabb = collider.shape().compute_aabb(&now).loosened(r);
+            for (p, x_before) in x_prev.iter().enumerate() {
+                if ropes.w[p] == 0.0 || exempt.contains(&p) {
+                    continue;
+                }
+                let x = ropes.x[p];
+                if !aabb.contains_local_point(v(&x)) {
+                    continue;
+                }
+                let projection = collider.shape().project_point(&now, v(&x), false);
+                let to_surface = na(projection.point) - x;
+                let distance = to_surface.norm();
+                let (normal, depth) = if projection.is_inside {
+                    if distance < 1e-12 {
+                        continue;
+                    }
+                    (to_surface / distance, distance + r)
+                } else if distance < r && distance > 1e-12 {
+                    (-to_surface / distance, r - distance)
+                } else {
+                    continue;
+                };
+                touching += 1;
+                let mut dx = normal * depth;
+                // The surface under the particle moved this much over the substep.
+                let surface_moved = na(now.transform_point(then.inverse_transform_point(v(&x)))) - x;
+                let moved = (x + dx - x_before) - surface_moved;
+                let tangential = moved - normal * moved.dot(&normal);
+                let slip = tangential.norm();
+                if slip > 0.0 {
+                    dx -= tangential * (friction * depth / slip).min(1.0);
+                }
+                ropes.x[p] += dx;
+                let impulse = -dx / (ropes.w[p] * h_s);
+                self.push(body, impulse, x, f1);
+            }
+        }
+        self.contacts.contacts_last = touching;
+        for a in self.contacts.attachments.clone() {
+            let Some(pose) = self.body_pose(a.body, f1) else { continue };
+            let target = na(pose.transform_point(v(&a.local_m)));
+            let dx = target - ropes.x[a.particle];
+            ropes.x[a.particle] = target;
+            if ropes.w[a.particle] > 0.0 {
+                let impulse = -dx / (ropes.w[a.particle] * h_s);
+                self.push(a.body, impulse, target, f1);
+            }
+        }
+        self.more.after(ropes, x_prev, h_s);
+    }
+}
