@@ -13,6 +13,7 @@ mod broad_phase;
 mod contact;
 pub mod rigid;
 mod stretch;
+pub mod tissue_trial;
 pub mod trials;
 pub mod wound;
 

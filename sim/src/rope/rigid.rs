@@ -26,6 +26,19 @@ pub struct Attachment {
     pub local_m: Vector3<f64>,
 }
 
+/// A point fixed in a body that the rope passes through, free to slide along itself (a stitch's
+/// hole through a flap): each substep the rope's point there is moved onto it across the rope, not
+/// along it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Guide {
+    /// The body.
+    pub body: RigidBodyHandle,
+    /// The point in the body's frame, m.
+    pub local_m: Vector3<f64>,
+    /// Where the rope passes it: a particle's index plus the fraction of the way to the next.
+    pub at: f64,
+}
+
 /// What the rope touches among the rigid bodies, and what it did to them.
 #[derive(Clone, Debug, Default)]
 pub struct RigidContacts {
@@ -36,6 +49,8 @@ pub struct RigidContacts {
     pub friction: f64,
     /// The particles held by bodies.
     pub attachments: Vec<Attachment>,
+    /// The points the rope slides through, in order along it.
+    pub guides: Vec<Guide>,
     /// The impulse the rope gave each body over the last step, N s, and its moment about the body's
     /// centre of mass, N m s (world frame), in the order the rope first touched them.
     pub impulses: Vec<(RigidBodyHandle, Vector3<f64>, Vector3<f64>)>,
@@ -76,6 +91,14 @@ impl RigidContacts {
     /// Clears the impulses summed over the last step.
     pub fn clear_impulses(&mut self) {
         self.impulses.clear();
+    }
+
+    /// The particles between the first guide and the last (the thread in the stitch), if any.
+    pub fn between_guides(&self) -> Range<usize> {
+        match (self.guides.first(), self.guides.last()) {
+            (Some(first), Some(last)) => (first.at.floor() as usize)..(last.at.ceil() as usize + 1),
+            _ => 0..0,
+        }
     }
 
     /// The impulse the rope gave `body` over the last step, N s.
@@ -220,6 +243,68 @@ impl Surroundings for Among<'_> {
                 self.push(a.body, impulse, target, f1);
             }
         }
+        for k in 0..self.contacts.guides.len() {
+            let guide = self.contacts.guides[k];
+            let Some(pose) = self.body_pose(guide.body, f1) else { continue };
+            let target = na(pose.transform_point(v(&guide.local_m)));
+            if let Some((dx_at, at)) = thread_through(ropes, guide.at, &target) {
+                for (p, dx) in dx_at {
+                    if ropes.w[p] > 0.0 {
+                        self.push(guide.body, -dx / (ropes.w[p] * h_s), target, f1);
+                    }
+                }
+                self.contacts.guides[k].at = at;
+            }
+        }
         self.more.after(ropes, x_prev, h_s);
     }
+}
+
+/// Two particles and how far each was moved, m.
+pub(super) type ParticleMoves = [(usize, Vector3<f64>); 2];
+
+/// Moves the rope's point at `at` (a particle's index plus a fraction) onto `target` across the
+/// rope, its two particles sharing the move by their masses; returns each particle's move and where
+/// the rope now passes nearest `target` (searched two segments either way).
+pub(super) fn thread_through(
+    ropes: &mut Ropes,
+    at: f64,
+    target: &Vector3<f64>,
+) -> Option<(ParticleMoves, f64)> {
+    let last = ropes.x.len().checked_sub(1).filter(|l| *l >= 1)?;
+    let sigma = at.clamp(0.0, (last - 1) as f64 + 0.999_999);
+    let i = sigma.floor() as usize;
+    let t = sigma - i as f64;
+    let (a, b) = (i, i + 1);
+    let along = (ropes.x[b] - ropes.x[a]).try_normalize(1e-15)?;
+    let here = ropes.x[a] * (1.0 - t) + ropes.x[b] * t;
+    let miss = target - here;
+    let across = miss - along * miss.dot(&along);
+    let weights = [(a, 1.0 - t), (b, t)];
+    let wsum: f64 = weights.iter().map(|(p, f)| ropes.w[*p] * f * f).sum();
+    let mut moves = [(a, Vector3::zeros()), (b, Vector3::zeros())];
+    if wsum > 0.0 {
+        for (k, (p, f)) in weights.into_iter().enumerate() {
+            let dx = across * (ropes.w[p] * f / wsum);
+            ropes.x[p] += dx;
+            moves[k] = (p, dx);
+        }
+    }
+    Some((moves, nearest_on_rope(ropes, target, i, last)))
+}
+
+/// The place on the rope (particle index plus fraction) nearest `target`, searched over the
+/// segments within two of segment `near`.
+pub(super) fn nearest_on_rope(ropes: &Ropes, target: &Vector3<f64>, near: usize, last: usize) -> f64 {
+    let mut best = (f64::INFINITY, near as f64);
+    for i in near.saturating_sub(2)..(near + 3).min(last) {
+        let (a, b) = (ropes.x[i], ropes.x[i + 1]);
+        let d = b - a;
+        let t = ((target - a).dot(&d) / d.norm_squared().max(1e-18)).clamp(0.0, 1.0);
+        let distance = (a + d * t - target).norm();
+        if distance < best.0 {
+            best = (distance, i as f64 + t);
+        }
+    }
+    best.1
 }

@@ -10,6 +10,7 @@
 
 use nalgebra::{Isometry3, Vector3};
 
+use super::rigid::{nearest_on_rope, thread_through};
 use super::{RopeParams, Ropes, Surroundings};
 use crate::knot::legs::free_ends;
 use crate::knot::{KnotPlacement, KnotType, TissueSurface, classify};
@@ -118,20 +119,7 @@ impl Flaps {
 
     /// The thread between the exit and the entry, m.
     fn inside_m(&self, ropes: &Ropes) -> f64 {
-        let at = |sigma: f64| {
-            let i = (sigma.floor() as usize).min(ropes.x.len() - 2);
-            let t = sigma - i as f64;
-            (i, ropes.x[i] * (1.0 - t) + ropes.x[i + 1] * t)
-        };
-        let ((i, from), (j, to)) = (at(self.guides[0].0), at(self.guides[3].0));
-        if j <= i {
-            return (to - from).norm();
-        }
-        let mut length = (ropes.x[i + 1] - from).norm() + (to - ropes.x[j]).norm();
-        for k in i + 1..j {
-            length += (ropes.x[k + 1] - ropes.x[k]).norm();
-        }
-        length
+        thread_between_m(ropes, self.guides[0].0, self.guides[3].0)
     }
 
     /// Guide `k` where its flap holds it now.
@@ -153,49 +141,19 @@ impl Flaps {
     /// updated. Returns the outward pull of the rope on each flap, N.
     fn thread_through(&mut self, ropes: &mut Ropes, h_s: f64) -> [f64; 2] {
         let mut outward_n = [0.0; 2];
-        let last = ropes.x.len() - 1;
         for k in 0..4 {
             let flap = if k < 2 { 0 } else { 1 };
             let target = self.guide_m(k);
-            let sigma = self.guides[k].0.clamp(0.0, (last - 1) as f64 + 0.999_999);
-            let i = sigma.floor() as usize;
-            let t = sigma - i as f64;
-            let (a, b) = (i, i + 1);
-            let along = (ropes.x[b] - ropes.x[a]).normalize();
-            let at = ropes.x[a] * (1.0 - t) + ropes.x[b] * t;
-            let miss = target - at;
-            let across = miss - along * miss.dot(&along);
-            let weights = [(a, 1.0 - t), (b, t)];
-            let wsum: f64 = weights.iter().map(|(p, f)| ropes.w[*p] * f * f).sum();
-            if wsum > 0.0 {
-                for (p, f) in weights {
-                    let dx = across * (ropes.w[p] * f / wsum);
-                    ropes.x[p] += dx;
-                    if ropes.w[p] > 0.0 {
-                        outward_n[flap] -= side(flap) * dx.y / (ropes.w[p] * h_s * h_s);
-                    }
+            let Some((moves, at)) = thread_through(ropes, self.guides[k].0, &target) else { continue };
+            for (p, dx) in moves {
+                if ropes.w[p] > 0.0 {
+                    outward_n[flap] -= side(flap) * dx.y / (ropes.w[p] * h_s * h_s);
                 }
             }
-            self.guides[k].0 = nearest_on_rope(ropes, target, i, last);
+            self.guides[k].0 = at;
         }
         outward_n
     }
-}
-
-/// The place on the rope (particle index plus fraction) nearest `target`, searched over the
-/// segments within two of segment `near`.
-fn nearest_on_rope(ropes: &Ropes, target: Vector3<f64>, near: usize, last: usize) -> f64 {
-    let mut best = (f64::INFINITY, near as f64);
-    for i in near.saturating_sub(2)..(near + 3).min(last) {
-        let (a, b) = (ropes.x[i], ropes.x[i + 1]);
-        let d = b - a;
-        let t = ((target - a).dot(&d) / d.norm_squared().max(1e-18)).clamp(0.0, 1.0);
-        let distance = (a + d * t - target).norm();
-        if distance < best.0 {
-            best = (distance, i as f64 + t);
-        }
-    }
-    best.1
 }
 
 impl Surroundings for Flaps {
@@ -252,19 +210,44 @@ impl Surroundings for Flaps {
     }
 }
 
+/// The rope's length between two places on it (particle index plus fraction), m.
+pub(super) fn thread_between_m(ropes: &Ropes, from: f64, to: f64) -> f64 {
+    let at = |sigma: f64| {
+        let i = (sigma.floor() as usize).min(ropes.x.len() - 2);
+        let t = sigma - i as f64;
+        (i, ropes.x[i] * (1.0 - t) + ropes.x[i + 1] * t)
+    };
+    let ((i, from), (j, to)) = (at(from), at(to));
+    if j <= i {
+        return (to - from).norm();
+    }
+    let mut length = (ropes.x[i + 1] - from).norm() + (to - ropes.x[j]).norm();
+    for k in i + 1..j {
+        length += (ropes.x[k + 1] - ropes.x[k]).norm();
+    }
+    length
+}
+
 /// The knot in the rope, its lowest crossing over the tissue and the loop outside it, m (none:
-/// unclassified, or no knot), the rope passing the exit and the entry at `through_m`.
-fn observe(ropes: &Ropes, through_m: [f64; 2]) -> (Option<KnotType>, Option<f64>, Option<f64>) {
+/// unclassified, or no knot), the rope passing the exit and the entry at `through_m`, the tissue's
+/// surface and stitch where `world_from_tissue` puts the tissue frame's origin.
+pub(super) fn observe(
+    ropes: &Ropes,
+    through_m: [f64; 2],
+    world_from_tissue: &Isometry3<f64>,
+) -> (Option<KnotType>, Option<f64>, Option<f64>) {
     let Ok(c) = classify(&ropes.polyline(0)) else { return (None, None, None) };
-    let (Some(span), Ok(surface)) = (&c.span, TissueSurface::new(Vector3::zeros(), Vector3::z())) else {
+    let origin = world_from_tissue.translation.vector;
+    let surface = TissueSurface::new(origin, world_from_tissue.rotation * Vector3::z());
+    let (Some(span), Ok(surface)) = (&c.span, surface) else {
         return (Some(c.knot), None, None);
     };
-    let height_m = KnotPlacement::measure(span, &surface, &Vector3::zeros()).height_m;
+    let height_m = KnotPlacement::measure(span, &surface, &origin).height_m;
     (Some(c.knot), Some(height_m), span.loop_outside_m(through_m[0], through_m[1]))
 }
 
 /// The rope's length along its polyline, m.
-fn length_m(ropes: &Ropes) -> f64 {
+pub(super) fn length_m(ropes: &Ropes) -> f64 {
     ropes.polyline(0).windows(2).map(|w| (w[1] - w[0]).norm()).sum()
 }
 
@@ -294,7 +277,7 @@ pub fn laid_surgeons_knot_in_wound(
     };
     let guides: Vec<(f64, Vector3<f64>)> = stitch_points
         .iter()
-        .map(|q| (nearest_on_rope(&ropes, *q, nearest(q).unwrap_or(strand.start), last), *q))
+        .map(|q| (nearest_on_rope(&ropes, q, nearest(q).unwrap_or(strand.start), last), *q))
         .collect();
     let mut flaps = Flaps {
         tissue: *tissue,
@@ -304,7 +287,7 @@ pub fn laid_surgeons_knot_in_wound(
         load_n: [0.0; 2],
         guides: [guides[0], guides[1], guides[2], guides[3]],
     };
-    let knot_laid = observe(&ropes, flaps.through_m(SPACING_M)).0;
+    let knot_laid = observe(&ropes, flaps.through_m(SPACING_M), &Isometry3::identity()).0;
     let length_laid_m = length_m(&ropes);
     let (long_end, tail) = (strand.start, strand.end - 1);
     let weight: Vec<Vector3<f64>> = (0..ropes.x.len())
@@ -332,7 +315,7 @@ pub fn laid_surgeons_knot_in_wound(
         |ropes: &Ropes, through: [f64; 2]| free_ends(&ropes.polyline(0), through[0], through[1], touch_m);
     let through_snug_m = flaps.through_m(SPACING_M);
     let length_snug_m = length_m(&ropes);
-    let (knot_snug, height_snug_m, loop_snug_m) = observe(&ropes, through_snug_m);
+    let (knot_snug, height_snug_m, loop_snug_m) = observe(&ropes, through_snug_m, &Isometry3::identity());
     let free_ends_snug_m = free_ends_now(&ropes, through_snug_m);
     ropes.force_n.copy_from_slice(&weight);
     flaps.load_n = [trial.holding_load_n; 2];
@@ -340,7 +323,7 @@ pub fn laid_surgeons_knot_in_wound(
         ropes.step_in(DT_S, &mut flaps);
     }
     let through_after_m = flaps.through_m(SPACING_M);
-    let (knot_after, height_after_m, loop_after_m) = observe(&ropes, through_after_m);
+    let (knot_after, height_after_m, loop_after_m) = observe(&ropes, through_after_m, &Isometry3::identity());
     WoundOutcome {
         knot_laid,
         knot_snug,
