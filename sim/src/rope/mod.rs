@@ -11,6 +11,7 @@
 
 mod broad_phase;
 mod contact;
+pub mod grasp;
 pub mod rigid;
 mod stretch;
 pub mod tissue_trial;

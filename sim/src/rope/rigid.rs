@@ -49,6 +49,8 @@ pub struct RigidContacts {
     pub friction: f64,
     /// The particles held by bodies.
     pub attachments: Vec<Attachment>,
+    /// The impulse each attachment gave its particle over the last step, N s (as `attachments`).
+    pub attachment_impulses: Vec<Vector3<f64>>,
     /// The points the rope slides through, in order along it.
     pub guides: Vec<Guide>,
     /// The impulse the rope gave each body over the last step, N s, and its moment about the body's
@@ -91,6 +93,7 @@ impl RigidContacts {
     /// Clears the impulses summed over the last step.
     pub fn clear_impulses(&mut self) {
         self.impulses.clear();
+        self.attachment_impulses = vec![Vector3::zeros(); self.attachments.len()];
     }
 
     /// The particles between the first guide and the last (the thread in the stitch), if any.
@@ -233,7 +236,7 @@ impl Surroundings for Among<'_> {
             }
         }
         self.contacts.contacts_last = touching;
-        for a in self.contacts.attachments.clone() {
+        for (k, a) in self.contacts.attachments.clone().into_iter().enumerate() {
             let Some(pose) = self.body_pose(a.body, f1) else { continue };
             let target = na(pose.transform_point(v(&a.local_m)));
             let dx = target - ropes.x[a.particle];
@@ -241,6 +244,9 @@ impl Surroundings for Among<'_> {
             if ropes.w[a.particle] > 0.0 {
                 let impulse = -dx / (ropes.w[a.particle] * h_s);
                 self.push(a.body, impulse, target, f1);
+                if let Some(held) = self.contacts.attachment_impulses.get_mut(k) {
+                    *held -= impulse;
+                }
             }
         }
         for k in 0..self.contacts.guides.len() {
