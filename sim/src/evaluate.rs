@@ -108,7 +108,7 @@ pub fn stitch_site(world: &SimWorld) -> Option<StitchSite> {
 }
 
 fn classify_thread(world: &SimWorld) -> Option<Classification> {
-    let line: Vec<Vector3<f64>> = world.thread.centreline(&world.physics);
+    let line: Vec<Vector3<f64>> = world.thread_centreline();
     classify(&line).ok()
 }
 
@@ -152,10 +152,10 @@ pub fn knot_now(world: &SimWorld) -> Option<KnotNow> {
         }
         None => (None, None, None),
     };
-    let arc_at = |flap| world.stitch.arc_at_m(&world.physics, &world.thread, &world.tissue, flap);
+    let arc_at = |flap| world.stitch_arc_at_m(flap);
     let ((exit_leg, entry_leg), bending) = match (arc_at(Flap::B), arc_at(Flap::A)) {
         (Some(exit_m), Some(entry_m)) => {
-            let line = world.thread.centreline(&world.physics);
+            let line = world.thread_centreline();
             let touch_m = TOUCH_RADII * world.config.thread.radius_m;
             (legs(&line, exit_m, entry_m, touch_m), bending(&line, exit_m, entry_m, touch_m))
         }
@@ -165,14 +165,14 @@ pub fn knot_now(world: &SimWorld) -> Option<KnotNow> {
 }
 
 fn loop_outside(world: &SimWorld, span: &KnotSpan) -> Option<f64> {
-    let arc_at = |flap| world.stitch.arc_at_m(&world.physics, &world.thread, &world.tissue, flap);
+    let arc_at = |flap| world.stitch_arc_at_m(flap);
     span.loop_outside_m(arc_at(Flap::B)?, arc_at(Flap::A)?)
 }
 
 /// The free ends as the thread lies now: `(long end, tail)`, m ([`crate::knot::legs::free_ends`]).
 pub fn free_ends_now(world: &SimWorld) -> Option<(f64, f64)> {
-    let arc_at = |flap| world.stitch.arc_at_m(&world.physics, &world.thread, &world.tissue, flap);
-    let line = world.thread.centreline(&world.physics);
+    let arc_at = |flap| world.stitch_arc_at_m(flap);
+    let line = world.thread_centreline();
     free_ends(&line, arc_at(Flap::B)?, arc_at(Flap::A)?, TOUCH_RADII * world.config.thread.radius_m)
 }
 

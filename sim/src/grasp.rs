@@ -62,11 +62,12 @@ impl Grasp {
     /// Attaches the thread segment or the needle that passes nearest the jaws' line (from their hinge,
     /// twice `jaw_offset_m` behind the tip, to the tip), if it comes within reach of it: what lies
     /// between the jaws, not what is wound around them. It is held where it is. `needle_m` are points
-    /// along the needle (world frame), which is part of the first segment's body.
+    /// along the needle (world frame), on `needle_body` (the first segment's for the chain).
     pub fn try_close(
         physics: &mut Physics,
         thread: &Thread,
         needle_m: &[Vector3<f64>],
+        needle_body: Option<RigidBodyHandle>,
         jaw_body: RigidBodyHandle,
         world_from_tip: &IsometryMatrix3<f64>,
         jaw_offset_m: f64,
@@ -88,7 +89,11 @@ impl Grasp {
         if beyond > 0.0 {
             return None;
         }
-        let body = thread.segments[segment];
+        // The needle rides on the chain's first segment, or on its own body beside the rope.
+        let body = match (on_needle, needle_body) {
+            (true, Some(needle)) => needle,
+            _ => *thread.segments.get(segment)?,
+        };
         let jaw_pose = *physics.bodies[jaw_body].position();
         let segment_pose = *physics.bodies[body].position();
         // Hold the segment where it is relative to the jaws, but pressed between their faces: on their
@@ -122,11 +127,23 @@ impl Grasp {
         jaw_radius_m: f64,
         thread_radius_m: f64,
     ) -> bool {
+        let capsules = thread.capsules(physics, 0.0);
+        Self::squeeze(&capsules, world_from_tip, jaw_offset_m, jaw_rad, jaw_radius_m, thread_radius_m)
+    }
+
+    /// [`Self::squeezes`] for the thread as `capsules` (the chain's segments, or the rope's).
+    pub fn squeeze(
+        capsules: &[crate::tunnelling::Capsule],
+        world_from_tip: &IsometryMatrix3<f64>,
+        jaw_offset_m: f64,
+        jaw_rad: f64,
+        jaw_radius_m: f64,
+        thread_radius_m: f64,
+    ) -> bool {
         let (hinge, tip) = jaw_line_m(world_from_tip, jaw_offset_m);
         let reach_m = crate::world::GRASP_REACH_M;
-        let nearest = thread
-            .capsules(physics, 0.0)
-            .into_iter()
+        let nearest = capsules
+            .iter()
             .map(|c| (segment_distance(&c.a_m, &c.b_m, &hinge, &tip), c))
             .min_by(|a, b| a.0.total_cmp(&b.0));
         let Some((distance_m, capsule)) = nearest else { return false };

@@ -23,6 +23,9 @@ pub struct Needle {
     pub arc_points_m: Vec<Vector3<f64>>,
     /// Wire radius, m.
     pub wire_radius_m: f64,
+    /// The body carrying it: the chain's first segment, or the needle's own body beside the rope
+    /// (none for geometry alone).
+    pub body: Option<RigidBodyHandle>,
 }
 
 impl Needle {
@@ -36,7 +39,7 @@ impl Needle {
                 Vector3::new(start - radius * theta.sin(), radius * (1.0 - theta.cos()), 0.0)
             })
             .collect();
-        Self { arc_points_m, wire_radius_m: params.wire_radius_m }
+        Self { arc_points_m, wire_radius_m: params.wire_radius_m, body: None }
     }
 
     /// Adds the needle's capsules to the thread's first segment.
@@ -63,12 +66,14 @@ impl Needle {
             .build();
             physics.colliders.insert_with_parent(capsule, body, &mut physics.bodies);
         }
-        needle
+        Self { body: Some(body), ..needle }
     }
 
     /// The arc's points in the world, swage first, m.
     pub fn world_points_m(&self, physics: &Physics, thread: &Thread) -> Vec<Vector3<f64>> {
-        let pose = physics.bodies[thread.segments[0]].position();
+        let Some(body) = self.body.or_else(|| thread.segments.first().copied()) else { return Vec::new() };
+        let Some(body) = physics.bodies.get(body) else { return Vec::new() };
+        let pose = body.position();
         self.arc_points_m
             .iter()
             .map(|p| {

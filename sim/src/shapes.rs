@@ -115,7 +115,7 @@ pub fn scene_shapes(world: &SimWorld) -> SceneShapes {
     }
     SceneShapes {
         solids,
-        thread_m: world.thread.centreline(physics),
+        thread_m: world.thread_centreline(),
         thread_radius_m: world.config.thread.radius_m,
         needle_m: Needle::world_points_m(&world.needle, physics, &world.thread),
         needle_radius_m: world.needle.wire_radius_m,

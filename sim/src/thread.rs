@@ -59,6 +59,22 @@ pub struct ThreadParams {
     /// (`cargo bench -p knotlab-bench --bench thread_capstan`).
     #[serde(default = "twist_free")]
     pub twist_free: bool,
+    /// How the suture is simulated: Rapier's capsule chain (the default) or the XPBD rope
+    /// ([`crate::rope`], `model = "rope"`), whose knots hold (session 43).
+    #[serde(default)]
+    pub model: ThreadModel,
+}
+
+/// How the suture is simulated.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Deserialize, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ThreadModel {
+    /// `segments` capsules joined by Rapier's joints ([`Thread`]).
+    #[default]
+    Chain,
+    /// The XPBD rope ([`crate::rope::suture`]): particles 1.5 radii apart, the chain's bending
+    /// stiffness per joint times its segment's length as the rope's EI, friction solved on positions.
+    Rope,
 }
 
 fn twist_free() -> bool {
@@ -78,6 +94,7 @@ impl Default for ThreadParams {
             friction_on_itself: None,
             linear_damping_per_s: 1.0,
             twist_free: true,
+            model: ThreadModel::Chain,
         }
     }
 }
@@ -104,6 +121,11 @@ fn to_vec(p: &nalgebra::Vector3<f64>) -> Vector {
 }
 
 impl Thread {
+    /// No segments: the chain's place in a scene whose suture is the rope (`thread.model = "rope"`).
+    pub fn empty(segment_length_m: f64) -> Self {
+        Self { segments: Vec::new(), links: Vec::new(), segment_length_m }
+    }
+
     /// Lays a straight thread from `start_m` along `direction` in `physics`.
     pub fn build(
         physics: &mut Physics,

@@ -15,10 +15,12 @@ use crate::hooks::{ContactFilter, ThreadOnItself};
 use crate::layout::start_layout;
 use crate::needle::Needle;
 use crate::physics::{HealthError, Physics};
+use crate::rope::grasp::RopeGrasp;
+use crate::rope::suture::SceneRope;
 use crate::scene::SceneConfig;
 use crate::servo::{ServoModel, ServoState};
 use crate::stitch::{Stitch, StitchEvent};
-use crate::thread::{THREAD_GROUP, Thread};
+use crate::thread::{THREAD_GROUP, Thread, ThreadModel};
 use crate::thread_watch::ThreadWatch;
 use crate::tissue::Tissue;
 
@@ -69,8 +71,10 @@ pub struct SimArm {
     pub states: Vec<ServoState>,
     /// The last joint command.
     pub command: ArmJoints,
-    /// The grasp held by the jaws, if any.
+    /// The grasp held by the jaws, if any: on the chain or the needle.
     pub grasp: Option<Grasp>,
+    /// The grasp on the rope, if the suture is the rope and the jaws hold it.
+    pub rope_grasp: Option<RopeGrasp>,
     /// A grasp that slipped stays lost until the jaws reopen.
     pub slipped: bool,
     /// Jaws that closed on nothing stay empty until they reopen: what later touches closed jaws is
@@ -90,6 +94,22 @@ pub struct SimArm {
 }
 
 impl SimArm {
+    /// Whether the jaws hold the thread or the needle.
+    pub fn holds(&self) -> bool {
+        self.grasp.is_some() || self.rope_grasp.is_some()
+    }
+
+    /// Where along the thread the jaws hold it: the chain's segment, or the rope's particle in the
+    /// middle of the held run (an index into the thread's centreline either way, from the needle
+    /// end).
+    pub fn held_at(&self) -> Option<usize> {
+        match (&self.grasp, &self.rope_grasp) {
+            (Some(grasp), _) => Some(grasp.segment),
+            (None, Some(rope)) => Some(rope.particles.start + rope.particles.len() / 2),
+            (None, None) => None,
+        }
+    }
+
     /// The joints as the links stand now (after lag, play and calibration).
     pub fn actual(&self) -> ArmJoints {
         let v: [f64; 10] = std::array::from_fn(|i| self.states[i].link_rad);
@@ -105,8 +125,10 @@ pub struct SimWorld {
     pub rig: Rig,
     /// The four arms, in [`ArmName::ALL`] order.
     pub arms: Vec<SimArm>,
-    /// The suture.
+    /// The suture as Rapier's capsule chain (no segments when it is the rope).
     pub thread: Thread,
+    /// The suture as the rope, when the scene's `thread.model` is `rope`.
+    pub rope: Option<SceneRope>,
     /// The needle on the thread's first segment.
     pub needle: Needle,
     /// The pad and the two flaps of the wound.
@@ -234,6 +256,7 @@ impl SimWorld {
                     states,
                     command: ready,
                     grasp: None,
+                    rope_grasp: None,
                     slipped: false,
                     closed_empty: false,
                     grasped_at_jaw_rad: 0.0,
@@ -253,6 +276,7 @@ impl SimWorld {
         let poses = rig.tree.root_from_links(&positions);
         let mut link_bodies = vec![None; rig.tree.links.len()];
         let mut jaw_colliders: Vec<(String, ColliderHandle)> = Vec::new();
+        let mut robot_colliders: Vec<ColliderHandle> = Vec::new();
         for (i, link) in rig.tree.links.iter().enumerate() {
             if link.collisions.is_empty() {
                 continue;
@@ -278,6 +302,9 @@ impl SimWorld {
                 if jaw && moving {
                     jaw_colliders.push((link.name.clone(), handle));
                 }
+                if moving {
+                    robot_colliders.push(handle);
+                }
             }
             link_bodies[i] = Some(body);
         }
@@ -297,9 +324,26 @@ impl SimWorld {
         }
         let tissue = Tissue::build(&mut physics, &config.tissue, &config.stitch);
         let layout = layout(&config, &tissue, &physics);
-        let thread = Thread::build(&mut physics, &config.thread, &layout[0], &(layout[1] - layout[0]));
-        thread.lay_along(&mut physics, &layout);
-        let needle = Needle::attach(&config.needle, &mut physics, &thread);
+        let (thread, needle, rope) = match config.thread.model {
+            ThreadModel::Chain => {
+                let thread =
+                    Thread::build(&mut physics, &config.thread, &layout[0], &(layout[1] - layout[0]));
+                thread.lay_along(&mut physics, &layout);
+                let needle = Needle::attach(&config.needle, &mut physics, &thread);
+                (thread, needle, None)
+            }
+            ThreadModel::Rope => {
+                let (rope, needle) = SceneRope::build(
+                    &config.thread,
+                    &config.needle,
+                    &layout,
+                    &mut physics,
+                    &tissue,
+                    &robot_colliders,
+                );
+                (Thread::empty(rope.spacing_m), needle, Some(rope))
+            }
+        };
         let mut tissue = tissue;
         let stitch = Stitch::anchor(&mut physics, &thread, &mut tissue, config.stitch.slide_friction_n);
         let grip_force_n = config.sensor.grip_force_n;
@@ -309,6 +353,7 @@ impl SimWorld {
             rig,
             arms,
             thread,
+            rope,
             needle,
             tissue,
             stitch,
@@ -362,6 +407,7 @@ impl SimWorld {
             if let Some(grasp) = self.arms[a].grasp.take() {
                 grasp.release(&mut self.physics);
             }
+            self.release_rope(a);
             if self.arms[a].name.carries_instrument() {
                 self.arms[a].command.tool.jaw_rad = Self::JAW_OPEN_RAD;
             }
@@ -371,6 +417,98 @@ impl SimWorld {
                 self.physics.impulse_joints.remove(j, true);
             }
             hole.segment = None;
+        }
+        if let Some(rope) = &mut self.rope {
+            rope.contacts.guides.clear();
+        }
+    }
+
+    /// Lets each instrument's jaws pass what they hold of the rope and what lies along them: the
+    /// run they grasp, or the swaged end of the needle they hold, and [`JAW_CLEAR_M`] of rope
+    /// either side (pushed out of the jaws while its neighbours are held in, it would be torn
+    /// between the two).
+    /// Closing jaws (told to close, or closing now) that hold nothing let what lies between them
+    /// pass, as the chain's contact filter does: the grasp takes it once they are closed.
+    fn clear_jaws_of_held_rope(&mut self, poses: &[IsometryMatrix3<f64>]) {
+        let Some(rope) = &mut self.rope else { return };
+        let clear = (JAW_CLEAR_M / rope.spacing_m).ceil() as usize;
+        let count = rope.ropes.x.len();
+        for arm in &self.arms {
+            if arm.jaw_colliders.is_empty() {
+                continue;
+            }
+            let closing = arm.command.tool.jaw_rad < self.jaw_closed_rad
+                || arm.command.tool.jaw_rad < arm.actual().tool.jaw_rad - 1e-3;
+            let between = || {
+                let tip = poses[self.rig.arm(arm.name).tip_link];
+                let (hinge, end) = crate::grasp::jaw_line_m(&tip, JAW_CENTRE_OFFSET_M);
+                // The run through the jaws: around the particle nearest their line, while within reach.
+                let off = |p: usize| {
+                    let x = rope.ropes.x[p];
+                    knotlab_hw::geometry::segment_distance(&x, &x, &hinge, &end)
+                };
+                let Some(nearest) = (0..count).min_by(|a, b| off(*a).total_cmp(&off(*b))) else {
+                    return 0..0;
+                };
+                if off(nearest) >= GRASP_REACH_M {
+                    return 0..0;
+                }
+                let (mut first, mut last) = (nearest, nearest);
+                while first > 0 && off(first - 1) < GRASP_REACH_M {
+                    first -= 1;
+                }
+                while last + 1 < count && off(last + 1) < GRASP_REACH_M {
+                    last += 1;
+                }
+                first.saturating_sub(clear)..(last + 1 + clear).min(count)
+            };
+            let held = match (&arm.grasp, &arm.rope_grasp) {
+                (Some(grasp), _) if grasp.on_needle => 0..clear.min(count),
+                (_, Some(grasp)) => {
+                    grasp.particles.start.saturating_sub(clear)..(grasp.particles.end + clear).min(count)
+                }
+                (None, None) if closing && !arm.closed_empty => between(),
+                _ => 0..0,
+            };
+            for (collider, exempt) in &mut rope.contacts.colliders {
+                if arm.jaw_colliders.contains(collider) {
+                    *exempt = held.clone();
+                }
+            }
+        }
+    }
+
+    /// Lets go of arm `a`'s grasp on the rope, if any.
+    fn release_rope(&mut self, a: usize) {
+        if let (Some(grasp), Some(rope)) = (self.arms[a].rope_grasp.take(), &mut self.rope) {
+            grasp.release(&mut rope.contacts);
+        }
+    }
+
+    /// The suture's centreline, needle end first, m: the chain's segment ends or the rope's
+    /// particles.
+    pub fn thread_centreline(&self) -> Vec<Vector3<f64>> {
+        match &self.rope {
+            Some(rope) => rope.centreline(),
+            None => self.thread.centreline(&self.physics),
+        }
+    }
+
+    /// Where `flap`'s stitch point sits on the suture: the arc length from the needle end, m
+    /// (`None` while the thread is not through it).
+    pub fn stitch_arc_at_m(&self, flap: crate::tissue::Flap) -> Option<f64> {
+        match &self.rope {
+            Some(rope) => rope.arc_at_m(flap),
+            None => self.stitch.arc_at_m(&self.physics, &self.thread, &self.tissue, flap),
+        }
+    }
+
+    /// The points of the centreline ([`Self::thread_centreline`]) in the tissue, from the exit's to
+    /// the entry's, with one either side for the chain.
+    pub fn thread_inside(&self) -> Option<std::ops::RangeInclusive<usize>> {
+        match &self.rope {
+            Some(rope) => rope.inside(),
+            None => self.stitch.segments_inside(),
         }
     }
 
@@ -523,7 +661,13 @@ impl SimWorld {
             }
         }
         self.update_grasps(&poses);
-        let hooks = self.contact_filter(&poses);
+        let hooks = if self.rope.is_some() { ContactFilter::default() } else { self.contact_filter(&poses) };
+        if self.rope.is_some() {
+            self.clear_jaws_of_held_rope(&poses);
+        }
+        if let Some(rope) = &mut self.rope {
+            rope.step(&mut self.physics, dt);
+        }
         let thread_segments = self.thread.segments.clone();
         let flaps = self.tissue.flaps;
         self.physics.step_with_hooks(&hooks, &|h| match thread_segments.iter().position(|s| *s == h) {
@@ -553,20 +697,23 @@ impl SimWorld {
             let closing = command_rad < actual_rad - 1e-3;
             // A grasp holds until the jaws are told to open past where they took it (at least to
             // the closed threshold).
-            let let_go_rad = match self.arms[a].grasp {
-                Some(_) => self.jaw_closed_rad.max(self.arms[a].grasped_at_jaw_rad + 1e-3),
-                None => self.jaw_closed_rad,
+            let let_go_rad = match self.arms[a].holds() {
+                true => self.jaw_closed_rad.max(self.arms[a].grasped_at_jaw_rad + 1e-3),
+                false => self.jaw_closed_rad,
             };
             if command_rad >= let_go_rad && !closing {
-                if let Some(grasp) = self.arms[a].grasp.take() {
-                    grasp.release(&mut self.physics);
+                if self.arms[a].holds() {
+                    if let Some(grasp) = self.arms[a].grasp.take() {
+                        grasp.release(&mut self.physics);
+                    }
+                    self.release_rope(a);
                     self.events.push(GraspEvent::Released { arm: name, time_s: self.time_s });
                 }
                 self.arms[a].slipped = false;
                 self.arms[a].closed_empty = false;
                 continue;
             }
-            if self.arms[a].grasp.is_some() || self.arms[a].slipped || self.arms[a].closed_empty {
+            if self.arms[a].holds() || self.arms[a].slipped || self.arms[a].closed_empty {
                 continue;
             }
             if !closed {
@@ -596,9 +743,16 @@ impl SimWorld {
             })
         });
         let Some(jaw_radius_m) = jaw_radius_m else { return false };
-        Grasp::squeezes(
-            &self.physics,
-            &self.thread,
+        let capsules = match &self.rope {
+            Some(rope) => rope
+                .centreline()
+                .windows(2)
+                .map(|w| crate::tunnelling::Capsule { a_m: w[0], b_m: w[1], radius_m: 0.0 })
+                .collect(),
+            None => self.thread.capsules(&self.physics, 0.0),
+        };
+        Grasp::squeeze(
+            &capsules,
             &poses[rig_arm.tip_link],
             JAW_CENTRE_OFFSET_M,
             self.arms[a].actual().tool.jaw_rad,
@@ -618,17 +772,45 @@ impl SimWorld {
         let Some(clevis) = clevis else { return false };
         let tip = poses[rig_arm.tip_link];
         let needle = self.needle.world_points_m(&self.physics, &self.thread);
-        match Grasp::try_close(&mut self.physics, &self.thread, &needle, clevis, &tip, JAW_CENTRE_OFFSET_M) {
+        let needle_body = self.needle.body;
+        let physics = &mut self.physics;
+        match Grasp::try_close(physics, &self.thread, &needle, needle_body, clevis, &tip, JAW_CENTRE_OFFSET_M)
+        {
             Some(grasp) => {
                 self.events.push(GraspEvent::Grasped { arm, segment: grasp.segment, time_s: self.time_s });
                 self.arms[a].grasp = Some(grasp);
                 true
             }
-            None => false,
+            None => {
+                let Some(rope) = &mut self.rope else { return false };
+                let clevis_pose = *self.physics.bodies[clevis].position();
+                let line = crate::grasp::jaw_line_m(&tip, JAW_CENTRE_OFFSET_M);
+                let (ropes, contacts) = (&rope.ropes, &mut rope.contacts);
+                match RopeGrasp::try_close(ropes, contacts, clevis, &clevis_pose, line, GRASP_REACH_M) {
+                    Some(grasp) => {
+                        let segment = grasp.particles.start + grasp.particles.len() / 2;
+                        self.events.push(GraspEvent::Grasped { arm, segment, time_s: self.time_s });
+                        self.arms[a].rope_grasp = Some(grasp);
+                        true
+                    }
+                    None => false,
+                }
+            }
         }
     }
 
     fn check_slip(&mut self) {
+        let dt = self.config.solver.dt_s;
+        for a in 0..self.arms.len() {
+            let (Some(grasp), Some(rope)) = (&self.arms[a].rope_grasp, &self.rope) else { continue };
+            let force = grasp.force_n(&rope.contacts, dt).norm();
+            if force > self.grip_force_n {
+                self.release_rope(a);
+                self.arms[a].slipped = true;
+                let arm = self.arms[a].name;
+                self.events.push(GraspEvent::Slipped { arm, force_n: force, time_s: self.time_s });
+            }
+        }
         for arm in &mut self.arms {
             let Some(grasp) = &arm.grasp else { continue };
             let force = grasp.force_n(&self.physics);
@@ -660,6 +842,12 @@ impl SimWorld {
             }
             if let Some(grasp) = &self.arms[a].grasp {
                 total += grasp.force_vector_n(&self.physics);
+            }
+            if let Some(rope) = &self.rope {
+                // What the rope did to the instrument's bodies: its contacts and its grasp.
+                for h in &self.arms[a].instrument_bodies {
+                    total += rope.contacts.impulse_on(*h) / dt;
+                }
             }
             let arm = &mut self.arms[a];
             arm.filtered_force_n =
@@ -702,6 +890,9 @@ pub const GRASP_REACH_M: f64 = 0.0016;
 /// Thread within this distance of the centre of jaws whose grasp slipped (beyond a segment's length)
 /// does not collide with them until they reopen, m.
 pub const HELD_CLEARANCE_M: f64 = 0.003;
+
+/// The rope held by jaws passes through them this far either side of the held run, m.
+pub const JAW_CLEAR_M: f64 = 0.008;
 
 /// The jaws hold what lies this far behind the tip, along the tip's z axis, m.
 pub const JAW_CENTRE_OFFSET_M: f64 = 0.005;

@@ -24,7 +24,7 @@ fn setup() -> (Ropes, RigidBodySet, RigidBodyHandle, RopeGrasp, RigidContacts) {
     let body = bodies.insert(RigidBodyBuilder::kinematic_position_based());
     let mut contacts = RigidContacts::default();
     let line = (Vector3::new(0.0, -0.002, 0.0), Vector3::new(0.0, 0.002, 0.0));
-    let grasp = RopeGrasp::try_close(&ropes, &mut contacts, body, &Pose::IDENTITY, line, 0.0016, &[])
+    let grasp = RopeGrasp::try_close(&ropes, &mut contacts, body, &Pose::IDENTITY, line, 0.0016)
         .expect("the jaws lie across the rope");
     (ropes, bodies, body, grasp, contacts)
 }
@@ -79,7 +79,7 @@ fn a_pull_on_the_rope_reads_on_the_grasp_and_a_released_rope_is_pulled_away() {
     assert!((force.x + 2.0).abs() < 0.1, "the jaws hold against it with {:.3} N", force.x);
     let middle = ropes.x.len() / 2;
     let before = ropes.x[middle];
-    grasp.release(&mut contacts, &[]);
+    grasp.release(&mut contacts);
     assert!(contacts.attachments.is_empty());
     for _ in 0..200 {
         step(&mut ropes, &mut bodies, body, &mut contacts, Vector::ZERO);

@@ -40,14 +40,14 @@ fn jaw_axis(world: &SimWorld, arm: ArmName) -> (Vector3<f64>, Vector3<f64>) {
 /// Turns of the thread (needle end to tail end) around `arm`'s jaws, as they stand.
 pub fn thread_turns_around_jaws(world: &SimWorld, arm: ArmName) -> f64 {
     let (centre, axis) = jaw_axis(world, arm);
-    turns_about(&world.thread.centreline(&world.physics), &centre, &axis)
+    turns_about(&world.thread_centreline(), &centre, &axis)
 }
 
 /// Turns of the long end (needle end to the exit hole) around `arm`'s jaws, as they stand; `None`
 /// while the stitch holds no thread.
 pub fn long_end_turns_around_jaws(world: &SimWorld, arm: ArmName) -> Option<f64> {
-    let inside = world.stitch.segments_inside()?;
-    let line = world.thread.centreline(&world.physics);
+    let inside = world.thread_inside()?;
+    let line = world.thread_centreline();
     let (centre, axis) = jaw_axis(world, arm);
     let long_end = &line[..=(*inside.start()).min(line.len() - 1)];
     Some(turns_about(long_end, &centre, &axis))
@@ -56,7 +56,7 @@ pub fn long_end_turns_around_jaws(world: &SimWorld, arm: ArmName) -> Option<f64>
 /// The long end's segments touching the links whose names start with `link_prefix`, sorted, each
 /// once; `None` while the stitch holds no thread.
 pub fn long_end_segments_on(world: &SimWorld, link_prefix: &str) -> Option<Vec<usize>> {
-    let inside = world.stitch.segments_inside()?;
+    let inside = world.thread_inside()?;
     let mut segments: Vec<usize> = world
         .thread_contacts()
         .into_iter()

@@ -118,12 +118,7 @@ pub struct Snapshot {
 
 fn snapshot(world: &SimWorld, options: &RecordOptions, time_s: f64) -> Option<Snapshot> {
     let png = render_png(world, &view(world, options)).ok()?;
-    Some(Snapshot {
-        time_s,
-        png,
-        centreline_m: world.thread.centreline(&world.physics),
-        contacts: world.thread_contacts(),
-    })
+    Some(Snapshot { time_s, png, centreline_m: world.thread_centreline(), contacts: world.thread_contacts() })
 }
 
 /// How many of a run's self-crossings its reports list ([`DemoRun::first_self_crossings`]).
@@ -200,7 +195,7 @@ impl DemoRun {
 
 fn grasp_state(world: &SimWorld, arm: ArmName) -> GraspState {
     let a = world.arm(arm);
-    if a.grasp.is_some() {
+    if a.holds() {
         GraspState::Holding
     } else if a.actual().tool.jaw_rad < world.jaw_closed_rad {
         GraspState::ClosedEmpty
@@ -280,7 +275,7 @@ pub fn record_demonstration(
             observe(&record, &world);
         }
         // The knot as the left last lets go of the tail.
-        let left_holds = world.arm(ArmName::Left).grasp.is_some();
+        let left_holds = world.arm(ArmName::Left).holds();
         if left_held && !left_holds {
             knot_at_release = Some(knot_now(&world));
         }
@@ -296,8 +291,7 @@ pub fn record_demonstration(
                 next_trace_s += every_s;
             }
             let force = |arm| record.arm(arm).map_or(0.0, |a| a.world_force_n.norm());
-            let stitch_arcs_m = [Flap::B, Flap::A]
-                .map(|flap| world.stitch.arc_at_m(&world.physics, &world.thread, &world.tissue, flap));
+            let stitch_arcs_m = [Flap::B, Flap::A].map(|flap| world.stitch_arc_at_m(flap));
             knot_trace.push(KnotTracePoint {
                 time_s: record.time_s,
                 knot: knot_now(&world),

@@ -214,11 +214,11 @@ impl SecondThrow {
 /// way it runs there (towards the left), world frame; `None` if the left holds no thread or the
 /// stitch holds none.
 pub fn tail_between_knot_and_left(world: &SimWorld, along: f64) -> Option<(Vector3<f64>, Vector3<f64>)> {
-    let grasp = world.arm(ArmName::Left).grasp.as_ref()?;
-    let inside = world.stitch.segments_inside()?;
-    let line = world.thread.centreline(&world.physics);
+    let held = world.arm(ArmName::Left).held_at()?;
+    let inside = world.thread_inside()?;
+    let line = world.thread_centreline();
     // The tail runs from the stitch towards the tail's end: the left holds it past the stitch.
-    let (from, to) = (*inside.end() + 1, grasp.segment);
+    let (from, to) = (*inside.end() + 1, held);
     if to <= from || to + 1 >= line.len() {
         return None;
     }
@@ -232,8 +232,8 @@ pub fn tail_between_knot_and_left(world: &SimWorld, along: f64) -> Option<(Vecto
 /// Where the tail lies `from_end_m` of thread from its free end, and which way it runs there (towards
 /// the end), world frame; `None` if the stitch holds no thread or the tail is shorter than that.
 pub fn tail_from_its_end(world: &SimWorld, from_end_m: f64) -> Option<(Vector3<f64>, Vector3<f64>)> {
-    let inside = world.stitch.segments_inside()?;
-    let line = world.thread.centreline(&world.physics);
+    let inside = world.thread_inside()?;
+    let line = world.thread_centreline();
     let mut left_m = from_end_m;
     for at in (*inside.end() + 1..line.len() - 1).rev() {
         let step = line[at + 1] - line[at];

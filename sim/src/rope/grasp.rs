@@ -1,8 +1,7 @@
 //! Jaws holding the rope, as [`crate::grasp`] holds the chain: closing jaws take the run of the
 //! rope that passes between them (its particles within reach of their line, hinge to tip) and hold
 //! each where it lies in the jaws' frame ([`super::rigid::Attachment`]); opening lets go; a pull
-//! beyond the grip slips. The jaws' own colliders let the held run through (the grasp holds it, not
-//! their faces).
+//! beyond the grip slips.
 
 use std::ops::Range;
 
@@ -26,7 +25,9 @@ pub struct RopeGrasp {
 impl RopeGrasp {
     /// Takes the run of particles within `reach_m` of the jaws' line `hinge_m`..`tip_m` (world)
     /// around the one nearest it, if any is within reach, attaching each to `body` (at `body_pose`)
-    /// where it lies; the jaws' colliders `jaw_colliders` let the run through.
+    /// where it lies. (The jaws' colliders must let the run through, and what lies along the jaws
+    /// either side of it: pushed out of them while its neighbours are held in, it would be torn
+    /// between the two. The scene sets that each step.)
     pub fn try_close(
         ropes: &Ropes,
         contacts: &mut RigidContacts,
@@ -34,7 +35,6 @@ impl RopeGrasp {
         body_pose: &Pose,
         (hinge_m, tip_m): (Vector3<f64>, Vector3<f64>),
         reach_m: f64,
-        jaw_colliders: &[ColliderHandle],
     ) -> Option<Self> {
         let off = |p: usize| segment_distance(&ropes.x[p], &ropes.x[p], &hinge_m, &tip_m);
         let nearest = (0..ropes.x.len()).min_by(|a, b| off(*a).total_cmp(&off(*b)))?;
@@ -60,12 +60,6 @@ impl RopeGrasp {
             });
             contacts.attachment_impulses.push(Vector3::zeros());
         }
-        let through = first.saturating_sub(2)..(last + 3).min(strand.end);
-        for (collider, exempt) in &mut contacts.colliders {
-            if jaw_colliders.contains(collider) {
-                *exempt = through.clone();
-            }
-        }
         Some(Self { body, particles: first..last + 1 })
     }
 
@@ -81,8 +75,8 @@ impl RopeGrasp {
             / dt_s
     }
 
-    /// Lets go: the attachments go, and the jaws' colliders touch the run again.
-    pub fn release(self, contacts: &mut RigidContacts, jaw_colliders: &[ColliderHandle]) {
+    /// Lets go: the attachments go.
+    pub fn release(self, contacts: &mut RigidContacts) {
         let keep: Vec<bool> = contacts
             .attachments
             .iter()
@@ -98,10 +92,5 @@ impl RopeGrasp {
             k += 1;
             keep.get(k - 1).copied().unwrap_or(false)
         });
-        for (collider, exempt) in &mut contacts.colliders {
-            if jaw_colliders.contains(collider) {
-                *exempt = 0..0;
-            }
-        }
     }
 }

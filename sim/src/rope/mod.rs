@@ -14,6 +14,7 @@ mod contact;
 pub mod grasp;
 pub mod rigid;
 mod stretch;
+pub mod suture;
 pub mod tissue_trial;
 pub mod trials;
 pub mod wound;

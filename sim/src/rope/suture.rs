@@ -1,0 +1,196 @@
+//! The rope as the scene's suture (`thread.model = "rope"`): one strand laid along the start
+//! layout, the needle a Rapier body of its own with the strand's first particle swaged to it, the
+//! thread sliding through the stitch's four points fixed in the flaps, and the rope touching the
+//! instruments, the flaps and the pad through [`super::rigid`]'s contacts. Each scene step the rope
+//! steps first (the instruments at their next poses), then what it did to the flaps and the needle
+//! is applied and Rapier steps.
+
+use nalgebra::Vector3;
+use rapier3d::math::{Pose, Rotation, Vector};
+use rapier3d::prelude::*;
+
+use super::grasp::RopeGrasp;
+use super::rigid::{Attachment, Guide, RigidContacts, nearest_on_rope};
+use super::{RopeParams, Ropes};
+use crate::needle::Needle;
+use crate::physics::Physics;
+use crate::scene::NeedleParams;
+use crate::thread::{THREAD_GROUP, ThreadParams};
+use crate::tissue::{FLAP_GROUP, Flap, PAD_GROUP, Tissue};
+
+/// The rope's particles lie this many radii apart.
+pub const SPACING_RADII: f64 = 1.5;
+
+/// The suture as a rope in the scene.
+pub struct SceneRope {
+    /// The rope (one strand, needle end first).
+    pub ropes: Ropes,
+    /// What it touches, the stitch it runs through, what holds it.
+    pub contacts: RigidContacts,
+    /// Its particles' spacing, m.
+    pub spacing_m: f64,
+    /// The needle's body.
+    pub needle_body: RigidBodyHandle,
+    /// The colliders the thread in the stitch passes through (the flaps and the pad).
+    tissue_colliders: Vec<ColliderHandle>,
+    /// Each arm's grasp on the rope, in [`knotlab_hw::rig::ArmName::ALL`] order.
+    pub grasps: [Option<RopeGrasp>; 4],
+}
+
+/// The rope's material from the scene's thread: its radius and friction on itself (kinetic 0.8 of
+/// the static), its bending stiffness the chain's per joint times a segment's length (2e-5 N m/rad
+/// over 6.25 mm: 1.25e-7 N m²), its damping the chain's, two contact passes a substep.
+pub fn rope_params(thread: &ThreadParams) -> RopeParams {
+    let friction = thread.friction_on_itself.unwrap_or(thread.friction);
+    RopeParams {
+        radius_m: thread.radius_m,
+        static_friction: friction,
+        kinetic_friction: 0.8 * friction,
+        bending_stiffness_n_m2: thread.bend_stiffness_n_m_per_rad * thread.segment_length_m(),
+        damping_per_s: thread.linear_damping_per_s,
+        contact_passes: 2,
+        ..RopeParams::default()
+    }
+}
+
+fn v(p: &Vector3<f64>) -> Vector {
+    Vector::new(p.x, p.y, p.z)
+}
+
+impl SceneRope {
+    /// Lays the rope along `layout` (needle end first; thread left over runs on straight beyond
+    /// its last point), swages it to a new needle body, threads it through the stitch's points of
+    /// `tissue` and lets it touch `touched` (the instruments' colliders) and the tissue. Returns the
+    /// rope and the needle's geometry in its body's frame.
+    pub fn build(
+        thread: &ThreadParams,
+        needle: &NeedleParams,
+        layout: &[Vector3<f64>],
+        physics: &mut Physics,
+        tissue: &Tissue,
+        touched: &[ColliderHandle],
+    ) -> (Self, Needle) {
+        let params = rope_params(thread);
+        let spacing_m = SPACING_RADII * thread.radius_m;
+        let count = ((thread.length_m / spacing_m).floor() as usize + 1).max(2);
+        let mut ropes = Ropes::new(params);
+        let strand = ropes.add_strand(&crate::layout::chord_points(layout, spacing_m, count));
+        // The suture's own weight (the rope's mass is inflated for its solver).
+        let weight_per_particle_n = thread.mass_kg / thread.length_m * spacing_m * 9.81;
+        for f in &mut ropes.force_n {
+            *f = -Vector3::z() * weight_per_particle_n;
+        }
+        let (geometry, needle_body) = Self::needle(needle, physics, &ropes, thread.linear_damping_per_s);
+        let last = strand.end - 1;
+        let points = [
+            (Flap::B, tissue.hole_m(physics, Flap::B)),
+            (Flap::B, tissue.deep_m(physics, Flap::B)),
+            (Flap::A, tissue.deep_m(physics, Flap::A)),
+            (Flap::A, tissue.hole_m(physics, Flap::A)),
+        ];
+        let guides = points
+            .iter()
+            .map(|(flap, point)| {
+                let nearest = strand
+                    .clone()
+                    .min_by(|a, b| (ropes.x[*a] - point).norm().total_cmp(&(ropes.x[*b] - point).norm()))
+                    .unwrap_or(strand.start);
+                let body = tissue.flap(*flap);
+                let local = physics.bodies[body].position().inverse_transform_point(v(point));
+                Guide {
+                    body,
+                    local_m: Vector3::new(local.x, local.y, local.z),
+                    at: nearest_on_rope(&ropes, point, nearest, last),
+                }
+            })
+            .collect();
+        let mut tissue_colliders: Vec<ColliderHandle> = tissue.flap_colliders.to_vec();
+        tissue_colliders.extend(physics.bodies[tissue.pad].colliders().iter().copied());
+        let colliders = touched.iter().chain(&tissue_colliders).map(|c| (*c, 0..0)).collect();
+        let contacts = RigidContacts {
+            colliders,
+            friction: thread.friction,
+            attachments: vec![Attachment {
+                particle: strand.start,
+                body: needle_body,
+                local_m: Vector3::zeros(),
+            }],
+            guides,
+            ..Default::default()
+        };
+        let rope =
+            Self { ropes, contacts, spacing_m, needle_body, tissue_colliders, grasps: Default::default() };
+        (rope, geometry)
+    }
+
+    /// The needle's body at the rope's first particle, its x along the rope's first segment (as the
+    /// chain's first segment lies), the arc's capsules its colliders.
+    fn needle(
+        params: &NeedleParams,
+        physics: &mut Physics,
+        ropes: &Ropes,
+        damping_per_s: f64,
+    ) -> (Needle, RigidBodyHandle) {
+        let geometry = Needle::geometry(params, 0.0);
+        let (a, b) = (ropes.x[0], ropes.x[1]);
+        let rotation = Rotation::from_rotation_arc(Vector::X, v(&(b - a).normalize()));
+        let body = physics.bodies.insert(
+            RigidBodyBuilder::dynamic()
+                .pose(Pose::from_parts(v(&a), rotation))
+                .linear_damping(damping_per_s)
+                .can_sleep(false)
+                .build(),
+        );
+        let piece_mass = params.mass_kg / (geometry.arc_points_m.len() - 1) as f64;
+        for pair in geometry.arc_points_m.windows(2) {
+            let capsule =
+                ColliderBuilder::new(SharedShape::capsule(v(&pair[0]), v(&pair[1]), params.wire_radius_m))
+                    .mass(piece_mass)
+                    .friction(0.3)
+                    .collision_groups(InteractionGroups::new(
+                        THREAD_GROUP,
+                        FLAP_GROUP | PAD_GROUP,
+                        InteractionTestMode::And,
+                    ))
+                    .build();
+            physics.colliders.insert_with_parent(capsule, body, &mut physics.bodies);
+        }
+        (Needle { body: Some(body), ..geometry }, body)
+    }
+
+    /// Steps the rope by `dt_s` among the bodies as they stand before Rapier's step, then applies
+    /// what it did to them.
+    pub fn step(&mut self, physics: &mut Physics, dt_s: f64) {
+        // The thread in the stitch, and where it enters and leaves the flaps' surfaces.
+        let margin = (4.0 * self.ropes.params.radius_m / self.spacing_m).ceil() as usize + 1;
+        let between = self.contacts.between_guides();
+        let inside = between.start.saturating_sub(margin)..(between.end + margin).min(self.ropes.x.len());
+        for (collider, exempt) in &mut self.contacts.colliders {
+            if self.tissue_colliders.contains(collider) {
+                *exempt = inside.clone();
+            }
+        }
+        self.contacts.step(&mut self.ropes, dt_s, &physics.bodies, &physics.colliders);
+        self.contacts.apply_impulses(&mut physics.bodies);
+    }
+
+    /// The rope's centreline, needle end first, m.
+    pub fn centreline(&self) -> Vec<Vector3<f64>> {
+        self.ropes.polyline(0)
+    }
+
+    /// Where `flap`'s stitch point sits on the rope: the arc length from the needle end, m.
+    pub fn arc_at_m(&self, flap: Flap) -> Option<f64> {
+        let guide = match flap {
+            Flap::B => self.contacts.guides.first(),
+            Flap::A => self.contacts.guides.last(),
+        }?;
+        Some(guide.at * self.spacing_m)
+    }
+
+    /// The particles in the tissue, from the exit's to the entry's.
+    pub fn inside(&self) -> Option<std::ops::RangeInclusive<usize>> {
+        let range = self.contacts.between_guides();
+        (!range.is_empty()).then(|| range.start..=range.end - 1)
+    }
+}

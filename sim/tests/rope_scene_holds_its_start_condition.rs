@@ -1,0 +1,46 @@
+//! The scene with the suture as the rope (`scenarios/rope.toml`, `thread.model = "rope"`) builds in
+//! the task's start condition and keeps it while the instruments stand still for a second: the right
+//! jaws hold the needle (a body of its own, the rope swaged to it), the assist's hold the tail, the
+//! thread stays through the stitch, the rope keeps its length, and the gauges read no more than the
+//! thread's pull.
+
+use knotlab_hw::rig::{ArmName, Rig};
+use knotlab_sim::scene::parse_scene;
+use knotlab_sim::tissue::Flap;
+use knotlab_sim::world::SimWorld;
+
+#[test]
+fn the_rope_scene_holds_the_needle_the_tail_and_the_stitch_standing_still() {
+    let scene = parse_scene(include_str!("../../scenarios/rope.toml"), "rope.toml").expect("the rope scene");
+    let length_m = scene.thread.length_m;
+    let mut w =
+        SimWorld::new(scene, Rig::shipped().expect("the shipped rig")).expect("the rope scene builds");
+    assert!(w.thread.segments.is_empty(), "no chain beside the rope");
+    assert!(w.arm(ArmName::Right).grasp.as_ref().is_some_and(|g| g.on_needle), "the right holds the needle");
+    assert!(w.arm(ArmName::Assist).rope_grasp.is_some(), "the assist holds the tail");
+    let arcs =
+        |w: &SimWorld| [w.stitch_arc_at_m(Flap::B), w.stitch_arc_at_m(Flap::A)].map(|a| a.expect("through"));
+    let before = arcs(&w);
+    let mut largest_force_n: f64 = 0.0;
+    for _ in 0..1000 {
+        w.step().expect("the scene stays healthy");
+        for arm in [ArmName::Left, ArmName::Right, ArmName::Assist] {
+            largest_force_n = largest_force_n.max(w.arm(arm).filtered_force_n.norm());
+        }
+    }
+    let after = arcs(&w);
+    println!(
+        "events {:?}; stitch at {before:?} -> {after:?} m; gap {:.2} mm; largest gauge {largest_force_n:.2} N",
+        w.events,
+        w.wound_gap_m() * 1e3
+    );
+    assert!(w.arm(ArmName::Right).holds() && w.arm(ArmName::Assist).holds(), "{:?}", w.events);
+    for (b, a) in before.iter().zip(&after) {
+        assert!((b - a).abs() < 0.002, "the thread slid through the stitch: {before:?} -> {after:?} m");
+    }
+    let line = w.thread_centreline();
+    let rope_m: f64 = line.windows(2).map(|p| (p[1] - p[0]).norm()).sum();
+    assert!((rope_m - length_m).abs() < 0.002 * length_m, "the rope is {rope_m:.4} m long");
+    // The thread weighs 0.1 N; the tissue's pull on it, standing, is less than a newton.
+    assert!(largest_force_n < 2.0, "a gauge read {largest_force_n:.2} N");
+}
