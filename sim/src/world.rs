@@ -75,6 +75,10 @@ pub struct SimArm {
     pub grasp: Option<Grasp>,
     /// The grasp on the rope, if the suture is the rope and the jaws hold it.
     pub rope_grasp: Option<RopeGrasp>,
+    /// The rope's particles the jaws last held (and what lay along them), still let through the
+    /// jaws until they have opened: pushed out of jaws that were closed on them, they would be
+    /// thrown out at speed.
+    pub rope_let_go: Option<std::ops::Range<usize>>,
     /// A grasp that slipped stays lost until the jaws reopen.
     pub slipped: bool,
     /// Jaws that closed on nothing stay empty until they reopen: what later touches closed jaws is
@@ -257,6 +261,7 @@ impl SimWorld {
                     command: ready,
                     grasp: None,
                     rope_grasp: None,
+                    rope_let_go: None,
                     slipped: false,
                     closed_empty: false,
                     grasped_at_jaw_rad: 0.0,
@@ -433,6 +438,29 @@ impl SimWorld {
         let Some(rope) = &mut self.rope else { return };
         let clear = (JAW_CLEAR_M / rope.spacing_m).ceil() as usize;
         let count = rope.ropes.x.len();
+        let radius_m = rope.ropes.params.radius_m;
+        for arm in &mut self.arms {
+            let Some(run) = arm.rope_let_go.clone() else { continue };
+            if arm.slipped || arm.actual().tool.jaw_rad < 0.5 * Self::JAW_OPEN_RAD {
+                continue;
+            }
+            // Opened: the run goes back to touching the jaws once it is clear of them.
+            let touches = run.clone().any(|p| {
+                let x = rope.ropes.x[p];
+                arm.jaw_colliders.iter().filter_map(|c| self.physics.colliders.get(*c)).any(|c| {
+                    let projection = c.shape().project_point(c.position(), Vector::new(x.x, x.y, x.z), false);
+                    let to = Vector3::new(
+                        projection.point.x - x.x,
+                        projection.point.y - x.y,
+                        projection.point.z - x.z,
+                    );
+                    projection.is_inside || to.norm() < radius_m
+                })
+            });
+            if !touches {
+                arm.rope_let_go = None;
+            }
+        }
         for arm in &self.arms {
             if arm.jaw_colliders.is_empty() {
                 continue;
@@ -467,6 +495,7 @@ impl SimWorld {
                 (_, Some(grasp)) => {
                     grasp.particles.start.saturating_sub(clear)..(grasp.particles.end + clear).min(count)
                 }
+                (None, None) if arm.rope_let_go.is_some() => arm.rope_let_go.clone().unwrap_or(0..0),
                 (None, None) if closing && !arm.closed_empty => between(),
                 _ => 0..0,
             };
@@ -481,6 +510,10 @@ impl SimWorld {
     /// Lets go of arm `a`'s grasp on the rope, if any.
     fn release_rope(&mut self, a: usize) {
         if let (Some(grasp), Some(rope)) = (self.arms[a].rope_grasp.take(), &mut self.rope) {
+            let clear = (JAW_CLEAR_M / rope.spacing_m).ceil() as usize;
+            let count = rope.ropes.x.len();
+            self.arms[a].rope_let_go =
+                Some(grasp.particles.start.saturating_sub(clear)..(grasp.particles.end + clear).min(count));
             grasp.release(&mut rope.contacts);
         }
     }

@@ -1,10 +1,10 @@
 //! The rope (`knotlab_sim::rope`) laid as `laid_knot`'s surgeon's knot over the stitch
 //! (`knotlab_sim::rope::wound`): snugged at 2 N by its free ends, it draws the wound closed, the
 //! thread sliding through the four stitch points, and stays a surgeon's knot through the holding
-//! test; the wound opens only by the thread the knot gives up to the loop. (How far the load then opens the wound is printed by `cargo bench -p knotlab-bench --bench
-//! rope_knot`, not asserted here: 1.1-7.8 mm over nine layouts at friction 0.5 and 0.7, but it
-//! depends on the rope's damping and is chaotic at the millimetre; see `docs/knot-tying-notes.md`,
-//! session 42.)
+//! test; the wound opens only by the thread the knot gives up to the loop. (How far the load opens
+//! the wound is printed by `cargo bench -p knotlab-bench --bench rope_knot`; that a stiff rope's
+//! knot holds it closed where a string's does not is
+//! `string_surgeons_knot_gave_the_wound_its_gap_back.rs`.)
 
 use knotlab_sim::knot::KnotType;
 use knotlab_sim::laid_knot::{LaidKnotKind, LaidKnotParams};
