@@ -507,6 +507,23 @@ impl SimWorld {
         }
     }
 
+    /// Jaws that let go of the needle let the rope's swaged end out as they do a held run
+    /// ([`SimArm::rope_let_go`]).
+    fn let_rope_out_of_jaws(&mut self, a: usize, on_needle: bool) {
+        if let (true, Some(rope)) = (on_needle, &self.rope) {
+            let clear = (JAW_CLEAR_M / rope.spacing_m).ceil() as usize;
+            self.arms[a].rope_let_go = Some(0..clear.min(rope.ropes.x.len()));
+        }
+    }
+
+    /// Gives the rope's needle to the jaws that hold it, or to the rope when none do.
+    fn hand_over_needle(&mut self) {
+        let held = self.arms.iter().any(|a| a.grasp.as_ref().is_some_and(|g| g.on_needle));
+        if let Some(rope) = &mut self.rope {
+            rope.set_needle_held(&mut self.physics, held);
+        }
+    }
+
     /// Lets go of arm `a`'s grasp on the rope, if any.
     fn release_rope(&mut self, a: usize) {
         if let (Some(grasp), Some(rope)) = (self.arms[a].rope_grasp.take(), &mut self.rope) {
@@ -694,6 +711,7 @@ impl SimWorld {
             }
         }
         self.update_grasps(&poses);
+        self.hand_over_needle();
         let hooks = if self.rope.is_some() { ContactFilter::default() } else { self.contact_filter(&poses) };
         if self.rope.is_some() {
             self.clear_jaws_of_held_rope(&poses);
@@ -713,6 +731,7 @@ impl SimWorld {
         let events = self.stitch.follow(&mut self.physics, &self.thread, &self.tissue, self.time_s);
         self.stitch_events.extend(events);
         self.check_slip();
+        self.hand_over_needle();
         self.read_forces();
         Ok(())
     }
@@ -737,6 +756,7 @@ impl SimWorld {
             if command_rad >= let_go_rad && !closing {
                 if self.arms[a].holds() {
                     if let Some(grasp) = self.arms[a].grasp.take() {
+                        self.let_rope_out_of_jaws(a, grasp.on_needle);
                         grasp.release(&mut self.physics);
                     }
                     self.release_rope(a);
@@ -844,17 +864,19 @@ impl SimWorld {
                 self.events.push(GraspEvent::Slipped { arm, force_n: force, time_s: self.time_s });
             }
         }
-        for arm in &mut self.arms {
-            let Some(grasp) = &arm.grasp else { continue };
+        for a in 0..self.arms.len() {
+            let Some(grasp) = &self.arms[a].grasp else { continue };
             let force = grasp.force_n(&self.physics);
             let grip =
                 if grasp.on_needle { self.config.sensor.needle_grip_force_n } else { self.grip_force_n };
             if force > grip {
-                if let Some(grasp) = arm.grasp.take() {
+                if let Some(grasp) = self.arms[a].grasp.take() {
+                    self.let_rope_out_of_jaws(a, grasp.on_needle);
                     grasp.release(&mut self.physics);
                 }
-                arm.slipped = true;
-                self.events.push(GraspEvent::Slipped { arm: arm.name, force_n: force, time_s: self.time_s });
+                self.arms[a].slipped = true;
+                let arm = self.arms[a].name;
+                self.events.push(GraspEvent::Slipped { arm, force_n: force, time_s: self.time_s });
             }
         }
     }

@@ -9,7 +9,6 @@ use nalgebra::Vector3;
 use rapier3d::math::{Pose, Rotation, Vector};
 use rapier3d::prelude::*;
 
-use super::grasp::RopeGrasp;
 use super::rigid::{Attachment, Guide, RigidContacts, nearest_on_rope};
 use super::{RopeParams, Ropes};
 use crate::needle::Needle;
@@ -33,8 +32,13 @@ pub struct SceneRope {
     pub needle_body: RigidBodyHandle,
     /// The colliders the thread in the stitch passes through (the flaps and the pad).
     tissue_colliders: Vec<ColliderHandle>,
-    /// Each arm's grasp on the rope, in [`knotlab_hw::rig::ArmName::ALL`] order.
-    pub grasps: [Option<RopeGrasp>; 4],
+    /// Whether the needle rides on the rope (no jaws hold it): then it is kinematic, posed on the
+    /// rope's first segment after each of the rope's steps, its weight on the first particle.
+    /// (Dynamic and pulled by the rope's reaction alone, the 1 g needle and the rope's tension fed
+    /// each other step after step: released, it flew off at 100 m/s.)
+    pub needle_free: bool,
+    /// The needle's weight, N.
+    needle_weight_n: f64,
 }
 
 /// The rope's material from the scene's thread: its radius and friction on itself (kinetic 0.8 of
@@ -118,8 +122,16 @@ impl SceneRope {
             guides,
             ..Default::default()
         };
-        let rope =
-            Self { ropes, contacts, spacing_m, needle_body, tissue_colliders, grasps: Default::default() };
+        let needle_weight_n = needle.mass_kg * 9.81;
+        let rope = Self {
+            ropes,
+            contacts,
+            spacing_m,
+            needle_body,
+            tissue_colliders,
+            needle_free: false,
+            needle_weight_n,
+        };
         (rope, geometry)
     }
 
@@ -172,6 +184,54 @@ impl SceneRope {
         }
         self.contacts.step(&mut self.ropes, dt_s, &physics.bodies, &physics.colliders);
         self.contacts.apply_impulses(&mut physics.bodies);
+        if self.needle_free {
+            self.carry_needle(physics);
+        }
+    }
+
+    /// Hands the needle to jaws (`held`: dynamic, the rope swaged to it) or to the rope (kinematic,
+    /// carried on the rope's end).
+    pub fn set_needle_held(&mut self, physics: &mut Physics, held: bool) {
+        if held != self.needle_free {
+            return;
+        }
+        let weight = Vector3::z() * self.needle_weight_n;
+        if held {
+            physics.bodies[self.needle_body].set_body_type(RigidBodyType::Dynamic, true);
+            self.contacts
+                .attachments
+                .insert(0, Attachment { particle: 0, body: self.needle_body, local_m: Vector3::zeros() });
+            self.contacts.attachment_impulses.insert(0, Vector3::zeros());
+            self.ropes.force_n[0] += weight;
+        } else {
+            physics.bodies[self.needle_body].set_body_type(RigidBodyType::KinematicPositionBased, true);
+            let keep: Vec<bool> =
+                self.contacts.attachments.iter().map(|a| a.body != self.needle_body).collect();
+            let mut k = 0;
+            self.contacts.attachments.retain(|_| {
+                k += 1;
+                keep[k - 1]
+            });
+            let mut k = 0;
+            self.contacts.attachment_impulses.retain(|_| {
+                k += 1;
+                keep.get(k - 1).copied().unwrap_or(false)
+            });
+            self.ropes.force_n[0] -= weight;
+        }
+        self.needle_free = !held;
+    }
+
+    /// A free needle's next pose: its swage on the rope's first particle, its x along the first
+    /// segment, turned from where it lies by the smallest turn.
+    fn carry_needle(&self, physics: &mut Physics) {
+        let body = &mut physics.bodies[self.needle_body];
+        let now = *body.position();
+        let (a, b) = (self.ropes.x[0], self.ropes.x[1]);
+        let Some(along) = (b - a).try_normalize(1e-12) else { return };
+        let x_now = now.rotation * Vector::X;
+        let rotation = (Rotation::from_rotation_arc(x_now, v(&along)) * now.rotation).normalize();
+        body.set_next_kinematic_position(Pose::from_parts(v(&a), rotation));
     }
 
     /// The rope's centreline, needle end first, m.
