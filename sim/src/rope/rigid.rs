@@ -138,8 +138,33 @@ impl RigidContacts {
     ) {
         self.clear_impulses();
         let substeps = ropes.params.substeps.max(1);
-        let mut among = Among { contacts: self, bodies, colliders, dt_s, substeps, substep: 0, more };
+        let candidates = self.candidates(ropes, dt_s, bodies, colliders);
+        let mut among =
+            Among { contacts: self, bodies, colliders, dt_s, substeps, substep: 0, more, candidates };
         ropes.step_in(dt_s, &mut among);
+    }
+
+    /// For each collider (as `colliders`), the particles that may touch it during the step: those
+    /// within the rope's radius and contact margin of the box it sweeps through the step.
+    fn candidates(
+        &self,
+        ropes: &Ropes,
+        dt_s: f64,
+        bodies: &RigidBodySet,
+        colliders: &ColliderSet,
+    ) -> Vec<Vec<usize>> {
+        let reach = ropes.params.radius_m + ropes.params.contact_margin_m;
+        self.colliders
+            .iter()
+            .map(|(handle, _)| {
+                let Some(collider) = colliders.get(*handle) else { return Vec::new() };
+                let Some(body) = collider.parent().and_then(|b| bodies.get(b)) else { return Vec::new() };
+                let local = collider.position_wrt_parent().copied().unwrap_or_default();
+                let (start, end) = (body.position() * local, pose_after(body, dt_s) * local);
+                let aabb = collider.shape().compute_swept_aabb(&start, &end).loosened(reach);
+                (0..ropes.x.len()).filter(|p| aabb.contains_local_point(v(&ropes.x[*p]))).collect()
+            })
+            .collect()
     }
 }
 
@@ -152,6 +177,8 @@ struct Among<'a> {
     substeps: usize,
     substep: usize,
     more: &'a mut dyn Surroundings,
+    /// The particles that may touch each collider this step ([`RigidContacts::candidates`]).
+    candidates: Vec<Vec<usize>>,
 }
 
 impl Among<'_> {
@@ -189,7 +216,7 @@ impl Surroundings for Among<'_> {
         let friction = self.contacts.friction;
         let mut touching = 0;
         let colliders = self.contacts.colliders.clone();
-        for (handle, exempt) in &colliders {
+        for (k, (handle, exempt)) in colliders.iter().enumerate() {
             let Some(collider) = self.colliders.get(*handle) else { continue };
             let Some(body) = collider.parent() else { continue };
             let local = collider.position_wrt_parent().copied().unwrap_or_default();
@@ -199,7 +226,9 @@ impl Surroundings for Among<'_> {
             };
             let (then, now) = (body_then * local, body_now * local);
             let aabb = collider.shape().compute_aabb(&now).loosened(r);
-            for (p, x_before) in x_prev.iter().enumerate() {
+            let candidates = std::mem::take(&mut self.candidates[k]);
+            for &p in &candidates {
+                let x_before = x_prev[p];
                 if ropes.w[p] == 0.0 || exempt.contains(&p) {
                     continue;
                 }
@@ -234,6 +263,7 @@ impl Surroundings for Among<'_> {
                 let impulse = -dx / (ropes.w[p] * h_s);
                 self.push(body, impulse, x, f1);
             }
+            self.candidates[k] = candidates;
         }
         self.contacts.contacts_last = touching;
         for (k, a) in self.contacts.attachments.clone().into_iter().enumerate() {
