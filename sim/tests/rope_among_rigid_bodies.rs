@@ -14,17 +14,23 @@ const G_M_S2: f64 = 9.81;
 /// The bar's half extents, m: 10 mm wide (x), 80 mm long (y), 4 mm thick, its top at z = 2 mm.
 const BAR_HALF_M: [f64; 3] = [0.005, 0.04, 0.002];
 
-/// A fixed bar turned by `tilt_rad` about y, and its collider.
+/// A fixed bar turned by `tilt_rad` about y, and its collider, of `friction` (as the rope's: their
+/// average is the same).
 fn bar(
     bodies: &mut RigidBodySet,
     colliders: &mut ColliderSet,
     tilt_rad: f64,
     half: [f64; 3],
+    friction: f64,
 ) -> ColliderHandle {
     let body = bodies.insert(
         RigidBodyBuilder::fixed().pose(Pose::from_parts(Vector::ZERO, Rotation::from_rotation_y(tilt_rad))),
     );
-    colliders.insert_with_parent(ColliderBuilder::cuboid(half[0], half[1], half[2]), body, bodies)
+    colliders.insert_with_parent(
+        ColliderBuilder::cuboid(half[0], half[1], half[2]).friction(friction),
+        body,
+        bodies,
+    )
 }
 
 /// A rope along `from`..`to`, particles 0.3 mm apart, each weighed down by gravity.
@@ -44,7 +50,7 @@ fn weight_n(ropes: &Ropes) -> f64 {
 #[test]
 fn the_rope_drapes_over_a_bar_without_entering_it_and_weighs_on_it() {
     let (mut bodies, mut colliders) = (RigidBodySet::new(), ColliderSet::new());
-    let collider = bar(&mut bodies, &mut colliders, 0.0, BAR_HALF_M);
+    let collider = bar(&mut bodies, &mut colliders, 0.0, BAR_HALF_M, 0.5);
     let params = RopeParams::default();
     let r = params.radius_m;
     let z0 = BAR_HALF_M[2] + r + 0.0005;
@@ -93,7 +99,7 @@ fn slide_on_slope(friction: f64) -> f64 {
     let (mut bodies, mut colliders) = (RigidBodySet::new(), ColliderSet::new());
     let half = [0.04, 0.01, 0.002];
     let tilt = 10f64.to_radians();
-    let collider = bar(&mut bodies, &mut colliders, tilt, half);
+    let collider = bar(&mut bodies, &mut colliders, tilt, half, friction);
     let params = RopeParams::default();
     // Along the slope's surface, 0.1 mm above it.
     let along = Vector3::new(tilt.cos(), 0.0, -tilt.sin());

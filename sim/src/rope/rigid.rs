@@ -45,7 +45,8 @@ pub struct RigidContacts {
     /// The colliders the rope collides with, each with particles it lets through (the thread in
     /// a flap's stitch, say; an empty range for none).
     pub colliders: Vec<(ColliderHandle, Range<usize>)>,
-    /// Friction of the rope on them.
+    /// The rope's friction coefficient, combined with each collider's as Rapier combines two
+    /// colliders' (their average, unless the collider asks otherwise), as the chain's segments are.
     pub friction: f64,
     /// The particles held by bodies.
     pub attachments: Vec<Attachment>,
@@ -225,6 +226,12 @@ impl Surroundings for Among<'_> {
                 continue;
             };
             let (then, now) = (body_then * local, body_now * local);
+            let friction = CoefficientCombineRule::combine(
+                friction,
+                collider.friction(),
+                CoefficientCombineRule::default(),
+                collider.friction_combine_rule(),
+            );
             let aabb = collider.shape().compute_aabb(&now).loosened(r);
             let candidates = std::mem::take(&mut self.candidates[k]);
             for &p in &candidates {
