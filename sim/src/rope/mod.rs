@@ -2,12 +2,13 @@
 //! inextensible segments (solved directly along each strand), a suture's bending stiffness, and
 //! capsule contacts between all non-neighbouring segments with Coulomb friction solved on
 //! positions (below the static bound a contact's slip is undone entirely, so a wrap holds without
-//! creeping). A prototype beside the Rapier capsule chain ([`crate::thread`]): the chain lets
-//! every laid knot slip, the more so the better its solver converges (session 42,
-//! `docs/knot-tying-notes.md`); this rope holds a square knot, and a surgeon's knot over the
-//! wound within 0.2 mm where a rope without bending stiffness lets it open 2-7 mm (session 43;
-//! `cargo bench -p knotlab-bench --bench rope_knot`). It does not yet touch instruments or tissue
-//! beyond [`wound`]'s flaps.
+//! creeping). The alternative to Rapier's capsule chain ([`crate::thread`]), chosen in the scene
+//! file (`thread.model = "rope"`, [`suture`]): the chain lets every laid knot slip, the more so the
+//! better its solver converges (session 42, `docs/knot-tying-notes.md`); this rope holds a square
+//! knot, and a surgeon's knot over the wound within 0.2 mm where a rope without bending stiffness
+//! lets it open 2-7 mm (session 43; `cargo bench -p knotlab-bench --bench rope_knot`). [`rigid`]
+//! couples it to Rapier's bodies, [`grasp`] to jaws; [`trials`], [`wound`] and [`tissue_trial`]
+//! are its knot trials.
 
 mod broad_phase;
 mod contact;
@@ -54,7 +55,7 @@ pub struct RopeParams {
     /// Passes over the segments' lengths in each substep: Gauss-Seidel sweeps, or with
     /// [`Self::direct_stretch`] exact projections of each strand (Newton steps).
     pub stretch_iterations: usize,
-    /// Whether each strand's lengths are solved directly ([`stretch::project_strand`]) instead of
+    /// Whether each strand's lengths are solved directly (`stretch::project_strand`) instead of
     /// by Gauss-Seidel.
     pub direct_stretch: bool,
     /// Passes over the contacts in each substep. More let friction act closer to its coefficient:

@@ -1,6 +1,6 @@
 //! The rope among Rapier's rigid bodies: each substep, every particle near a collider is pushed out
 //! of it to the rope's radius, with Coulomb friction against the collider's own motion over the
-//! substep (the rope's contact rule, [`super::contact`], against a solid), and particles attached to
+//! substep (the rope's contact rule, `super::contact`, against a solid), and particles attached to
 //! a body (a grasp, the needle's eye) follow it. The bodies move as Rapier will move them in the
 //! step (a kinematic body from its pose to its next one, a dynamic body on its velocities), and
 //! what the rope does to each body is summed as an impulse: applied to the dynamic ones before

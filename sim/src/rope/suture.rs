@@ -42,8 +42,9 @@ pub struct SceneRope {
 }
 
 /// The rope's material from the scene's thread: its radius and friction on itself (kinetic 0.8 of
-/// the static), its bending stiffness the chain's per joint times a segment's length (2e-5 N m/rad
-/// over 6.25 mm: 1.25e-7 N m²), its damping the chain's, two contact passes a substep.
+/// the static), its bending stiffness the chain's per joint times a segment's length (the nominal
+/// scene's 2e-5 N m/rad over 3.125 mm: 6.25e-8 N m²), its damping the chain's, two contact passes a
+/// substep.
 pub fn rope_params(thread: &ThreadParams) -> RopeParams {
     let friction = thread.friction_on_itself.unwrap_or(thread.friction);
     RopeParams {
