@@ -140,7 +140,7 @@ fn surgeons_knot_path(tissue: &Tissue, physics: &Physics, params: &LaidKnotParam
     surgeons_knot_through(&tissue.world_from_tissue, stitch, params)
 }
 
-/// [`surgeons_knot_path`] through given stitch points (world frame: the exit, the exit's deep
+/// `surgeons_knot_path` through given stitch points (world frame: the exit, the exit's deep
 /// point, the entry's deep point, the entry) in a tissue whose frame is `world_from_tissue`.
 pub fn surgeons_knot_through(
     world_from_tissue: &Isometry3<f64>,
