@@ -77,20 +77,6 @@ impl RopeGrasp {
 
     /// Lets go: the attachments go.
     pub fn release(self, contacts: &mut RigidContacts) {
-        let keep: Vec<bool> = contacts
-            .attachments
-            .iter()
-            .map(|a| !(a.body == self.body && self.particles.contains(&a.particle)))
-            .collect();
-        let mut k = 0;
-        contacts.attachments.retain(|_| {
-            k += 1;
-            keep[k - 1]
-        });
-        let mut k = 0;
-        contacts.attachment_impulses.retain(|_| {
-            k += 1;
-            keep.get(k - 1).copied().unwrap_or(false)
-        });
+        contacts.detach(|a| a.body == self.body && self.particles.contains(&a.particle));
     }
 }

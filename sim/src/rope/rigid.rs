@@ -97,6 +97,21 @@ impl RigidContacts {
         self.attachment_impulses = vec![Vector3::zeros(); self.attachments.len()];
     }
 
+    /// Removes the attachments `which` picks, with their impulses.
+    pub fn detach(&mut self, which: impl Fn(&Attachment) -> bool) {
+        let keep: Vec<bool> = self.attachments.iter().map(|a| !which(a)).collect();
+        let mut k = 0;
+        self.attachments.retain(|_| {
+            k += 1;
+            keep[k - 1]
+        });
+        let mut k = 0;
+        self.attachment_impulses.retain(|_| {
+            k += 1;
+            keep.get(k - 1).copied().unwrap_or(false)
+        });
+    }
+
     /// The particles between the first guide and the last (the thread in the stitch), if any.
     pub fn between_guides(&self) -> Range<usize> {
         match (self.guides.first(), self.guides.last()) {

@@ -206,18 +206,8 @@ impl SceneRope {
             self.ropes.force_n[0] += weight;
         } else {
             physics.bodies[self.needle_body].set_body_type(RigidBodyType::KinematicPositionBased, true);
-            let keep: Vec<bool> =
-                self.contacts.attachments.iter().map(|a| a.body != self.needle_body).collect();
-            let mut k = 0;
-            self.contacts.attachments.retain(|_| {
-                k += 1;
-                keep[k - 1]
-            });
-            let mut k = 0;
-            self.contacts.attachment_impulses.retain(|_| {
-                k += 1;
-                keep.get(k - 1).copied().unwrap_or(false)
-            });
+            let needle = self.needle_body;
+            self.contacts.detach(|a| a.body == needle);
             self.ropes.force_n[0] -= weight;
         }
         self.needle_free = !held;
