@@ -5,34 +5,17 @@
 //! the holding test, as it does between the flaps `rope::wound` integrates by hand: the coupling
 //! the rope will need as the scene's thread moves the flaps as those do.
 
+mod common;
+
 use knotlab_sim::knot::KnotType;
-use knotlab_sim::laid_knot::{LaidKnotKind, LaidKnotParams};
-use knotlab_sim::rope::RopeParams;
 use knotlab_sim::rope::tissue_trial::laid_surgeons_knot_in_tissue;
 use knotlab_sim::rope::wound::{WoundTrialParams, laid_surgeons_knot_in_wound};
-use knotlab_sim::scene::parse_scene;
 
 #[test]
 fn a_tight_surgeons_knot_holds_the_rapier_flaps_as_it_holds_the_hand_integrated_ones() {
-    let scene = parse_scene(
-        include_str!("../../scenarios/short-suture-friction-0.5.toml"),
-        "short-suture-friction-0.5.toml",
-    )
-    .expect("shipped scene");
-    let rope = RopeParams {
-        static_friction: 0.5,
-        kinetic_friction: 0.4,
-        damping_per_s: 10.0,
-        ..RopeParams::default()
-    };
-    let knot = LaidKnotParams {
-        kind: LaidKnotKind::SurgeonsKnot,
-        spread_m: 0.0016,
-        lift_m: 0.00022,
-        height_m: 0.001,
-        snug_n: 2.0,
-        ..LaidKnotParams::default()
-    };
+    let scene = common::short_suture_friction_0_5();
+    let rope = common::rope_at_friction_0_5();
+    let knot = common::tight_surgeons_knot();
     let trial = WoundTrialParams::default();
     let rapier = laid_surgeons_knot_in_tissue(rope, &scene, &knot, &trial);
     let own = laid_surgeons_knot_in_wound(rope, &scene.tissue, &scene.stitch, &knot, &trial);

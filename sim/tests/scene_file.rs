@@ -28,6 +28,15 @@ fn an_unknown_key_is_named_with_its_path_and_line() {
 }
 
 #[test]
+fn an_unknown_thread_model_is_named_with_its_path_line_and_the_models() {
+    let text = DEFAULT.replace("segments = 80", "segments = 80\nmodel = \"ropes\"");
+    let e = err(&text);
+    let line = text.lines().position(|l| l.starts_with("model = ")).unwrap() + 1;
+    assert!(e.starts_with(&format!("bad.toml:{line}: thread.model:")), "{e}");
+    assert!(e.contains("`chain` or `rope`"), "{e}");
+}
+
+#[test]
 fn a_wrong_type_is_named_with_its_path() {
     let e = err(&DEFAULT.replace("segments = 80", "segments = \"eighty\""));
     assert!(e.contains("thread.segments:"), "{e}");

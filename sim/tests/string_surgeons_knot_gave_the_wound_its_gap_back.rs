@@ -6,35 +6,18 @@
 //! tension at all, and the same knot holds the wound within 0.2 mm (0.01-0.17 mm over the six
 //! layouts). `cargo bench -p knotlab-bench --bench rope_knot` prints the table.
 
+mod common;
+
 use knotlab_sim::knot::KnotType;
-use knotlab_sim::laid_knot::{LaidKnotKind, LaidKnotParams};
 use knotlab_sim::rope::RopeParams;
 use knotlab_sim::rope::wound::{WoundOutcome, WoundTrialParams, laid_surgeons_knot_in_wound};
-use knotlab_sim::scene::parse_scene;
 
 /// A tight surgeon's knot (helices of 0.22 mm radius, 1.6 mm either side of the wound, 1 mm up)
 /// laid, snugged at 2 N and held at 0.3 N a flap in `rope` at friction 0.5 and a light damping.
 fn trial(bending_stiffness_n_m2: f64) -> WoundOutcome {
-    let scene = parse_scene(
-        include_str!("../../scenarios/short-suture-friction-0.5.toml"),
-        "short-suture-friction-0.5.toml",
-    )
-    .expect("shipped scene");
-    let rope = RopeParams {
-        static_friction: 0.5,
-        kinetic_friction: 0.4,
-        damping_per_s: 10.0,
-        bending_stiffness_n_m2,
-        ..RopeParams::default()
-    };
-    let knot = LaidKnotParams {
-        kind: LaidKnotKind::SurgeonsKnot,
-        spread_m: 0.0016,
-        lift_m: 0.00022,
-        height_m: 0.001,
-        snug_n: 2.0,
-        ..LaidKnotParams::default()
-    };
+    let scene = common::short_suture_friction_0_5();
+    let rope = RopeParams { bending_stiffness_n_m2, ..common::rope_at_friction_0_5() };
+    let knot = common::tight_surgeons_knot();
     laid_surgeons_knot_in_wound(rope, &scene.tissue, &scene.stitch, &knot, &WoundTrialParams::default())
 }
 

@@ -39,6 +39,29 @@ pub struct Guide {
     pub at: f64,
 }
 
+impl Guide {
+    /// A guide at `point_m` (world), fixed in `body` (at `body_pose`), on the rope of `strand` where
+    /// it passes nearest the point.
+    pub fn threaded(
+        ropes: &Ropes,
+        strand: Range<usize>,
+        body: RigidBodyHandle,
+        body_pose: &Pose,
+        point_m: &Vector3<f64>,
+    ) -> Self {
+        let last = strand.end.saturating_sub(1);
+        let nearest = strand
+            .clone()
+            .min_by(|a, b| (ropes.x[*a] - point_m).norm().total_cmp(&(ropes.x[*b] - point_m).norm()))
+            .unwrap_or(strand.start);
+        Self {
+            body,
+            local_m: na(body_pose.inverse_transform_point(v(point_m))),
+            at: nearest_on_rope(ropes, point_m, nearest, last),
+        }
+    }
+}
+
 /// What the rope touches among the rigid bodies, and what it did to them.
 #[derive(Clone, Debug, Default)]
 pub struct RigidContacts {

@@ -9,7 +9,7 @@ use nalgebra::Vector3;
 use rapier3d::math::{Pose, Rotation, Vector};
 use rapier3d::prelude::*;
 
-use super::rigid::{Attachment, Guide, RigidContacts, nearest_on_rope};
+use super::rigid::{Attachment, Guide, RigidContacts};
 use super::{RopeParams, Ropes};
 use crate::needle::Needle;
 use crate::physics::Physics;
@@ -86,7 +86,6 @@ impl SceneRope {
             *f = -Vector3::z() * weight_per_particle_n;
         }
         let (geometry, needle_body) = Self::needle(needle, physics, &ropes, thread.linear_damping_per_s);
-        let last = strand.end - 1;
         let points = [
             (Flap::B, tissue.hole_m(physics, Flap::B)),
             (Flap::B, tissue.deep_m(physics, Flap::B)),
@@ -96,17 +95,8 @@ impl SceneRope {
         let guides = points
             .iter()
             .map(|(flap, point)| {
-                let nearest = strand
-                    .clone()
-                    .min_by(|a, b| (ropes.x[*a] - point).norm().total_cmp(&(ropes.x[*b] - point).norm()))
-                    .unwrap_or(strand.start);
                 let body = tissue.flap(*flap);
-                let local = physics.bodies[body].position().inverse_transform_point(v(point));
-                Guide {
-                    body,
-                    local_m: Vector3::new(local.x, local.y, local.z),
-                    at: nearest_on_rope(&ropes, point, nearest, last),
-                }
+                Guide::threaded(&ropes, strand.clone(), body, physics.bodies[body].position(), point)
             })
             .collect();
         let mut tissue_colliders: Vec<ColliderHandle> = tissue.flap_colliders.to_vec();

@@ -9,10 +9,9 @@
 use nalgebra::Vector3;
 use rapier3d::prelude::*;
 
-use super::rigid::{Guide, RigidContacts, nearest_on_rope};
-use super::wound::{SPACING_M, WoundOutcome, WoundTrialParams, length_m, observe, thread_between_m};
+use super::rigid::{Guide, RigidContacts};
+use super::wound::{Moment, SPACING_M, WoundOutcome, WoundTrialParams, length_m, observe, thread_between_m};
 use super::{RopeParams, Ropes};
-use crate::knot::legs::free_ends;
 use crate::laid_knot::{LaidKnotParams, surgeons_knot_through};
 use crate::physics::Physics;
 use crate::scene::SceneConfig;
@@ -39,22 +38,11 @@ pub fn laid_surgeons_knot_in_tissue(
     let path = surgeons_knot_through(&tissue.world_from_tissue, points.map(|(_, p)| p), knot);
     let mut ropes = Ropes::new(rope);
     let strand = ropes.add_strand_along(&path, SPACING_M);
-    let last = strand.end - 1;
     let guides: Vec<Guide> = points
         .iter()
         .map(|(flap, point)| {
-            let nearest = strand
-                .clone()
-                .min_by(|a, b| (ropes.x[*a] - point).norm().total_cmp(&(ropes.x[*b] - point).norm()))
-                .unwrap_or(strand.start);
             let body = tissue.flap(*flap);
-            let pose = physics.bodies[body].position();
-            let local = pose.inverse_transform_point(Vector::new(point.x, point.y, point.z));
-            Guide {
-                body,
-                local_m: Vector3::new(local.x, local.y, local.z),
-                at: nearest_on_rope(&ropes, point, nearest, last),
-            }
+            Guide::threaded(&ropes, strand.clone(), body, physics.bodies[body].position(), point)
         })
         .collect();
     let mut touched: Vec<ColliderHandle> = tissue.flap_colliders.to_vec();
@@ -74,9 +62,6 @@ pub fn laid_surgeons_knot_in_tissue(
         |contacts: &RigidContacts| [contacts.guides[0].at * SPACING_M, contacts.guides[3].at * SPACING_M];
     let inside_m = |ropes: &Ropes, contacts: &RigidContacts| {
         thread_between_m(ropes, contacts.guides[0].at, contacts.guides[3].at)
-    };
-    let free_ends_now = |ropes: &Ropes, through: [f64; 2]| {
-        free_ends(&ropes.polyline(0), through[0], through[1], 2.5 * ropes.params.radius_m)
     };
     let frame = tissue.world_from_tissue;
     let knot_laid = observe(&ropes, through_m(&contacts), &frame).0;
@@ -98,18 +83,19 @@ pub fn laid_surgeons_knot_in_tissue(
     for k in 0..snug_steps {
         ropes.force_n.copy_from_slice(&weight);
         let f = knot.snug_n * (2.0 * k as f64 / snug_steps as f64).min(1.0);
-        ropes.force_n[last] += across * f;
+        ropes.force_n[strand.end - 1] += across * f;
         ropes.force_n[strand.start] -= across * f;
         if !step(&mut ropes, &mut contacts, &mut physics) {
             break;
         }
     }
-    let gap_snug_m = tissue.gap_m(&physics);
-    let inside_snug_m = inside_m(&ropes, &contacts);
-    let through_snug_m = through_m(&contacts);
-    let length_snug_m = length_m(&ropes);
-    let (knot_snug, height_snug_m, loop_snug_m) = observe(&ropes, through_snug_m, &frame);
-    let free_ends_snug_m = free_ends_now(&ropes, through_snug_m);
+    let snug = Moment::take(
+        &ropes,
+        through_m(&contacts),
+        &frame,
+        inside_m(&ropes, &contacts),
+        tissue.gap_m(&physics),
+    );
     ropes.force_n.copy_from_slice(&weight);
     for flap in Flap::ALONG_THREAD {
         let outward = frame.rotation * Vector3::new(0.0, flap.side(), 0.0) * trial.holding_load_n;
@@ -121,23 +107,12 @@ pub fn laid_surgeons_knot_in_tissue(
             break;
         }
     }
-    let through_after_m = through_m(&contacts);
-    let (knot_after, height_after_m, loop_after_m) = observe(&ropes, through_after_m, &frame);
-    WoundOutcome {
-        knot_laid,
-        knot_snug,
-        knot_after,
-        gap_snug_m,
-        gap_after_m: tissue.gap_m(&physics),
-        inside_snug_m,
-        inside_after_m: inside_m(&ropes, &contacts),
-        through_snug_m,
-        through_after_m,
-        free_ends_snug_m,
-        free_ends_after_m: free_ends_now(&ropes, through_after_m),
-        height_m: [height_snug_m, height_after_m],
-        loop_outside_m: [loop_snug_m, loop_after_m],
-        length_m: [length_laid_m, length_snug_m, length_m(&ropes)],
-        particles: ropes.x.len(),
-    }
+    let after = Moment::take(
+        &ropes,
+        through_m(&contacts),
+        &frame,
+        inside_m(&ropes, &contacts),
+        tissue.gap_m(&physics),
+    );
+    WoundOutcome::from_moments(knot_laid, length_laid_m, snug, after, ropes.x.len())
 }

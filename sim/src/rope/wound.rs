@@ -246,6 +246,72 @@ pub(super) fn observe(
     (Some(c.knot), Some(height_m), span.loop_outside_m(through_m[0], through_m[1]))
 }
 
+/// The rope as it lies at one moment of a wound trial (snugged, or after the holding test).
+pub(super) struct Moment {
+    knot: Option<KnotType>,
+    height_m: Option<f64>,
+    loop_outside_m: Option<f64>,
+    gap_m: f64,
+    inside_m: f64,
+    through_m: [f64; 2],
+    free_ends_m: Option<(f64, f64)>,
+    length_m: f64,
+}
+
+impl Moment {
+    /// Takes it: the rope passing the exit and the entry at `through_m`, `inside_m` of it in the
+    /// tissue, the wound `gap_m` open, the tissue frame where `world_from_tissue` puts it.
+    pub(super) fn take(
+        ropes: &Ropes,
+        through_m: [f64; 2],
+        world_from_tissue: &Isometry3<f64>,
+        inside_m: f64,
+        gap_m: f64,
+    ) -> Self {
+        let (knot, height_m, loop_outside_m) = observe(ropes, through_m, world_from_tissue);
+        let touch_m = 2.5 * ropes.params.radius_m;
+        Self {
+            knot,
+            height_m,
+            loop_outside_m,
+            gap_m,
+            inside_m,
+            through_m,
+            free_ends_m: free_ends(&ropes.polyline(0), through_m[0], through_m[1], touch_m),
+            length_m: length_m(ropes),
+        }
+    }
+}
+
+impl WoundOutcome {
+    /// The outcome from the knot and the rope's length as laid and the two moments.
+    pub(super) fn from_moments(
+        knot_laid: Option<KnotType>,
+        length_laid_m: f64,
+        snug: Moment,
+        after: Moment,
+        particles: usize,
+    ) -> Self {
+        Self {
+            knot_laid,
+            knot_snug: snug.knot,
+            knot_after: after.knot,
+            gap_snug_m: snug.gap_m,
+            gap_after_m: after.gap_m,
+            inside_snug_m: snug.inside_m,
+            inside_after_m: after.inside_m,
+            through_snug_m: snug.through_m,
+            through_after_m: after.through_m,
+            free_ends_snug_m: snug.free_ends_m,
+            free_ends_after_m: after.free_ends_m,
+            height_m: [snug.height_m, after.height_m],
+            loop_outside_m: [snug.loop_outside_m, after.loop_outside_m],
+            length_m: [length_laid_m, snug.length_m, after.length_m],
+            particles,
+        }
+    }
+}
+
 /// The rope's length along its polyline, m.
 pub(super) fn length_m(ropes: &Ropes) -> f64 {
     ropes.polyline(0).windows(2).map(|w| (w[1] - w[0]).norm()).sum()
@@ -308,37 +374,15 @@ pub fn laid_surgeons_knot_in_wound(
         flaps.load_n = [-knot.closing_n, -knot.closing_n];
         ropes.step_in(DT_S, &mut flaps);
     }
-    let gap_snug_m = flaps.gap_m();
-    let inside_snug_m = flaps.inside_m(&ropes);
-    let touch_m = 2.5 * ropes.params.radius_m;
-    let free_ends_now =
-        |ropes: &Ropes, through: [f64; 2]| free_ends(&ropes.polyline(0), through[0], through[1], touch_m);
-    let through_snug_m = flaps.through_m(SPACING_M);
-    let length_snug_m = length_m(&ropes);
-    let (knot_snug, height_snug_m, loop_snug_m) = observe(&ropes, through_snug_m, &Isometry3::identity());
-    let free_ends_snug_m = free_ends_now(&ropes, through_snug_m);
+    let identity = Isometry3::identity();
+    let snug =
+        Moment::take(&ropes, flaps.through_m(SPACING_M), &identity, flaps.inside_m(&ropes), flaps.gap_m());
     ropes.force_n.copy_from_slice(&weight);
     flaps.load_n = [trial.holding_load_n; 2];
     for _ in 0..(trial.settle_s / DT_S).round() as usize {
         ropes.step_in(DT_S, &mut flaps);
     }
-    let through_after_m = flaps.through_m(SPACING_M);
-    let (knot_after, height_after_m, loop_after_m) = observe(&ropes, through_after_m, &Isometry3::identity());
-    WoundOutcome {
-        knot_laid,
-        knot_snug,
-        knot_after,
-        gap_snug_m,
-        gap_after_m: flaps.gap_m(),
-        inside_snug_m,
-        inside_after_m: flaps.inside_m(&ropes),
-        through_snug_m,
-        through_after_m,
-        free_ends_snug_m,
-        free_ends_after_m: free_ends_now(&ropes, through_after_m),
-        height_m: [height_snug_m, height_after_m],
-        loop_outside_m: [loop_snug_m, loop_after_m],
-        length_m: [length_laid_m, length_snug_m, length_m(&ropes)],
-        particles: ropes.x.len(),
-    }
+    let after =
+        Moment::take(&ropes, flaps.through_m(SPACING_M), &identity, flaps.inside_m(&ropes), flaps.gap_m());
+    WoundOutcome::from_moments(knot_laid, length_laid_m, snug, after, ropes.x.len())
 }
