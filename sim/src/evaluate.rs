@@ -190,14 +190,7 @@ pub fn hold_watched(
     observe: &mut dyn FnMut(&SimWorld, f64),
 ) -> Option<f64> {
     world.release_all();
-    let load = |world: &mut SimWorld, scale: f64| {
-        for flap in Flap::ALONG_THREAD {
-            let outward = world.tissue.world_from_tissue.rotation * Vector3::new(0.0, flap.side(), 0.0);
-            let f = outward * (params.holding_load_n * scale);
-            let body = &mut world.physics.bodies[world.tissue.flaps[flap.index()]];
-            body.add_force(rapier3d::prelude::Vector::new(f.x, f.y, f.z), true);
-        }
-    };
+    let load = |world: &mut SimWorld, scale: f64| world.pull_flaps_open(params.holding_load_n * scale);
     load(world, 1.0);
     let steps = (params.settle_s / world.config.solver.dt_s).round() as usize;
     let mut stable = true;

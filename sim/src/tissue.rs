@@ -24,7 +24,7 @@ const PAD_HALF_M: f64 = 0.12;
 /// Thickness of the pad, m.
 const PAD_THICKNESS_M: f64 = 0.02;
 /// How far a flap may be pulled outward from its rest position, m.
-const FLAP_OUTWARD_TRAVEL_M: f64 = 0.02;
+pub const FLAP_OUTWARD_TRAVEL_M: f64 = 0.02;
 
 /// The two flaps, in the order the thread meets them from the needle end.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

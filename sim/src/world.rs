@@ -344,6 +344,7 @@ impl SimWorld {
                     &layout,
                     &mut physics,
                     &tissue,
+                    &config.tissue,
                     &robot_colliders,
                 );
                 (Thread::empty(rope.spacing_m), needle, Some(rope))
@@ -424,7 +425,7 @@ impl SimWorld {
             hole.segment = None;
         }
         if let Some(rope) = &mut self.rope {
-            rope.contacts.guides.clear();
+            rope.unstitch(&mut self.physics);
         }
     }
 
@@ -513,6 +514,23 @@ impl SimWorld {
         if let (true, Some(rope)) = (on_needle, &self.rope) {
             let clear = (JAW_CLEAR_M / rope.spacing_m).ceil() as usize;
             self.arms[a].rope_let_go = Some(0..clear.min(rope.ropes.x.len()));
+        }
+    }
+
+    /// Pulls each flap away from the wound with `outward_n` more (negative: less), N: a force on
+    /// the chain's dynamic flaps, a load on the rope's slides.
+    pub fn pull_flaps_open(&mut self, outward_n: f64) {
+        if let Some(stitch) = self.rope.as_mut().and_then(|rope| rope.stitch.as_mut()) {
+            for load in &mut stitch.load_n {
+                *load += outward_n;
+            }
+            return;
+        }
+        for flap in crate::tissue::Flap::ALONG_THREAD {
+            let outward = self.tissue.world_from_tissue.rotation * Vector3::new(0.0, flap.side(), 0.0);
+            let f = outward * outward_n;
+            let body = &mut self.physics.bodies[self.tissue.flaps[flap.index()]];
+            body.add_force(Vector::new(f.x, f.y, f.z), true);
         }
     }
 

@@ -14,6 +14,7 @@ mod broad_phase;
 mod contact;
 pub mod grasp;
 pub mod rigid;
+pub mod slides;
 mod stretch;
 pub mod suture;
 pub mod tissue_trial;
@@ -34,6 +35,15 @@ pub trait Surroundings {
 /// Empty space.
 impl Surroundings for () {
     fn after(&mut self, _: &mut Ropes, _: &[Vector3<f64>], _: f64) {}
+}
+
+/// Surroundings that may be gone (a stitch the thread was taken out of).
+impl<S: Surroundings> Surroundings for Option<S> {
+    fn after(&mut self, ropes: &mut Ropes, x_prev: &[Vector3<f64>], h_s: f64) {
+        if let Some(s) = self {
+            s.after(ropes, x_prev, h_s);
+        }
+    }
 }
 
 /// The rope's material and how it is integrated.

@@ -1,19 +1,22 @@
 //! The rope as the scene's suture (`thread.model = "rope"`): one strand laid along the start
 //! layout, the needle a Rapier body of its own with the strand's first particle swaged to it, the
-//! thread sliding through the stitch's four points fixed in the flaps, and the rope touching the
-//! instruments, the flaps and the pad through [`super::rigid`]'s contacts. Each scene step the rope
-//! steps first (the instruments at their next poses), then what it did to the flaps and the needle
-//! is applied and Rapier steps.
+//! thread sliding through the stitch's four points in the flaps, the flaps' slides solved with the
+//! rope ([`super::slides`]), and the rope touching the instruments, the flaps and the pad through
+//! [`super::rigid`]'s contacts. Each scene step the rope steps first (the instruments at their next
+//! poses), then what it did to the needle is applied, the flaps are posed where their slides went,
+//! and Rapier steps. (The instruments and the needle do not push the flaps: only the thread and the
+//! loads of the holding test move them.)
 
 use nalgebra::Vector3;
 use rapier3d::math::{Pose, Rotation, Vector};
 use rapier3d::prelude::*;
 
-use super::rigid::{Attachment, Guide, RigidContacts};
+use super::rigid::{Attachment, RigidContacts};
+use super::slides::SlideStitch;
 use super::{RopeParams, Ropes};
 use crate::needle::Needle;
 use crate::physics::Physics;
-use crate::scene::NeedleParams;
+use crate::scene::{NeedleParams, TissueParams};
 use crate::thread::{THREAD_GROUP, ThreadParams};
 use crate::tissue::{FLAP_GROUP, Flap, PAD_GROUP, Tissue};
 
@@ -32,6 +35,9 @@ pub struct SceneRope {
     pub needle_body: RigidBodyHandle,
     /// The colliders the thread in the stitch passes through (the flaps and the pad).
     tissue_colliders: Vec<ColliderHandle>,
+    /// The stitch, with the flaps' slides solved in the rope's substeps (`None` once the thread is
+    /// taken out of it: [`Self::unstitch`]).
+    pub stitch: Option<SlideStitch>,
     /// Whether the needle rides on the rope (no jaws hold it): then it is kinematic, posed on the
     /// rope's first segment after each of the rope's steps, its weight on the first particle.
     /// (Dynamic and pulled by the rope's reaction alone, the 1 g needle and the rope's tension fed
@@ -73,6 +79,7 @@ impl SceneRope {
         layout: &[Vector3<f64>],
         physics: &mut Physics,
         tissue: &Tissue,
+        tissue_params: &TissueParams,
         touched: &[ColliderHandle],
     ) -> (Self, Needle) {
         let params = rope_params(thread);
@@ -86,19 +93,7 @@ impl SceneRope {
             *f = -Vector3::z() * weight_per_particle_n;
         }
         let (geometry, needle_body) = Self::needle(needle, physics, &ropes, thread.linear_damping_per_s);
-        let points = [
-            (Flap::B, tissue.hole_m(physics, Flap::B)),
-            (Flap::B, tissue.deep_m(physics, Flap::B)),
-            (Flap::A, tissue.deep_m(physics, Flap::A)),
-            (Flap::A, tissue.hole_m(physics, Flap::A)),
-        ];
-        let guides = points
-            .iter()
-            .map(|(flap, point)| {
-                let body = tissue.flap(*flap);
-                Guide::threaded(&ropes, strand.clone(), body, physics.bodies[body].position(), point)
-            })
-            .collect();
+        let stitch = SlideStitch::new(tissue, tissue_params, physics, &ropes);
         let mut tissue_colliders: Vec<ColliderHandle> = tissue.flap_colliders.to_vec();
         tissue_colliders.extend(physics.bodies[tissue.pad].colliders().iter().copied());
         let colliders = touched.iter().chain(&tissue_colliders).map(|c| (*c, 0..0)).collect();
@@ -110,7 +105,6 @@ impl SceneRope {
                 body: needle_body,
                 local_m: Vector3::zeros(),
             }],
-            guides,
             ..Default::default()
         };
         let needle_weight_n = needle.mass_kg * 9.81;
@@ -120,6 +114,7 @@ impl SceneRope {
             spacing_m,
             needle_body,
             tissue_colliders,
+            stitch: Some(stitch),
             needle_free: false,
             needle_weight_n,
         };
@@ -166,15 +161,18 @@ impl SceneRope {
     pub fn step(&mut self, physics: &mut Physics, dt_s: f64) {
         // The thread in the stitch, and where it enters and leaves the flaps' surfaces.
         let margin = (4.0 * self.ropes.params.radius_m / self.spacing_m).ceil() as usize + 1;
-        let between = self.contacts.between_guides();
+        let between = self.stitch.as_ref().map_or(0..0, SlideStitch::between);
         let inside = between.start.saturating_sub(margin)..(between.end + margin).min(self.ropes.x.len());
         for (collider, exempt) in &mut self.contacts.colliders {
             if self.tissue_colliders.contains(collider) {
                 *exempt = inside.clone();
             }
         }
-        self.contacts.step(&mut self.ropes, dt_s, &physics.bodies, &physics.colliders);
+        self.contacts.step_with(&mut self.ropes, dt_s, &physics.bodies, &physics.colliders, &mut self.stitch);
         self.contacts.apply_impulses(&mut physics.bodies);
+        if let Some(stitch) = &self.stitch {
+            stitch.pose_flaps(physics);
+        }
         if self.needle_free {
             self.carry_needle(physics);
         }
@@ -215,6 +213,14 @@ impl SceneRope {
         body.set_next_kinematic_position(Pose::from_parts(v(&a), rotation));
     }
 
+    /// Takes the thread out of the stitch: it no longer slides through the flaps, which are Rapier's
+    /// own dynamic bodies again.
+    pub fn unstitch(&mut self, physics: &mut Physics) {
+        if let Some(stitch) = self.stitch.take() {
+            stitch.release(physics);
+        }
+    }
+
     /// The rope's centreline, needle end first, m.
     pub fn centreline(&self) -> Vec<Vector3<f64>> {
         self.ropes.polyline(0)
@@ -222,16 +228,12 @@ impl SceneRope {
 
     /// Where `flap`'s stitch point sits on the rope: the arc length from the needle end, m.
     pub fn arc_at_m(&self, flap: Flap) -> Option<f64> {
-        let guide = match flap {
-            Flap::B => self.contacts.guides.first(),
-            Flap::A => self.contacts.guides.last(),
-        }?;
-        Some(guide.at * self.spacing_m)
+        Some(self.stitch.as_ref()?.at(flap) * self.spacing_m)
     }
 
     /// The particles in the tissue, from the exit's to the entry's.
     pub fn inside(&self) -> Option<std::ops::RangeInclusive<usize>> {
-        let range = self.contacts.between_guides();
+        let range = self.stitch.as_ref()?.between();
         (!range.is_empty()).then(|| range.start..=range.end - 1)
     }
 }

@@ -1,0 +1,146 @@
+//! The stitch of the scene's rope, solved with the flaps in it: each flap's slide across the wound
+//! (its spring back to the rest gap, its damping, its stops and any load pulling it open) is
+//! integrated inside the rope's substeps, as [`super::wound`] integrates its flaps, and the thread
+//! slides through the four stitch points the flaps carry. Rapier only shows the flaps where the
+//! slides put them (kinematic bodies). Exchanging impulses with dynamic flaps once a step was not
+//! stable: the rope is inextensible and held at both ends, as heavy as the world to a flap, and at
+//! an instrument's cinch the lag fed back until a flap flew off (session 43).
+
+use nalgebra::Vector3;
+use rapier3d::math::{Pose, Vector};
+use rapier3d::prelude::*;
+
+use super::rigid::{nearest_on_rope, thread_through};
+use super::{Ropes, Surroundings};
+use crate::scene::TissueParams;
+use crate::tissue::{FLAP_OUTWARD_TRAVEL_M, Flap, Tissue};
+
+/// One flap on its slide.
+#[derive(Clone, Debug)]
+struct Slide {
+    body: RigidBodyHandle,
+    /// The flap's pose at rest.
+    rest: Pose,
+    /// Outward (away from the wound), world frame.
+    outward: Vector3<f64>,
+    /// Outward displacement from rest, m, and its rate, m/s.
+    u_m: f64,
+    v_m_s: f64,
+}
+
+/// The two flaps and the four stitch points the rope passes.
+#[derive(Clone, Debug)]
+pub struct SlideStitch {
+    tissue: TissueParams,
+    /// [B, A].
+    slides: [Slide; 2],
+    /// Each flap pulled open with this force besides its spring, N ([B, A]).
+    pub load_n: [f64; 2],
+    /// The stitch points [exit, exit deep, entry deep, entry]: which flap, where in its rest frame
+    /// (world frame at rest), and where the rope passes (a particle's index plus a fraction).
+    points: [(usize, Vector3<f64>, f64); 4],
+}
+
+impl SlideStitch {
+    /// The stitch of `tissue` as `physics` holds it now, the rope `ropes` laid through its points;
+    /// the flaps become kinematic.
+    pub fn new(
+        tissue: &Tissue,
+        params: &TissueParams,
+        physics: &mut crate::physics::Physics,
+        ropes: &Ropes,
+    ) -> Self {
+        let slide = |flap: Flap, physics: &mut crate::physics::Physics| {
+            let body = tissue.flap(flap);
+            physics.bodies[body].set_body_type(RigidBodyType::KinematicPositionBased, true);
+            let rest = *physics.bodies[body].position();
+            let outward = tissue.world_from_tissue.rotation * Vector3::new(0.0, flap.side(), 0.0);
+            Slide { body, rest, outward, u_m: 0.0, v_m_s: 0.0 }
+        };
+        let slides = [slide(Flap::B, physics), slide(Flap::A, physics)];
+        let last = ropes.x.len() - 1;
+        let point = |flap: Flap, at: Vector3<f64>| {
+            let nearest = (0..ropes.x.len())
+                .min_by(|a, b| (ropes.x[*a] - at).norm().total_cmp(&(ropes.x[*b] - at).norm()))
+                .unwrap_or(0);
+            (flap.index(), at, nearest_on_rope(ropes, &at, nearest, last))
+        };
+        let points = [
+            point(Flap::B, tissue.hole_m(physics, Flap::B)),
+            point(Flap::B, tissue.deep_m(physics, Flap::B)),
+            point(Flap::A, tissue.deep_m(physics, Flap::A)),
+            point(Flap::A, tissue.hole_m(physics, Flap::A)),
+        ];
+        Self { tissue: *params, slides, load_n: [0.0; 2], points }
+    }
+
+    /// Where the rope passes the exit (B) or the entry (A): a particle's index plus a fraction.
+    pub fn at(&self, flap: Flap) -> f64 {
+        match flap {
+            Flap::B => self.points[0].2,
+            Flap::A => self.points[3].2,
+        }
+    }
+
+    /// The particles between the exit and the entry.
+    pub fn between(&self) -> std::ops::Range<usize> {
+        (self.points[0].2.floor() as usize)..(self.points[3].2.ceil() as usize + 1)
+    }
+
+    /// Shows the flaps where their slides are, for Rapier's coming step.
+    pub fn pose_flaps(&self, physics: &mut crate::physics::Physics) {
+        for slide in &self.slides {
+            let shift = slide.outward * slide.u_m;
+            let mut pose = slide.rest;
+            pose.translation += Vector::new(shift.x, shift.y, shift.z);
+            physics.bodies[slide.body].set_next_kinematic_position(pose);
+        }
+    }
+
+    /// Takes the thread out: the flaps become Rapier's dynamic bodies again, at rest where they are.
+    pub fn release(self, physics: &mut crate::physics::Physics) {
+        for slide in &self.slides {
+            let body = &mut physics.bodies[slide.body];
+            body.set_body_type(RigidBodyType::Dynamic, true);
+            body.set_linvel(Vector::ZERO, true);
+        }
+    }
+
+    /// The wound's gap, m.
+    pub fn gap_m(&self) -> f64 {
+        self.tissue.rest_gap_m + self.slides[0].u_m + self.slides[1].u_m
+    }
+}
+
+impl Surroundings for SlideStitch {
+    fn after(&mut self, ropes: &mut Ropes, _x_prev: &[Vector3<f64>], h_s: f64) {
+        let mut outward_n = [0.0; 2];
+        for k in 0..4 {
+            let (flap, rest_at, at) = self.points[k];
+            let slide = &self.slides[flap];
+            let target = rest_at + slide.outward * slide.u_m;
+            let Some((moves, now_at)) = thread_through(ropes, at, &target) else { continue };
+            for (p, dx) in moves {
+                if ropes.w[p] > 0.0 {
+                    outward_n[flap] -= slide.outward.dot(&dx) / (ropes.w[p] * h_s * h_s);
+                }
+            }
+            self.points[k].2 = now_at;
+        }
+        let closed = -0.5 * self.tissue.rest_gap_m;
+        for (flap, slide) in self.slides.iter_mut().enumerate() {
+            let spring_n = -self.tissue.opening_stiffness_n_per_m * slide.u_m
+                - self.tissue.opening_damping_n_s_per_m * slide.v_m_s;
+            let a = (outward_n[flap] + spring_n + self.load_n[flap]) / self.tissue.flap_mass_kg;
+            slide.v_m_s += a * h_s;
+            slide.u_m += slide.v_m_s * h_s;
+            if slide.u_m < closed {
+                slide.u_m = closed;
+                slide.v_m_s = slide.v_m_s.max(0.0);
+            } else if slide.u_m > FLAP_OUTWARD_TRAVEL_M {
+                slide.u_m = FLAP_OUTWARD_TRAVEL_M;
+                slide.v_m_s = slide.v_m_s.min(0.0);
+            }
+        }
+    }
+}
