@@ -30,6 +30,10 @@ pub enum LaidKnotKind {
     /// other twice, then once the other way; laid as two double helices across the wound,
     /// the first (two turns) at the knot's height, the second (one turn, the other hand) above it.
     SurgeonsKnot,
+    /// The surgeon's knot's first throw alone (a double throw, the knot the scripted expert leaves
+    /// before a second throw): the tail and the long end wound round each other twice across the
+    /// wound, at the knot's height, each end going on straight beyond.
+    SurgeonsThrow,
 }
 
 /// How the knot is laid and snugged.
@@ -107,6 +111,7 @@ pub fn laid_knot_layout(
     let path = match params.kind {
         LaidKnotKind::Square => square_knot_path(tissue, physics, params),
         LaidKnotKind::SurgeonsKnot => surgeons_knot_path(tissue, physics, params),
+        LaidKnotKind::SurgeonsThrow => surgeons_throw_path(tissue, physics, params),
     };
     with_spare_thread(path, config.thread.length_m)
 }
@@ -167,6 +172,46 @@ pub fn surgeons_knot_through(
     let mut tail = helix(y, -y, low, 2.0, 0.0);
     tail.extend(helix(-y - past, y, high, 1.0, 0.0));
     tail.push(Vector3::new(0.0, y + params.free_end_m, high));
+    let mut path: Vec<Vector3<f64>> = long_end.into_iter().map(world).collect();
+    path.extend(stitch);
+    path.extend(tail.into_iter().map(world));
+    path
+}
+
+/// The surgeon's knot's first throw alone (world frame, the long end's free end first): the double
+/// helix of [`surgeons_knot_path`], each end straight on beyond it at the knot's height.
+fn surgeons_throw_path(tissue: &Tissue, physics: &Physics, params: &LaidKnotParams) -> Vec<Vector3<f64>> {
+    let stitch = [
+        tissue.hole_m(physics, Flap::B),
+        tissue.deep_m(physics, Flap::B),
+        tissue.deep_m(physics, Flap::A),
+        tissue.hole_m(physics, Flap::A),
+    ];
+    surgeons_throw_through(&tissue.world_from_tissue, stitch, params)
+}
+
+/// `surgeons_throw_path` through given stitch points, as [`surgeons_knot_through`].
+pub fn surgeons_throw_through(
+    world_from_tissue: &Isometry3<f64>,
+    stitch: [Vector3<f64>; 4],
+    params: &LaidKnotParams,
+) -> Vec<Vector3<f64>> {
+    let (y, r, low) = (params.spread_m, params.lift_m, params.height_m);
+    let beyond = 0.5 * y + params.free_end_m;
+    let helix = |phase: f64| -> Vec<Vector3<f64>> {
+        (0..=HELIX_POINTS)
+            .map(|k| {
+                let t = k as f64 / HELIX_POINTS as f64;
+                let a = phase + std::f64::consts::TAU * 2.0 * t;
+                Vector3::new(r * a.cos(), y - 2.0 * y * t, low + r * a.sin())
+            })
+            .collect()
+    };
+    let world = |p: Vector3<f64>| (world_from_tissue * Point3::from(p)).coords;
+    let mut long_end = vec![Vector3::new(0.0, y + beyond, low)];
+    long_end.extend(helix(std::f64::consts::PI));
+    let mut tail = helix(0.0);
+    tail.push(Vector3::new(0.0, -y - beyond, low));
     let mut path: Vec<Vector3<f64>> = long_end.into_iter().map(world).collect();
     path.extend(stitch);
     path.extend(tail.into_iter().map(world));

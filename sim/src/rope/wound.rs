@@ -14,7 +14,7 @@ use super::rigid::{nearest_on_rope, thread_through};
 use super::{RopeParams, Ropes, Surroundings};
 use crate::knot::legs::free_ends;
 use crate::knot::{KnotPlacement, KnotType, TissueSurface, classify};
-use crate::laid_knot::{LaidKnotParams, surgeons_knot_through};
+use crate::laid_knot::{LaidKnotKind, LaidKnotParams, surgeons_knot_through, surgeons_throw_through};
 use crate::scene::{StitchParams, TissueParams};
 
 /// Particle spacing of the trial's rope, m.
@@ -317,7 +317,7 @@ pub(super) fn length_m(ropes: &Ropes) -> f64 {
     ropes.polyline(0).windows(2).map(|w| (w[1] - w[0]).norm()).sum()
 }
 
-/// Lays `knot` (a surgeon's knot; its `kind` is not read) over the stitch of `tissue` and
+/// Lays `knot` (a surgeon's knot, or its first throw alone: [`LaidKnotKind::SurgeonsThrow`]) over the stitch of `tissue` and
 /// `stitch`, snugs it by its free ends as [`crate::laid_knot::lay_and_snug`] does, lets go and
 /// runs the holding test.
 pub fn laid_surgeons_knot_in_wound(
@@ -334,7 +334,10 @@ pub fn laid_surgeons_knot_in_wound(
         Vector3::new(stitch.along_m, inset, -stitch.depth_m),
         Vector3::new(stitch.along_m, stitch.bite_m, 0.0),
     ];
-    let path = surgeons_knot_through(&Isometry3::identity(), stitch_points, knot);
+    let path = match knot.kind {
+        LaidKnotKind::SurgeonsThrow => surgeons_throw_through(&Isometry3::identity(), stitch_points, knot),
+        _ => surgeons_knot_through(&Isometry3::identity(), stitch_points, knot),
+    };
     let mut ropes = Ropes::new(rope);
     let strand = ropes.add_strand_along(&path, SPACING_M);
     let last = strand.end - 1;
