@@ -18,7 +18,8 @@ use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
 use super::motion::{Follow, Path, TrackBuilder, Tremor};
-use super::second_throw::{SecondThrow, tail_between_knot_and_left, tail_from_its_end};
+use super::second_throw::SecondThrow;
+use super::tail::{tail_ahead_of_jaws, tail_between_knot_and_left, tail_from_its_end};
 
 /// Where the expert puts things, in the stitch frame (m), and how hard it pulls.
 #[derive(Clone, Debug, PartialEq, serde::Deserialize, serde::Serialize)]
@@ -187,6 +188,7 @@ impl Default for TieGeometry {
                 approach_m: 0.012,
                 stop_short_m: 0.0,
                 as_one_body: false,
+                looks: false,
             }),
             assist_presents: false,
             right_jaws_across_winding: 0.0,
@@ -260,6 +262,13 @@ pub struct LeftFetch {
     /// left only points its jaws, the solver choosing their roll, and the right follows their shift).
     #[serde(default)]
     pub as_one_body: bool,
+    /// The left looks where the tail lies before it closes on it, as a surgeon does: the first
+    /// throw's plan stops with the left's jaws over the tail, and the rest is planned from the world
+    /// then ([`plan_tail_take`]), the jaws closing on the tail's point nearest their line, not on
+    /// the straight line from the entry point to the assist's jaws (a slack tail sags off it: 3-8 mm
+    /// on the rope, session 44). The first throw only.
+    #[serde(default)]
+    pub looks: bool,
 }
 
 /// How a human performance varies from run to run.
@@ -347,6 +356,10 @@ enum Stage {
     /// free end (then draws it to `to_m`, stitch frame, if set), and the left lets go and rises clear
     /// ([`plan_tail_hand_over`]).
     HandOver { from_end_m: f64, to_m: Option<[f64; 3]> },
+    /// The rest of the first throw, planned from the world once the left's jaws are over the tail
+    /// (a fetch that [`LeftFetch::looks`]): the left closes on the tail where it lies, and the throw
+    /// goes on as [`Stage::First`] with `keep_hold`.
+    Take { keep_hold: bool },
     /// The second, after the first: the left holds the tail and the right the long end, pulled apart
     /// (or, after a [`Stage::HandOver`], the assist holds the tail).
     Second { start: SecondStart },
@@ -379,6 +392,13 @@ enum TailHold {
 /// of the knot unless `geometry` asks for a second throw ([`plan_second_throw`]).
 pub fn plan_instrument_tie(world: &SimWorld, geometry: &TieGeometry, variation: &Variation) -> Skill {
     plan_throw(world, geometry, variation, Stage::First { keep_hold: geometry.second_throw.is_some() })
+}
+
+/// The rest of the first throw once the left's jaws are over the tail (`None` unless the left
+/// fetches the tail and [`LeftFetch::looks`]): it closes on the tail where it lies now.
+pub fn plan_tail_take(world: &SimWorld, geometry: &TieGeometry, variation: &Variation) -> Option<Skill> {
+    geometry.fetch().filter(|f| f.looks)?;
+    Some(plan_throw(world, geometry, variation, Stage::Take { keep_hold: geometry.second_throw.is_some() }))
 }
 
 /// The second throw, planned from the world the first throw left (`None` if `geometry` asks for
@@ -435,9 +455,12 @@ fn plan_throw(world: &SimWorld, geometry: &TieGeometry, variation: &Variation, s
     let assist_holds = matches!(stage, Stage::Second { start: SecondStart::LeftRetakes { .. } });
     let left_holds = matches!(stage, Stage::HandOver { .. }) || (second && !assist_holds);
     let jaw = |holds: bool| if holds { 0.0 } else { open };
-    let mut left = builder(ArmName::Left, jaw(left_holds), &variation.tremor[0]);
+    let left_jaw =
+        if matches!(stage, Stage::Take { .. }) { geometry.take_tail_jaw_rad } else { jaw(left_holds) };
+    let mut left = builder(ArmName::Left, left_jaw, &variation.tremor[0]);
     let mut right = builder(ArmName::Right, 0.0, &variation.tremor[1]);
-    let assist_jaw = if matches!(stage, Stage::First { .. }) { 0.0 } else { jaw(assist_holds) };
+    let first = matches!(stage, Stage::First { .. } | Stage::Take { .. });
+    let assist_jaw = if first { 0.0 } else { jaw(assist_holds) };
     let mut assist = builder(ArmName::Assist, assist_jaw, &variation.tremor[2]);
     let pause = &variation.pauses_s;
     let up = world_from_stitch.rotation * Vector3::z();
@@ -446,6 +469,20 @@ fn plan_throw(world: &SimWorld, geometry: &TieGeometry, variation: &Variation, s
         for track in [&mut left, &mut right, &mut assist] {
             track.hold_as_it_stands();
         }
+    }
+    if let Stage::Take { keep_hold } = stage {
+        // Onto the tail's point nearest the line of the jaws, ahead of them, as it lies now.
+        let jaws_to = left.jaw_direction();
+        let from = left.position_m();
+        let stop_short_m = geometry.fetch().map_or(0.0, |f| f.stop_short_m);
+        if let Some(tail_m) = tail_ahead_of_jaws(world, &from, &jaws_to) {
+            left.go(Path::To(tail_m - jaws_to * stop_short_m), d(0.8));
+        }
+        left.wait_until(left.time_s() + pause[4]);
+        left.jaw(0.0, d(0.3));
+        left.wait_until(left.time_s() + d(0.3) + 0.1);
+        let stage = Stage::First { keep_hold };
+        return finish_throw(world, geometry, variation, stage, [left, right, assist]);
     }
     if let Stage::HandOver { from_end_m, to_m } = stage {
         // The assist takes the tail near its end, the left lets go and rises clear, and the assist
@@ -659,6 +696,18 @@ fn plan_throw(world: &SimWorld, geometry: &TieGeometry, variation: &Variation, s
             right.go(Path::To(right.position_m() + shift), left.time_s() - relocate_from);
         }
         left.wait_until(left.time_s() + pause[4]);
+        if fetch.looks && matches!(stage, Stage::First { .. }) {
+            // The left looks where the tail lies before it closes on it: the rest from there
+            // ([`plan_tail_take`]).
+            let end_s = left.time_s().max(right.time_s()).max(assist.time_s());
+            for track in [&mut left, &mut right, &mut assist] {
+                track.wait_until(end_s);
+            }
+            return Skill {
+                name: "instrument tie: surgeon's knot, the coils to the tail".into(),
+                tracks: vec![left.build(), right.build(), assist.build()],
+            };
+        }
         // The jaws' centre stops short of the tail, so the tail lies towards their tips, ahead of
         // the coils: every coil then passes over it when the jaws draw back.
         left.go(Path::To(on_tail - jaws_to * fetch.stop_short_m), d(0.8));
@@ -722,6 +771,24 @@ fn plan_throw(world: &SimWorld, geometry: &TieGeometry, variation: &Variation, s
         left.jaw(0.0, d(0.3));
         left.wait_until(left.time_s() + d(0.3) + 0.1);
     }
+    finish_throw(world, geometry, variation, stage, [left, right, assist])
+}
+
+/// The rest of a throw once the left has closed on the tail: the assist lets go and retreats, the
+/// left draws the tail out of its coils, both run the knot down and pull to the set force.
+fn finish_throw(
+    world: &SimWorld,
+    geometry: &TieGeometry,
+    variation: &Variation,
+    stage: Stage,
+    [mut left, mut right, mut assist]: [TrackBuilder; 3],
+) -> Skill {
+    let world_from_stitch: Isometry3<f64> = world.tissue.world_from_tissue;
+    let at = |p: [f64; 3]| (world_from_stitch * Point3::from(Vector3::from(p))).coords;
+    let open = SimWorld::JAW_OPEN_RAD;
+    let d = |s: f64| s * variation.slowness;
+    let pause = &variation.pauses_s;
+    let second = matches!(stage, Stage::Second { .. });
     let grasped_s = left.time_s();
 
     // The assist lets go and retreats (A1).

@@ -6,10 +6,6 @@
 //! ([`super::plan`]) with its own winding and pulls; or, with `left_retakes_from_end_m`, it is wound
 //! on the assist's jaws instead, the left presenting the tail.
 
-use knotlab_hw::rig::ArmName;
-use knotlab_sim::world::SimWorld;
-use nalgebra::Vector3;
-
 use super::plan::{LeftFetch, TieGeometry};
 
 /// Where the second throw differs from the first (stitch frame, m; the rest as the first throw).
@@ -208,43 +204,6 @@ impl SecondThrow {
             ..first.clone()
         }
     }
-}
-
-/// Where the tail lies `along` of the way (by segments) from the knot to the left's jaws, and which
-/// way it runs there (towards the left), world frame; `None` if the left holds no thread or the
-/// stitch holds none.
-pub fn tail_between_knot_and_left(world: &SimWorld, along: f64) -> Option<(Vector3<f64>, Vector3<f64>)> {
-    let held = world.arm(ArmName::Left).held_at()?;
-    let inside = world.thread_inside()?;
-    let line = world.thread_centreline();
-    // The tail runs from the stitch towards the tail's end: the left holds it past the stitch.
-    let (from, to) = (*inside.end() + 1, held);
-    if to <= from || to + 1 >= line.len() {
-        return None;
-    }
-    let at = from + ((to - from) as f64 * along).round() as usize;
-    let at = at.clamp(from, to - 1);
-    let point = 0.5 * (line[at] + line[at + 1]);
-    let direction = (line[at + 1] - line[at]).try_normalize(1e-12)?;
-    Some((point, direction))
-}
-
-/// Where the tail lies `from_end_m` of thread from its free end, and which way it runs there (towards
-/// the end), world frame; `None` if the stitch holds no thread or the tail is shorter than that.
-pub fn tail_from_its_end(world: &SimWorld, from_end_m: f64) -> Option<(Vector3<f64>, Vector3<f64>)> {
-    let inside = world.thread_inside()?;
-    let line = world.thread_centreline();
-    let mut left_m = from_end_m;
-    for at in (*inside.end() + 1..line.len() - 1).rev() {
-        let step = line[at + 1] - line[at];
-        let length_m = step.norm();
-        if left_m <= length_m {
-            let direction = step.try_normalize(1e-12)?;
-            return Some((line[at + 1] - direction * left_m, direction));
-        }
-        left_m -= length_m;
-    }
-    None
 }
 
 #[cfg(test)]

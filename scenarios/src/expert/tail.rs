@@ -1,0 +1,80 @@
+//! Where the tail lies, as the expert sees it before it reaches for it (a surgeon looks at the
+//! endoscope's picture): points on the thread between the stitch and its free end, world frame.
+
+use knotlab_hw::rig::ArmName;
+use knotlab_sim::world::SimWorld;
+use nalgebra::Vector3;
+
+/// The tail's point nearest the line of jaws at `jaw_centre_m` pointing along `jaws` (world
+/// frame), ahead of them (not behind the jaw centre), between the stitch and the assist's jaws
+/// (the free end if the assist holds none); `None` if the stitch holds no thread or no tail lies
+/// ahead.
+pub fn tail_ahead_of_jaws(
+    world: &SimWorld,
+    jaw_centre_m: &Vector3<f64>,
+    jaws: &Vector3<f64>,
+) -> Option<Vector3<f64>> {
+    let inside = world.thread_inside()?;
+    let line = world.thread_centreline();
+    let from = *inside.end() + 1;
+    let to = world
+        .arm(ArmName::Assist)
+        .held_at()
+        .unwrap_or(line.len().saturating_sub(1))
+        .min(line.len().saturating_sub(1));
+    let jaws = jaws.try_normalize(1e-12)?;
+    let off_line = |p: &Vector3<f64>| {
+        let ahead = (p - jaw_centre_m).dot(&jaws);
+        (ahead >= 0.0).then(|| (p - jaw_centre_m - jaws * ahead).norm())
+    };
+    let mut best: Option<(f64, Vector3<f64>)> = None;
+    for at in from..to {
+        // Each segment sampled finely enough for the nearest point to within a tenth of it.
+        for k in 0..10 {
+            let p = line[at] + (line[at + 1] - line[at]) * (k as f64 / 10.0);
+            if let Some(off) = off_line(&p)
+                && best.is_none_or(|(b, _)| off < b)
+            {
+                best = Some((off, p));
+            }
+        }
+    }
+    best.map(|(_, p)| p)
+}
+
+/// Where the tail lies `along` of the way (by segments) from the knot to the left's jaws, and which
+/// way it runs there (towards the left), world frame; `None` if the left holds no thread or the
+/// stitch holds none.
+pub fn tail_between_knot_and_left(world: &SimWorld, along: f64) -> Option<(Vector3<f64>, Vector3<f64>)> {
+    let held = world.arm(ArmName::Left).held_at()?;
+    let inside = world.thread_inside()?;
+    let line = world.thread_centreline();
+    // The tail runs from the stitch towards the tail's end: the left holds it past the stitch.
+    let (from, to) = (*inside.end() + 1, held);
+    if to <= from || to + 1 >= line.len() {
+        return None;
+    }
+    let at = from + ((to - from) as f64 * along).round() as usize;
+    let at = at.clamp(from, to - 1);
+    let point = 0.5 * (line[at] + line[at + 1]);
+    let direction = (line[at + 1] - line[at]).try_normalize(1e-12)?;
+    Some((point, direction))
+}
+
+/// Where the tail lies `from_end_m` of thread from its free end, and which way it runs there (towards
+/// the end), world frame; `None` if the stitch holds no thread or the tail is shorter than that.
+pub fn tail_from_its_end(world: &SimWorld, from_end_m: f64) -> Option<(Vector3<f64>, Vector3<f64>)> {
+    let inside = world.thread_inside()?;
+    let line = world.thread_centreline();
+    let mut left_m = from_end_m;
+    for at in (*inside.end() + 1..line.len() - 1).rev() {
+        let step = line[at + 1] - line[at];
+        let length_m = step.norm();
+        if left_m <= length_m {
+            let direction = step.try_normalize(1e-12)?;
+            return Some((line[at + 1] - direction * left_m, direction));
+        }
+        left_m -= length_m;
+    }
+    None
+}

@@ -1,0 +1,92 @@
+//! The expert looks where the tail lies before the left closes on it (`[left_fetches] looks`,
+//! `scenarios/experts/looks-at-the-tail.toml`; issue 6, session 44): the first throw's plan stops with
+//! the left's jaws over the tail, and the descent is planned from the tail as it lies then. On the
+//! rope scene a slack tail sagged 4-8 mm off the straight line the shipped plan aims at, and on seed
+//! 1 the left closed on its own coils instead.
+
+mod common;
+
+use common::{event_segment, event_time_s, expert};
+use knotlab_hw::rig::{ArmName, Rig};
+use knotlab_scenarios::expert::tail::tail_ahead_of_jaws;
+use knotlab_scenarios::expert::{
+    RecordOptions, TieGeometry, demonstrate_with, plan_instrument_tie, plan_tail_take,
+};
+use knotlab_sim::scene::parse_scene;
+use knotlab_sim::world::SimWorld;
+
+fn rope_scene() -> knotlab_sim::scene::SceneConfig {
+    parse_scene(include_str!("../rope.toml"), "rope.toml").expect("the rope scene")
+}
+
+#[test]
+fn the_point_ahead_of_the_jaws_is_on_the_tail_where_their_line_meets_it() {
+    let world = SimWorld::new(rope_scene(), Rig::shipped().expect("the rig")).expect("the rope scene builds");
+    let line = world.thread_centreline();
+    let inside = world.thread_inside().expect("through the stitch");
+    let held = world.arm(ArmName::Assist).held_at().expect("the assist holds the tail");
+    let tail_point = line[(*inside.end() + held) / 2];
+    let up = world.tissue.world_from_tissue.rotation * nalgebra::Vector3::z();
+    // Jaws 12 mm over the tail, pointing down at it, and a little to one side.
+    let side = world.tissue.world_from_tissue.rotation * nalgebra::Vector3::x() * 0.0005;
+    let jaw_centre = tail_point + up * 0.012 + side;
+    let found = tail_ahead_of_jaws(&world, &jaw_centre, &-up).expect("a tail ahead");
+    let off_line = |p: &nalgebra::Vector3<f64>| {
+        let d = p - jaw_centre;
+        (d - up * d.dot(&up)).norm()
+    };
+    assert!(off_line(&found) <= off_line(&tail_point) + 1e-9, "{found:?} is further off than {tail_point:?}");
+    assert!(off_line(&found) < 0.0006, "{:.2} mm off the jaws' line", off_line(&found) * 1e3);
+    assert!((found - tail_point).norm() < 0.005, "{found:?} is not near {tail_point:?}");
+    // Pointing away from it, the jaws see no tail ahead above the tissue there.
+    let away = tail_ahead_of_jaws(&world, &jaw_centre, &up);
+    assert!(away.is_none_or(|p| (p - jaw_centre).dot(&up) >= 0.0), "{away:?} is behind the jaws");
+}
+
+#[test]
+fn looking_splits_the_first_throw_at_the_tail() {
+    let world = SimWorld::new(rope_scene(), Rig::shipped().expect("the rig")).expect("the rope scene builds");
+    let variation = knotlab_scenarios::expert::Variation::none();
+    let looks = expert("looks-at-the-tail.toml");
+    assert_eq!(
+        TieGeometry { left_fetches: TieGeometry::default().left_fetches, ..looks.clone() },
+        TieGeometry::default()
+    );
+    let whole = plan_instrument_tie(&world, &TieGeometry::default(), &variation);
+    let to_the_tail = plan_instrument_tie(&world, &looks, &variation);
+    let (part_s, whole_s) = (to_the_tail.duration_s(), whole.duration_s());
+    assert!(part_s < whole_s - 5.0, "{part_s} s against {whole_s} s");
+    assert!(plan_tail_take(&world, &looks, &variation).is_some());
+    assert!(
+        plan_tail_take(&world, &TieGeometry::default(), &variation).is_none(),
+        "the shipped plan does not look"
+    );
+}
+
+#[test]
+fn on_the_rope_the_left_takes_the_tail_it_looked_at() {
+    // Seed 1: the shipped plan's left closed on its own coils here (particle 91, session 44); looking,
+    // it takes the tail near the assist's jaws, about 15 s in.
+    let options =
+        RecordOptions { cycles_per_sample: 10, stop_after_s: Some(15.5), ..RecordOptions::default() };
+    let run = demonstrate_with(
+        rope_scene(),
+        "scenarios/rope.toml",
+        1,
+        true,
+        &expert("looks-at-the-tail.toml"),
+        &options,
+        None,
+    )
+    .expect("the run");
+    assert!(run.fault.is_none(), "{:?}", run.fault);
+    let take =
+        run.events.iter().find(|e| e.starts_with("Grasped { arm: Left")).expect("the left takes something");
+    let particle = event_segment(take).expect("a particle");
+    let particles = run.final_scene.thread_m.len();
+    assert!(
+        particle > particles * 3 / 4,
+        "the left took particle {particle} of {particles}: not the tail ({take})"
+    );
+    assert!(event_time_s(take).is_some_and(|t| t > 12.0), "{take}");
+}
