@@ -125,8 +125,5 @@ fn a_cinched_stitch_keeps_its_flaps_slow_and_its_pull_near_the_set_force() {
         narrowest_m * 1e3
     );
     assert!(stretched_m.abs() < 0.02 * length_m, "the rope stretched {:.2} mm", stretched_m * 1e3);
-    assert!(
-        largest_pull_n >= 2.0 && largest_pull_n < 20.0,
-        "the ends pulled with up to {largest_pull_n:.2} N"
-    );
+    assert!((2.0..20.0).contains(&largest_pull_n), "the ends pulled with up to {largest_pull_n:.2} N");
 }
