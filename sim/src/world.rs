@@ -583,7 +583,21 @@ impl SimWorld {
     /// Which thread segments touch which robot links now (an active contact between their
     /// colliders): `(segment, link name)`, segments from the needle end, sorted. Shows where the
     /// thread lies on the instruments, e.g. turns wound round an instrument that should not hold them.
+    /// For the rope: its particles (from the needle end) within its radius of a link's colliders.
     pub fn thread_contacts(&self) -> Vec<(usize, String)> {
+        if let Some(rope) = &self.rope {
+            let mut found: Vec<(usize, String)> = self
+                .link_bodies
+                .iter()
+                .enumerate()
+                .filter_map(|(k, body)| Some((self.rig.tree.links[k].name.clone(), (*body)?)))
+                .flat_map(|(name, body)| {
+                    rope.particles_touching(&self.physics, body).into_iter().map(move |p| (p, name.clone()))
+                })
+                .collect();
+            found.sort();
+            return found;
+        }
         let link_of = |body: RigidBodyHandle| {
             self.link_bodies
                 .iter()

@@ -1,8 +1,8 @@
 //! The scene with the suture as the rope (`scenarios/rope.toml`, `thread.model = "rope"`) builds in
 //! the task's start condition and keeps it while the instruments stand still for a second: the right
 //! jaws hold the needle (a body of its own, the rope swaged to it), the assist's hold the tail, the
-//! thread stays through the stitch, the rope keeps its length, and the gauges read no more than the
-//! thread's pull.
+//! thread stays through the stitch, the rope keeps its length, the gauges read no more than the
+//! thread's pull, and the rope's contacts show it in the assist's jaws.
 
 use knotlab_hw::rig::{ArmName, Rig};
 use knotlab_sim::scene::parse_scene;
@@ -43,4 +43,11 @@ fn the_rope_scene_holds_the_needle_the_tail_and_the_stitch_standing_still() {
     assert!((rope_m - length_m).abs() < 0.002 * length_m, "the rope is {rope_m:.4} m long");
     // The thread weighs 0.1 N; the tissue's pull on it, standing, is less than a newton.
     assert!(largest_force_n < 2.0, "a gauge read {largest_force_n:.2} N");
+    // Where the rope lies on the instruments: the tail in the assist's jaws, nothing on the free left.
+    let contacts = w.thread_contacts();
+    let held = w.arm(ArmName::Assist).held_at().expect("the assist holds the tail");
+    let in_assist_jaws =
+        contacts.iter().filter(|(p, link)| link.starts_with("assist_jaw") && p.abs_diff(held) < 12);
+    assert!(in_assist_jaws.count() >= 2, "held at {held}: {contacts:?}");
+    assert!(!contacts.iter().any(|(_, link)| link.starts_with("left_")), "{contacts:?}");
 }

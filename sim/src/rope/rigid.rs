@@ -85,12 +85,12 @@ pub struct RigidContacts {
 }
 
 /// Rapier's vector from nalgebra's.
-fn v(p: &Vector3<f64>) -> Vector {
+pub(super) fn v(p: &Vector3<f64>) -> Vector {
     Vector::new(p.x, p.y, p.z)
 }
 
 /// nalgebra's vector from Rapier's.
-fn na(p: Vector) -> Vector3<f64> {
+pub(super) fn na(p: Vector) -> Vector3<f64> {
     Vector3::new(p.x, p.y, p.z)
 }
 

@@ -11,7 +11,7 @@ use nalgebra::Vector3;
 use rapier3d::math::{Pose, Rotation, Vector};
 use rapier3d::prelude::*;
 
-use super::rigid::{Attachment, RigidContacts};
+use super::rigid::{Attachment, RigidContacts, na, v};
 use super::slides::SlideStitch;
 use super::{RopeParams, Ropes};
 use crate::needle::Needle;
@@ -62,10 +62,6 @@ pub fn rope_params(thread: &ThreadParams) -> RopeParams {
         contact_passes: 2,
         ..RopeParams::default()
     }
-}
-
-fn v(p: &Vector3<f64>) -> Vector {
-    Vector::new(p.x, p.y, p.z)
 }
 
 impl SceneRope {
@@ -219,6 +215,29 @@ impl SceneRope {
         if let Some(stitch) = self.stitch.take() {
             stitch.release(physics);
         }
+    }
+
+    /// The particles touching `body`'s colliders now (the rope's radius and 0.1 mm from them, or in
+    /// them), sorted.
+    pub fn particles_touching(&self, physics: &Physics, body: RigidBodyHandle) -> Vec<usize> {
+        let reach_m = self.ropes.params.radius_m + 1e-4;
+        let mut found = Vec::new();
+        let colliders = physics.bodies.get(body).map_or(&[][..], |b| b.colliders());
+        for collider in colliders.iter().filter_map(|c| physics.colliders.get(*c)) {
+            let aabb = collider.compute_aabb().loosened(reach_m);
+            for (p, x) in self.ropes.x.iter().enumerate() {
+                if !aabb.contains_local_point(v(x)) {
+                    continue;
+                }
+                let projection = collider.shape().project_point(collider.position(), v(x), true);
+                if projection.is_inside || (na(projection.point) - x).norm() <= reach_m {
+                    found.push(p);
+                }
+            }
+        }
+        found.sort_unstable();
+        found.dedup();
+        found
     }
 
     /// The rope's centreline, needle end first, m.
