@@ -2,13 +2,14 @@
 //! `scenarios/experts/looks-at-the-tail.toml`; issue 6, session 44): the first throw's plan stops with
 //! the left's jaws over the tail, and the descent is planned from the tail as it lies then. On the
 //! rope scene a slack tail sagged 4-8 mm off the straight line the shipped plan aims at, and on seed
-//! 1 the left closed on its own coils instead.
+//! 1 the left closed on its own coils instead. The jaws close on the tail where it is clear of the
+//! tissue.
 
 mod common;
 
 use common::{event_segment, event_time_s, expert};
 use knotlab_hw::rig::{ArmName, Rig};
-use knotlab_scenarios::expert::tail::tail_ahead_of_jaws;
+use knotlab_scenarios::expert::tail::{TAKE_CLEARANCE_M, tail_ahead_of_jaws};
 use knotlab_scenarios::expert::{
     RecordOptions, TieGeometry, demonstrate_with, plan_instrument_tie, plan_tail_take,
 };
@@ -38,6 +39,13 @@ fn the_point_ahead_of_the_jaws_is_on_the_tail_where_their_line_meets_it() {
     assert!(off_line(&found) <= off_line(&tail_point) + 1e-9, "{found:?} is further off than {tail_point:?}");
     assert!(off_line(&found) < 0.0006, "{:.2} mm off the jaws' line", off_line(&found) * 1e3);
     assert!((found - tail_point).norm() < 0.005, "{found:?} is not near {tail_point:?}");
+    // Over the tail where it leaves the tissue (under 3 mm up), the jaws take it where it is clear
+    // of the tissue: a jaw under it would press into the tissue.
+    let surface = world.tissue.hole_m(&world.physics, knotlab_sim::tissue::Flap::A);
+    let height = |p: &nalgebra::Vector3<f64>| (p - surface).dot(&up);
+    let low = (*inside.end() + 1..held).map(|i| line[i]).find(|p| height(p) < 0.002).expect("a low point");
+    let over_low = tail_ahead_of_jaws(&world, &(low + up * 0.012), &-up).expect("a tail ahead");
+    assert!(height(&over_low) >= TAKE_CLEARANCE_M, "{:.2} mm up", height(&over_low) * 1e3);
     // Pointing away from it, the jaws see no tail ahead above the tissue there.
     let away = tail_ahead_of_jaws(&world, &jaw_centre, &up);
     assert!(away.is_none_or(|p| (p - jaw_centre).dot(&up) >= 0.0), "{away:?} is behind the jaws");

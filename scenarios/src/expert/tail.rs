@@ -2,13 +2,19 @@
 //! endoscope's picture): points on the thread between the stitch and its free end, world frame.
 
 use knotlab_hw::rig::ArmName;
+use knotlab_sim::tissue::Flap;
 use knotlab_sim::world::SimWorld;
 use nalgebra::Vector3;
 
+/// How high over the tissue the tail must lie for jaws to close on it, m: a jaw (1.5 mm round)
+/// under a tail lying on the tissue would press into it, and the grip pinning the tail there tore
+/// (the left's grasp read 6 N within 4 ms of taking a tail that lay on the flap: session 44).
+pub const TAKE_CLEARANCE_M: f64 = 0.003;
+
 /// The tail's point nearest the line of jaws at `jaw_centre_m` pointing along `jaws` (world
 /// frame), ahead of them (not behind the jaw centre), between the stitch and the assist's jaws
-/// (the free end if the assist holds none); `None` if the stitch holds no thread or no tail lies
-/// ahead.
+/// (the free end if the assist holds none), of those at least [`TAKE_CLEARANCE_M`] over the
+/// tissue (any, if none is); `None` if the stitch holds no thread or no tail lies ahead.
 pub fn tail_ahead_of_jaws(
     world: &SimWorld,
     jaw_centre_m: &Vector3<f64>,
@@ -27,19 +33,26 @@ pub fn tail_ahead_of_jaws(
         let ahead = (p - jaw_centre_m).dot(&jaws);
         (ahead >= 0.0).then(|| (p - jaw_centre_m - jaws * ahead).norm())
     };
-    let mut best: Option<(f64, Vector3<f64>)> = None;
+    // The tissue's surface: the plane through the entry point, square to the stitch frame's z.
+    let up = world.tissue.world_from_tissue.rotation * Vector3::z();
+    let surface = world.tissue.hole_m(&world.physics, Flap::A);
+    let clear = |p: &Vector3<f64>| (p - surface).dot(&up) >= TAKE_CLEARANCE_M;
+    // (nearest of the clear points, nearest of all)
+    let mut best: [Option<(f64, Vector3<f64>)>; 2] = [None, None];
     for at in from..to {
         // Each segment sampled finely enough for the nearest point to within a tenth of it.
         for k in 0..10 {
             let p = line[at] + (line[at + 1] - line[at]) * (k as f64 / 10.0);
-            if let Some(off) = off_line(&p)
-                && best.is_none_or(|(b, _)| off < b)
-            {
-                best = Some((off, p));
+            let Some(off) = off_line(&p) else { continue };
+            for (slot, counts) in best.iter_mut().zip([clear(&p), true]) {
+                if counts && slot.is_none_or(|(b, _)| off < b) {
+                    *slot = Some((off, p));
+                }
             }
         }
     }
-    best.map(|(_, p)| p)
+    let [clear_best, any_best] = best;
+    clear_best.or(any_best).map(|(_, p)| p)
 }
 
 /// Where the tail lies `along` of the way (by segments) from the knot to the left's jaws, and which
