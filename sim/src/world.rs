@@ -402,7 +402,9 @@ impl SimWorld {
     pub fn release_all(&mut self) {
         for arm in &mut self.arms {
             if arm.name.carries_instrument() {
-                arm.command.tool.jaw_rad = Self::JAW_OPEN_RAD;
+                // Past the angle the jaws took what they hold at: jaws opened less still squeeze it.
+                let past_grasp_rad = if arm.holds() { arm.grasped_at_jaw_rad + 0.05 } else { 0.0 };
+                arm.command.tool.jaw_rad = Self::JAW_OPEN_RAD.max(past_grasp_rad);
             }
         }
     }

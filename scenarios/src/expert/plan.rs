@@ -886,9 +886,13 @@ fn finish_throw(
             tracks: vec![left.build(), right.build(), assist.build()],
         };
     }
-    for (track, to, threshold_n) in [
-        (&mut left, geometry.left_pull_to_m, tail_pull_force_n),
-        (&mut right, geometry.right_pull_to_m, geometry.pull_force_n),
+    // The left lets go of the tail past the angle its jaws took it at (which may be as wide as they
+    // were opened to take it: jaws opened less still squeeze it, and the grip held through the
+    // holding test; session 44).
+    let left_let_go = open.max(geometry.take_tail_jaw_rad);
+    for (track, to, threshold_n, let_go) in [
+        (&mut left, geometry.left_pull_to_m, tail_pull_force_n, left_let_go),
+        (&mut right, geometry.right_pull_to_m, geometry.pull_force_n, open),
     ] {
         track.wait_until(pull_s);
         let from_s = pull_s;
@@ -908,12 +912,12 @@ fn finish_throw(
             action: if geometry.hold_at_force {
                 ForceAction::Hold
             } else {
-                ForceAction::OpenJaw { jaw_rad: open }
+                ForceAction::OpenJaw { jaw_rad: let_go }
             },
         });
         track.wait_until(track.time_s() + 1.0);
         // Both let go at the end, whether or not the set force was reached.
-        track.jaw(open, d(0.2));
+        track.jaw(let_go, d(0.2));
         track.wait_until(track.time_s() + d(0.2) + 0.3);
         hold_from_run_down(track);
     }
