@@ -17,7 +17,7 @@ fn release_all_lets_go_of_a_tail_taken_wider_than_the_usual_opening() {
     assert!(w.arms[assist].holds(), "the assist holds the tail");
     // As if its jaws had closed on the tail from 0.75 rad, wider than SimWorld::JAW_OPEN_RAD.
     w.arms[assist].grasped_at_jaw_rad = 0.75;
-    assert!(0.75 > SimWorld::JAW_OPEN_RAD);
+    const { assert!(0.75 > SimWorld::JAW_OPEN_RAD) };
     w.release_all();
     for _ in 0..400 {
         w.step().expect("healthy");
