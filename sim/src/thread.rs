@@ -63,6 +63,10 @@ pub struct ThreadParams {
     /// ([`crate::rope`], `model = "rope"`), whose knots hold (session 43).
     #[serde(default)]
     pub model: ThreadModel,
+    /// The rope's axial stiffness EA, N ([`crate::rope::RopeParams::axial_stiffness_n`]); left out,
+    /// the rope is inextensible. The chain's joints ignore it.
+    #[serde(default)]
+    pub axial_stiffness_n: Option<f64>,
 }
 
 /// How the suture is simulated.
@@ -92,6 +96,7 @@ impl Default for ThreadParams {
             bend_damping_n_m_s_per_rad: 2e-7,
             friction: 0.3,
             friction_on_itself: None,
+            axial_stiffness_n: None,
             linear_damping_per_s: 1.0,
             twist_free: true,
             model: ThreadModel::Chain,

@@ -82,6 +82,12 @@ pub struct RopeParams {
     /// rope's bends keep pressing, and its friction holds the knot (session 43). The default, 1e-7,
     /// is below a 3-0 monofilament's (polypropylene, 0.2 mm: about 3e-7).
     pub bending_stiffness_n_m2: f64,
+    /// Axial stiffness EA, N: a segment stretches by its length times F / EA under a pull F, as a
+    /// compliant XPBD constraint (infinite: inextensible, the default). Suture is elastic: a 3-0
+    /// braided silk's EA is some 150-300 N, a polypropylene's 50-100 N. Inextensible and held by a
+    /// position-controlled instrument, a rope whose knot jams takes the whole draw in one step: a
+    /// grip read 1.9 N, then 6.5 N, and slipped (session 44).
+    pub axial_stiffness_n: f64,
 }
 
 impl Default for RopeParams {
@@ -98,6 +104,7 @@ impl Default for RopeParams {
             damping_per_s: 100.0,
             contact_margin_m: 0.001,
             bending_stiffness_n_m2: 1e-7,
+            axial_stiffness_n: f64::INFINITY,
         }
     }
 }
@@ -197,7 +204,7 @@ impl Ropes {
                 }
             }
             for _ in 0..self.params.stretch_iterations {
-                self.solve_stretch();
+                self.solve_stretch(h);
             }
             if self.params.bending_stiffness_n_m2 > 0.0 {
                 self.solve_bending(h);
@@ -247,7 +254,11 @@ impl Ropes {
         self.strands.iter().take_while(|r| r.start < start).count()
     }
 
-    fn solve_stretch(&mut self) {
+    fn solve_stretch(&mut self, h_s: f64) {
+        // Each segment's compliance over the substep, per metre of its rest length (XPBD's
+        // alpha / h^2 with alpha = length / EA).
+        let ea = self.params.axial_stiffness_n;
+        let compliance_per_m = if ea.is_finite() && ea > 0.0 { 1.0 / (ea * h_s * h_s) } else { 0.0 };
         let mut singular = false;
         if self.params.direct_stretch {
             for (s, range) in self.strands.iter().enumerate() {
@@ -257,8 +268,12 @@ impl Ropes {
                 let count = range.len().saturating_sub(1);
                 let rest: Vec<f64> =
                     self.segments[first_segment..first_segment + count].iter().map(|(_, r)| *r).collect();
-                singular |=
-                    !stretch::project_strand(&mut self.x[range.clone()], &self.w[range.clone()], &rest);
+                singular |= !stretch::project_strand(
+                    &mut self.x[range.clone()],
+                    &self.w[range.clone()],
+                    &rest,
+                    compliance_per_m,
+                );
             }
             if !singular {
                 return;
@@ -271,6 +286,7 @@ impl Ropes {
             if wsum == 0.0 {
                 continue;
             }
+            let wsum = wsum + rest * compliance_per_m;
             let d = self.x[b] - self.x[a];
             let len = d.norm();
             if len < 1e-12 {
@@ -346,5 +362,28 @@ mod tests {
             (string - 0.5f64.sqrt()).abs() < 0.01,
             "the string's ends lie {string:.3} of its length apart"
         );
+    }
+
+    /// A 30 mm strand along x, its first particle pinned and its last pulled along x with 1 N for
+    /// 0.5 s: how much longer than laid it is, m.
+    fn stretched_under_1_n(axial_stiffness_n: f64) -> f64 {
+        let mut ropes = Ropes::new(RopeParams { axial_stiffness_n, ..RopeParams::default() });
+        let strand = ropes.add_strand_along(&[Vector3::zeros(), Vector3::new(0.03, 0.0, 0.0)], 0.0003);
+        ropes.w[strand.start] = 0.0;
+        ropes.force_n[strand.end - 1] = Vector3::x();
+        for _ in 0..500 {
+            ropes.step(0.001);
+        }
+        let line = ropes.polyline(0);
+        line.windows(2).map(|p| (p[1] - p[0]).norm()).sum::<f64>() - 0.03
+    }
+
+    #[test]
+    fn an_elastic_strand_stretches_by_its_pull_over_its_axial_stiffness() {
+        // EA = 100 N: 1 N stretches 30 mm by 0.3 mm (1 %); inextensible, by nothing to speak of.
+        let elastic = stretched_under_1_n(100.0);
+        assert!((elastic - 0.0003).abs() < 0.00003, "stretched {:.4} mm", elastic * 1e3);
+        let stiff = stretched_under_1_n(f64::INFINITY);
+        assert!(stiff.abs() < 0.00001, "stretched {:.5} mm", stiff * 1e3);
     }
 }

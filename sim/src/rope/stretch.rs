@@ -8,10 +8,12 @@ use nalgebra::Vector3;
 
 /// Projects the strand `x` (its particles, in order; `w` their inverse masses, `rest_m` the rest
 /// length of each segment) once towards every segment at its rest length, moving the particles
-/// as little as their masses allow.
+/// as little as their masses allow; with `compliance_per_m` > 0 each segment is a compliant XPBD
+/// constraint of compliance (over the substep) `rest_m * compliance_per_m`, 1/kg, and gives way
+/// to a pull as a spring would.
 /// Returns false, moving nothing, where the system is singular (a denominator vanished or a
 /// multiplier came out non-finite); the caller then falls back to Gauss-Seidel.
-pub fn project_strand(x: &mut [Vector3<f64>], w: &[f64], rest_m: &[f64]) -> bool {
+pub fn project_strand(x: &mut [Vector3<f64>], w: &[f64], rest_m: &[f64], compliance_per_m: f64) -> bool {
     let n = rest_m.len();
     if n == 0 {
         return true;
@@ -25,7 +27,7 @@ pub fn project_strand(x: &mut [Vector3<f64>], w: &[f64], rest_m: &[f64]) -> bool
         rhs.push(-(len - rest_m[k]));
     }
     // diag[k] = w_k + w_k+1; off[k] (between k and k + 1) = -w_k+1 (dir_k . dir_k+1).
-    let mut diag: Vec<f64> = (0..n).map(|k| w[k] + w[k + 1]).collect();
+    let mut diag: Vec<f64> = (0..n).map(|k| w[k] + w[k + 1] + rest_m[k] * compliance_per_m).collect();
     let off: Vec<f64> = (0..n.saturating_sub(1)).map(|k| -w[k + 1] * dir[k].dot(&dir[k + 1])).collect();
     for k in 0..n {
         if diag[k] == 0.0 {
@@ -81,7 +83,7 @@ mod tests {
         let rest = [1.0; 4];
         // Newton's method: the error falls 0.11, 0.021, 6e-4, 4e-7, 2e-13.
         for _ in 0..5 {
-            assert!(project_strand(&mut x, &w, &rest));
+            assert!(project_strand(&mut x, &w, &rest, 0.0));
         }
         assert_eq!(x[0], Vector3::zeros());
         for k in 0..4 {

@@ -60,6 +60,7 @@ pub fn rope_params(thread: &ThreadParams) -> RopeParams {
         bending_stiffness_n_m2: thread.bend_stiffness_n_m_per_rad * thread.segment_length_m(),
         damping_per_s: thread.linear_damping_per_s,
         contact_passes: 2,
+        axial_stiffness_n: thread.axial_stiffness_n.unwrap_or(f64::INFINITY),
         ..RopeParams::default()
     }
 }
