@@ -136,12 +136,7 @@ fn with_spare_thread(mut path: Vec<Vector3<f64>>, length_m: f64) -> Option<Vec<V
 /// to the exit point. (Laid, the thread classifies as `surgeons_knot`:
 /// `sim/tests/laid_knot_lays_its_knot_through_the_stitch.rs`.)
 fn surgeons_knot_path(tissue: &Tissue, physics: &Physics, params: &LaidKnotParams) -> Vec<Vector3<f64>> {
-    let stitch = [
-        tissue.hole_m(physics, Flap::B),
-        tissue.deep_m(physics, Flap::B),
-        tissue.deep_m(physics, Flap::A),
-        tissue.hole_m(physics, Flap::A),
-    ];
+    let stitch = tissue.stitch_points_m(physics).map(|(_, p)| p);
     surgeons_knot_through(&tissue.world_from_tissue, stitch, params)
 }
 
@@ -181,12 +176,7 @@ pub fn surgeons_knot_through(
 /// The surgeon's knot's first throw alone (world frame, the long end's free end first): the double
 /// helix of [`surgeons_knot_path`], each end straight on beyond it at the knot's height.
 fn surgeons_throw_path(tissue: &Tissue, physics: &Physics, params: &LaidKnotParams) -> Vec<Vector3<f64>> {
-    let stitch = [
-        tissue.hole_m(physics, Flap::B),
-        tissue.deep_m(physics, Flap::B),
-        tissue.deep_m(physics, Flap::A),
-        tissue.hole_m(physics, Flap::A),
-    ];
+    let stitch = tissue.stitch_points_m(physics).map(|(_, p)| p);
     surgeons_throw_through(&tissue.world_from_tissue, stitch, params)
 }
 

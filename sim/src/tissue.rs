@@ -191,6 +191,18 @@ impl Tissue {
         self.flaps[flap.index()]
     }
 
+    /// The stitch's four points as the thread meets them from the needle end, each with the flap
+    /// that carries it: the exit (B's hole), B's deep point, A's deep point, the entry (A's hole);
+    /// world frame, m.
+    pub fn stitch_points_m(&self, physics: &Physics) -> [(Flap, Vector3<f64>); 4] {
+        [
+            (Flap::B, self.hole_m(physics, Flap::B)),
+            (Flap::B, self.deep_m(physics, Flap::B)),
+            (Flap::A, self.deep_m(physics, Flap::A)),
+            (Flap::A, self.hole_m(physics, Flap::A)),
+        ]
+    }
+
     /// Where the stitch passes through `flap`, world frame, m.
     pub fn hole_m(&self, physics: &Physics, flap: Flap) -> Vector3<f64> {
         let local = self.flap_from_hole_m[flap.index()];

@@ -24,12 +24,7 @@ fn a_cinched_stitch_keeps_its_flaps_slow_and_its_pull_near_the_set_force() {
     let tissue = Tissue::build(&mut physics, &scene.tissue, &scene.stitch);
     let frame = tissue.world_from_tissue;
     let (up, across) = (frame.rotation * Vector3::z(), frame.rotation * Vector3::y());
-    let stitch = [
-        tissue.hole_m(&physics, Flap::B),
-        tissue.deep_m(&physics, Flap::B),
-        tissue.deep_m(&physics, Flap::A),
-        tissue.hole_m(&physics, Flap::A),
-    ];
+    let stitch = tissue.stitch_points_m(&physics).map(|(_, p)| p);
     // Each end 2 cm up and 1 cm out from its hole, the thread slack by a few millimetres.
     let ends = [stitch[0] + up * 0.02 - across * 0.01, stitch[3] + up * 0.02 + across * 0.01];
     let mut path = vec![ends[0]];

@@ -65,12 +65,7 @@ impl SlideStitch {
                 .unwrap_or(0);
             (flap.index(), at, nearest_on_rope(ropes, &at, nearest, last))
         };
-        let points = [
-            point(Flap::B, tissue.hole_m(physics, Flap::B)),
-            point(Flap::B, tissue.deep_m(physics, Flap::B)),
-            point(Flap::A, tissue.deep_m(physics, Flap::A)),
-            point(Flap::A, tissue.hole_m(physics, Flap::A)),
-        ];
+        let points = tissue.stitch_points_m(physics).map(|(flap, at)| point(flap, at));
         Self { tissue: *params, slides, load_n: [0.0; 2], points }
     }
 

@@ -29,12 +29,7 @@ pub fn laid_surgeons_knot_in_tissue(
     let mut physics = Physics::new(&config.solver);
     let tissue = Tissue::build(&mut physics, &config.tissue, &config.stitch);
     let dt_s = config.solver.dt_s;
-    let points = [
-        (Flap::B, tissue.hole_m(&physics, Flap::B)),
-        (Flap::B, tissue.deep_m(&physics, Flap::B)),
-        (Flap::A, tissue.deep_m(&physics, Flap::A)),
-        (Flap::A, tissue.hole_m(&physics, Flap::A)),
-    ];
+    let points = tissue.stitch_points_m(&physics);
     let path = surgeons_knot_through(&tissue.world_from_tissue, points.map(|(_, p)| p), knot);
     let mut ropes = Ropes::new(rope);
     let strand = ropes.add_strand_along(&path, SPACING_M);
