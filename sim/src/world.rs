@@ -441,7 +441,6 @@ impl SimWorld {
         let Some(rope) = &mut self.rope else { return };
         let clear = (JAW_CLEAR_M / rope.spacing_m).ceil() as usize;
         let count = rope.ropes.x.len();
-        let radius_m = rope.ropes.params.radius_m;
         for arm in &mut self.arms {
             let Some(run) = arm.rope_let_go.clone() else { continue };
             if arm.slipped || arm.actual().tool.jaw_rad < 0.5 * Self::JAW_OPEN_RAD {
@@ -449,16 +448,10 @@ impl SimWorld {
             }
             // Opened: the run goes back to touching the jaws once it is clear of them.
             let touches = run.clone().any(|p| {
-                let x = rope.ropes.x[p];
-                arm.jaw_colliders.iter().filter_map(|c| self.physics.colliders.get(*c)).any(|c| {
-                    let projection = c.shape().project_point(c.position(), Vector::new(x.x, x.y, x.z), false);
-                    let to = Vector3::new(
-                        projection.point.x - x.x,
-                        projection.point.y - x.y,
-                        projection.point.z - x.z,
-                    );
-                    projection.is_inside || to.norm() < radius_m
-                })
+                arm.jaw_colliders
+                    .iter()
+                    .filter_map(|c| self.physics.colliders.get(*c))
+                    .any(|c| rope.touches(c, p))
             });
             if !touches {
                 arm.rope_let_go = None;
@@ -470,34 +463,16 @@ impl SimWorld {
             }
             let closing = arm.command.tool.jaw_rad < self.jaw_closed_rad
                 || arm.command.tool.jaw_rad < arm.actual().tool.jaw_rad - 1e-3;
+            // The run through the jaws: around the particle nearest their line, while within reach.
             let between = || {
                 let tip = poses[self.rig.arm(arm.name).tip_link];
-                let (hinge, end) = crate::grasp::jaw_line_m(&tip, JAW_CENTRE_OFFSET_M);
-                // The run through the jaws: around the particle nearest their line, while within reach.
-                let off = |p: usize| {
-                    let x = rope.ropes.x[p];
-                    knotlab_hw::geometry::segment_distance(&x, &x, &hinge, &end)
-                };
-                let Some(nearest) = (0..count).min_by(|a, b| off(*a).total_cmp(&off(*b))) else {
-                    return 0..0;
-                };
-                if off(nearest) >= GRASP_REACH_M {
-                    return 0..0;
-                }
-                let (mut first, mut last) = (nearest, nearest);
-                while first > 0 && off(first - 1) < GRASP_REACH_M {
-                    first -= 1;
-                }
-                while last + 1 < count && off(last + 1) < GRASP_REACH_M {
-                    last += 1;
-                }
-                first.saturating_sub(clear)..(last + 1 + clear).min(count)
+                let line = crate::grasp::jaw_line_m(&tip, JAW_CENTRE_OFFSET_M);
+                RopeGrasp::run_along(&rope.ropes, line, GRASP_REACH_M)
+                    .map_or(0..0, |run| run.start.saturating_sub(clear)..(run.end + clear).min(count))
             };
             let held = match (&arm.grasp, &arm.rope_grasp) {
                 (Some(grasp), _) if grasp.on_needle => 0..clear.min(count),
-                (_, Some(grasp)) => {
-                    grasp.particles.start.saturating_sub(clear)..(grasp.particles.end + clear).min(count)
-                }
+                (_, Some(grasp)) => grasp.widened(clear, count),
                 (None, None) if arm.rope_let_go.is_some() => arm.rope_let_go.clone().unwrap_or(0..0),
                 (None, None) if closing && !arm.closed_empty => between(),
                 _ => 0..0,
@@ -548,9 +523,7 @@ impl SimWorld {
     fn release_rope(&mut self, a: usize) {
         if let (Some(grasp), Some(rope)) = (self.arms[a].rope_grasp.take(), &mut self.rope) {
             let clear = (JAW_CLEAR_M / rope.spacing_m).ceil() as usize;
-            let count = rope.ropes.x.len();
-            self.arms[a].rope_let_go =
-                Some(grasp.particles.start.saturating_sub(clear)..(grasp.particles.end + clear).min(count));
+            self.arms[a].rope_let_go = Some(grasp.widened(clear, rope.ropes.x.len()));
             grasp.release(&mut rope.contacts);
         }
     }

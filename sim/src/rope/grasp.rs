@@ -36,6 +36,27 @@ impl RopeGrasp {
         (hinge_m, tip_m): (Vector3<f64>, Vector3<f64>),
         reach_m: f64,
     ) -> Option<Self> {
+        let run = Self::run_along(ropes, (hinge_m, tip_m), reach_m)?;
+        for p in run.clone() {
+            let x = ropes.x[p];
+            let local = body_pose.inverse_transform_point(Vector::new(x.x, x.y, x.z));
+            contacts.attachments.push(Attachment {
+                particle: p,
+                body,
+                local_m: Vector3::new(local.x, local.y, local.z),
+            });
+            contacts.attachment_impulses.push(Vector3::zeros());
+        }
+        Some(Self { body, particles: run })
+    }
+
+    /// The run of particles within `reach_m` of the jaws' line `hinge_m`..`tip_m` (world) around
+    /// the one nearest it, in its strand; `None` if none is within reach.
+    pub fn run_along(
+        ropes: &Ropes,
+        (hinge_m, tip_m): (Vector3<f64>, Vector3<f64>),
+        reach_m: f64,
+    ) -> Option<Range<usize>> {
         let off = |p: usize| segment_distance(&ropes.x[p], &ropes.x[p], &hinge_m, &tip_m);
         let nearest = (0..ropes.x.len()).min_by(|a, b| off(*a).total_cmp(&off(*b)))?;
         if off(nearest) > reach_m {
@@ -50,17 +71,13 @@ impl RopeGrasp {
         while last + 1 < strand.end && off(last + 1) <= reach_m {
             last += 1;
         }
-        for p in first..=last {
-            let x = ropes.x[p];
-            let local = body_pose.inverse_transform_point(Vector::new(x.x, x.y, x.z));
-            contacts.attachments.push(Attachment {
-                particle: p,
-                body,
-                local_m: Vector3::new(local.x, local.y, local.z),
-            });
-            contacts.attachment_impulses.push(Vector3::zeros());
-        }
-        Some(Self { body, particles: first..last + 1 })
+        Some(first..last + 1)
+    }
+
+    /// The held run widened by `clear` particles either side (within the `count` particles): what
+    /// the jaws let through while they hold it or let go of it.
+    pub fn widened(&self, clear: usize, count: usize) -> Range<usize> {
+        self.particles.start.saturating_sub(clear)..(self.particles.end + clear).min(count)
     }
 
     /// The force the jaws held the rope with over the last step of `dt_s`, N.

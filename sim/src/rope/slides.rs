@@ -100,11 +100,6 @@ impl SlideStitch {
             body.set_linvel(Vector::ZERO, true);
         }
     }
-
-    /// The wound's gap, m.
-    pub fn gap_m(&self) -> f64 {
-        self.tissue.rest_gap_m + self.slides[0].u_m + self.slides[1].u_m
-    }
 }
 
 impl Surroundings for SlideStitch {

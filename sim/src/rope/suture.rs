@@ -47,6 +47,9 @@ pub struct SceneRope {
     needle_weight_n: f64,
 }
 
+/// How far beyond the rope's radius a collider still counts as touching it, m.
+const TOUCH_SLOP_M: f64 = 1e-4;
+
 /// The rope's material from the scene's thread: its radius and friction on itself (kinetic 0.8 of
 /// the static), its bending stiffness the chain's per joint times a segment's length (the nominal
 /// scene's 2e-5 N m/rad over 3.125 mm: 6.25e-8 N m²), its damping the chain's, two contact passes a
@@ -221,24 +224,27 @@ impl SceneRope {
     /// The particles touching `body`'s colliders now (the rope's radius and 0.1 mm from them, or in
     /// them), sorted.
     pub fn particles_touching(&self, physics: &Physics, body: RigidBodyHandle) -> Vec<usize> {
-        let reach_m = self.ropes.params.radius_m + 1e-4;
         let mut found = Vec::new();
         let colliders = physics.bodies.get(body).map_or(&[][..], |b| b.colliders());
         for collider in colliders.iter().filter_map(|c| physics.colliders.get(*c)) {
-            let aabb = collider.compute_aabb().loosened(reach_m);
-            for (p, x) in self.ropes.x.iter().enumerate() {
-                if !aabb.contains_local_point(v(x)) {
-                    continue;
-                }
-                let projection = collider.shape().project_point(collider.position(), v(x), true);
-                if projection.is_inside || (na(projection.point) - x).norm() <= reach_m {
-                    found.push(p);
-                }
-            }
+            let aabb = collider.compute_aabb().loosened(self.ropes.params.radius_m + TOUCH_SLOP_M);
+            found.extend(
+                (0..self.ropes.x.len()).filter(|p| {
+                    aabb.contains_local_point(v(&self.ropes.x[*p])) && self.touches(collider, *p)
+                }),
+            );
         }
         found.sort_unstable();
         found.dedup();
         found
+    }
+
+    /// Whether particle `p` touches `collider` (is in it, or within the rope's radius and 0.1 mm
+    /// of it).
+    pub fn touches(&self, collider: &Collider, p: usize) -> bool {
+        let x = self.ropes.x[p];
+        let projection = collider.shape().project_point(collider.position(), v(&x), true);
+        projection.is_inside || (na(projection.point) - x).norm() <= self.ropes.params.radius_m + TOUCH_SLOP_M
     }
 
     /// The rope's centreline, needle end first, m.
