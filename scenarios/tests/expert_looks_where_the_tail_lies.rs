@@ -9,9 +9,11 @@ mod common;
 
 use common::{event_segment, event_time_s, expert};
 use knotlab_hw::rig::{ArmName, Rig};
+use knotlab_scenarios::expert::plan::LeftFetch;
 use knotlab_scenarios::expert::tail::{TAKE_CLEARANCE_M, tail_ahead_of_jaws};
 use knotlab_scenarios::expert::{
-    RecordOptions, TieGeometry, demonstrate_with, plan_instrument_tie, plan_tail_take,
+    RecordOptions, SecondThrow, TieGeometry, demonstrate_with, plan_instrument_tie, plan_second_tail_take,
+    plan_second_throw, plan_tail_take,
 };
 use knotlab_sim::scene::parse_scene;
 use knotlab_sim::world::SimWorld;
@@ -69,6 +71,41 @@ fn looking_splits_the_first_throw_at_the_tail() {
         plan_tail_take(&world, &TieGeometry::default(), &variation).is_none(),
         "the shipped plan does not look"
     );
+}
+
+#[test]
+fn looking_splits_the_second_throw_at_the_tail_where_the_left_fetches_it() {
+    let world = SimWorld::new(rope_scene(), Rig::shipped().expect("the rig")).expect("the rope scene builds");
+    let variation = knotlab_scenarios::expert::Variation::none();
+    let looks = expert("looks-at-the-tail.toml");
+    let fetch = looks.left_fetches.clone().expect("the first throw fetches");
+    let blind = LeftFetch { looks: false, ..fetch.clone() };
+    let with = |second: SecondThrow| TieGeometry { second_throw: Some(second), ..looks.clone() };
+    // The assist takes the tail from the left, which fetches it after the turn as in the first throw.
+    let fetching = SecondThrow { tail_hold_from_end_m: Some(0.005), ..SecondThrow::default() };
+    let looking = with(SecondThrow { left_fetches: Some(fetch.clone()), ..fetching.clone() });
+    let not_looking = with(SecondThrow { left_fetches: Some(blind), ..fetching.clone() });
+    let part = plan_second_throw(&world, &looking, &variation).expect("a second throw");
+    let whole = plan_second_throw(&world, &not_looking, &variation).expect("a second throw");
+    assert!(
+        part.duration_s() < whole.duration_s() - 5.0,
+        "{} s against {} s",
+        part.duration_s(),
+        whole.duration_s()
+    );
+    let rest = plan_second_tail_take(&world, &looking, &variation).expect("the rest, from the tail");
+    assert!(rest.name.contains("second throw"), "{}", rest.name);
+    assert!(plan_second_tail_take(&world, &not_looking, &variation).is_none(), "it does not look");
+    // Where the left keeps the tail, or the assist presents it, nothing is fetched: no split.
+    for second in [
+        SecondThrow { left_keeps_tail: true, left_fetches: Some(fetch.clone()), ..SecondThrow::default() },
+        SecondThrow { assist_presents: true, left_fetches: Some(fetch.clone()), ..fetching },
+    ] {
+        let geometry = with(second);
+        assert!(plan_second_tail_take(&world, &geometry, &variation).is_none());
+        let skill = plan_second_throw(&world, &geometry, &variation).expect("a second throw");
+        assert!(!skill.name.contains("to the tail"), "{}", skill.name);
+    }
 }
 
 #[test]

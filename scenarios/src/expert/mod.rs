@@ -13,7 +13,8 @@ pub mod tail;
 
 pub use geometry_file::{GeometryFileError, load_tie_geometry, parse_tie_geometry};
 pub use plan::{
-    TieGeometry, Variation, plan_instrument_tie, plan_second_throw, plan_tail_hand_over, plan_tail_take,
+    Planner, TieGeometry, Variation, plan_instrument_tie, plan_second_tail_take, plan_second_throw,
+    plan_tail_hand_over, plan_tail_take,
 };
 pub use record::{DemoRun, ExpertError, RecordOptions, demonstrate, demonstrate_with, record_demonstration};
 pub use second_throw::SecondThrow;

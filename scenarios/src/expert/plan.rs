@@ -356,10 +356,10 @@ enum Stage {
     /// free end (then draws it to `to_m`, stitch frame, if set), and the left lets go and rises clear
     /// ([`plan_tail_hand_over`]).
     HandOver { from_end_m: f64, to_m: Option<[f64; 3]> },
-    /// The rest of the first throw, planned from the world once the left's jaws are over the tail
-    /// (a fetch that [`LeftFetch::looks`]): the left closes on the tail where it lies, and the throw
-    /// goes on as [`Stage::First`] with `keep_hold`.
-    Take { keep_hold: bool },
+    /// The rest of a throw, planned from the world once the left's jaws are over the tail (a fetch
+    /// that [`LeftFetch::looks`]): the left closes on the tail where it lies, and the throw goes on
+    /// as [`Stage::First`] with `keep_hold`, or, with `second` set, as that [`Stage::Second`].
+    Take { keep_hold: bool, second: Option<SecondStart> },
     /// The second, after the first: the left holds the tail and the right the long end, pulled apart
     /// (or, after a [`Stage::HandOver`], the assist holds the tail).
     Second { start: SecondStart },
@@ -394,27 +394,59 @@ pub fn plan_instrument_tie(world: &SimWorld, geometry: &TieGeometry, variation: 
     plan_throw(world, geometry, variation, Stage::First { keep_hold: geometry.second_throw.is_some() })
 }
 
+/// A plan of part of the knot, from the world as it stands (`None`: the geometry asks for none).
+pub type Planner = fn(&SimWorld, &TieGeometry, &Variation) -> Option<Skill>;
+
 /// The rest of the first throw once the left's jaws are over the tail (`None` unless the left
 /// fetches the tail and [`LeftFetch::looks`]): it closes on the tail where it lies now.
 pub fn plan_tail_take(world: &SimWorld, geometry: &TieGeometry, variation: &Variation) -> Option<Skill> {
     geometry.fetch().filter(|f| f.looks)?;
-    Some(plan_throw(world, geometry, variation, Stage::Take { keep_hold: geometry.second_throw.is_some() }))
+    let stage = Stage::Take { keep_hold: geometry.second_throw.is_some(), second: None };
+    Some(plan_throw(world, geometry, variation, stage))
 }
 
 /// The second throw, planned from the world the first throw left (`None` if `geometry` asks for
-/// none).
+/// none). If its fetch [`LeftFetch::looks`], the plan stops with the left's jaws over the tail and
+/// [`plan_second_tail_take`] plans the rest.
 pub fn plan_second_throw(world: &SimWorld, geometry: &TieGeometry, variation: &Variation) -> Option<Skill> {
     let second = geometry.second_throw.as_ref()?;
+    let stage = Stage::Second { start: second_start(second) };
+    Some(plan_throw(world, &second.applied_to(geometry), variation, stage))
+}
+
+/// The rest of the second throw once the left's jaws are over the tail (`None` unless its fetch
+/// [`LeftFetch::looks`]): it closes on the tail where it lies now.
+pub fn plan_second_tail_take(
+    world: &SimWorld,
+    geometry: &TieGeometry,
+    variation: &Variation,
+) -> Option<Skill> {
+    let second = geometry.second_throw.as_ref()?;
     let throw = second.applied_to(geometry);
-    let start = match (second.left_keeps_tail, second.tail_hold_from_end_m, second.left_retakes_from_end_m) {
+    throw.fetch().filter(|f| f.looks)?;
+    let start = second_start(second);
+    looks_at_take(Stage::Second { start }).then_some(())?;
+    let stage = Stage::Take { keep_hold: false, second: Some(start) };
+    Some(plan_throw(world, &throw, variation, stage))
+}
+
+/// Whether a fetch that looks stops this stage's plan over the tail: the first throw's, and a
+/// second throw's where the left takes the tail from the assist as in the first (where the left
+/// and the assist swap parts, the left presents the tail rather than fetching it).
+fn looks_at_take(stage: Stage) -> bool {
+    matches!(stage, Stage::First { .. } | Stage::Second { start: SecondStart::AssistTakes(_) })
+}
+
+/// How `second` begins: who holds the tail, and who takes it.
+fn second_start(second: &SecondThrow) -> SecondStart {
+    match (second.left_keeps_tail, second.tail_hold_from_end_m, second.left_retakes_from_end_m) {
         (true, _, _) => SecondStart::LeftKeepsTail,
         (false, _, Some(from_end_m)) => SecondStart::LeftRetakes { from_end_m },
         (false, Some(from_end_m), None) => {
             SecondStart::AssistTakes(TailHold::FromEnd { from_end_m, to_m: second.tail_held_to_m })
         }
         (false, None, None) => SecondStart::AssistTakes(TailHold::Along(second.tail_hold_along)),
-    };
-    Some(plan_throw(world, &throw, variation, Stage::Second { start }))
+    }
 }
 
 /// Before a second throw wound on the assist's jaws (`left_retakes_from_end_m` set; `None`
@@ -470,7 +502,7 @@ fn plan_throw(world: &SimWorld, geometry: &TieGeometry, variation: &Variation, s
             track.hold_as_it_stands();
         }
     }
-    if let Stage::Take { keep_hold } = stage {
+    if let Stage::Take { keep_hold, second } = stage {
         // Onto the tail's point nearest the line of the jaws, ahead of them, as it lies now.
         let jaws_to = left.jaw_direction();
         let from = left.position_m();
@@ -481,7 +513,10 @@ fn plan_throw(world: &SimWorld, geometry: &TieGeometry, variation: &Variation, s
         left.wait_until(left.time_s() + pause[4]);
         left.jaw(0.0, d(0.3));
         left.wait_until(left.time_s() + d(0.3) + 0.1);
-        let stage = Stage::First { keep_hold };
+        let stage = match second {
+            Some(start) => Stage::Second { start },
+            None => Stage::First { keep_hold },
+        };
         return finish_throw(world, geometry, variation, stage, [left, right, assist]);
     }
     if let Stage::HandOver { from_end_m, to_m } = stage {
@@ -696,17 +731,19 @@ fn plan_throw(world: &SimWorld, geometry: &TieGeometry, variation: &Variation, s
             right.go(Path::To(right.position_m() + shift), left.time_s() - relocate_from);
         }
         left.wait_until(left.time_s() + pause[4]);
-        if fetch.looks && matches!(stage, Stage::First { .. }) {
+        if fetch.looks && looks_at_take(stage) {
             // The left looks where the tail lies before it closes on it: the rest from there
             // ([`plan_tail_take`]).
             let end_s = left.time_s().max(right.time_s()).max(assist.time_s());
             for track in [&mut left, &mut right, &mut assist] {
                 track.wait_until(end_s);
             }
-            return Skill {
-                name: "instrument tie: surgeon's knot, the coils to the tail".into(),
-                tracks: vec![left.build(), right.build(), assist.build()],
+            let name = if second {
+                "instrument tie: surgeon's knot, second throw, the turn to the tail"
+            } else {
+                "instrument tie: surgeon's knot, the coils to the tail"
             };
+            return Skill { name: name.into(), tracks: vec![left.build(), right.build(), assist.build()] };
         }
         // The jaws' centre stops short of the tail, so the tail lies towards their tips, ahead of
         // the coils: every coil then passes over it when the jaws draw back.

@@ -446,25 +446,17 @@ pub fn demonstrate_with(
     let skill = super::plan_instrument_tie(&world, geometry, &variation);
     let rate_hz = 1.0 / (world.config.solver.dt_s * options.cycles_per_sample.max(1) as f64);
     let metadata = expert_metadata(&world, scene_name, Some(seed), rate_hz);
-    // The rest of the first throw once the left's jaws are over the tail, if it looks before it
-    // takes it; the second throw, once, planned from where the first left the thread (after the
-    // tail's hand-over to the assist, if it has one, planned likewise).
-    let (mut taken, mut handed_over, mut planned_second) = (false, false, false);
-    let mut second = |world: &SimWorld| {
-        if !std::mem::replace(&mut taken, true)
-            && let Some(take) = super::plan_tail_take(world, geometry, &variation)
-        {
-            return Some(take);
-        }
-        if !std::mem::replace(&mut handed_over, true)
-            && let Some(hand_over) = super::plan_tail_hand_over(world, geometry, &variation)
-        {
-            return Some(hand_over);
-        }
-        if std::mem::replace(&mut planned_second, true) {
-            return None;
-        }
-        super::plan_second_throw(world, geometry, &variation)
-    };
+    // After the first plan, each of these in turn, planned from the world as it stands then, those
+    // a geometry does not ask for skipped: the rest of the first throw once the left's jaws are over
+    // the tail (if it looks before it takes it), the tail's hand-over to the assist, the second
+    // throw, and its rest once the left's jaws are over the tail.
+    let planners: [super::Planner; 4] = [
+        super::plan_tail_take,
+        super::plan_tail_hand_over,
+        super::plan_second_throw,
+        super::plan_second_tail_take,
+    ];
+    let mut planners = planners.into_iter();
+    let mut second = |world: &SimWorld| planners.by_ref().find_map(|plan| plan(world, geometry, &variation));
     Ok(record_demonstration(world, &rig, &config, skill, metadata, options, observer, Some(&mut second))?)
 }
