@@ -29,6 +29,16 @@ pub enum GraspEvent {
         /// When, s.
         time_s: f64,
     },
+    /// Pulled along itself harder than the grip, the rope began to slide through the jaws, which go
+    /// on holding it ([`crate::rope::rigid::Grip`]); once each time it starts.
+    Slid {
+        /// The arm.
+        arm: ArmName,
+        /// The pull, N.
+        force_n: f64,
+        /// When, s.
+        time_s: f64,
+    },
     /// The pull exceeded the grip.
     Slipped {
         /// The arm.

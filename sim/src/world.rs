@@ -81,6 +81,8 @@ pub struct SimArm {
     pub rope_let_go: Option<std::ops::Range<usize>>,
     /// A grasp that slipped stays lost until the jaws reopen.
     pub slipped: bool,
+    /// The rope slid through the jaws in the last step (pulled along itself beyond the grip).
+    pub sliding: bool,
     /// Jaws that closed on nothing stay empty until they reopen: what later touches closed jaws is
     /// not grasped (and collides with them).
     pub closed_empty: bool,
@@ -263,6 +265,7 @@ impl SimWorld {
                     rope_grasp: None,
                     rope_let_go: None,
                     slipped: false,
+                    sliding: false,
                     closed_empty: false,
                     grasped_at_jaw_rad: 0.0,
                     force_n: Vector3::zeros(),
@@ -521,6 +524,7 @@ impl SimWorld {
 
     /// Lets go of arm `a`'s grasp on the rope, if any.
     fn release_rope(&mut self, a: usize) {
+        self.arms[a].sliding = false;
         if let (Some(grasp), Some(rope)) = (self.arms[a].rope_grasp.take(), &mut self.rope) {
             let clear = (JAW_CLEAR_M / rope.spacing_m).ceil() as usize;
             self.arms[a].rope_let_go = Some(grasp.widened(clear, rope.ropes.x.len()));
@@ -848,6 +852,7 @@ impl SimWorld {
                 let (ropes, contacts) = (&rope.ropes, &mut rope.contacts);
                 match RopeGrasp::try_close(ropes, contacts, clevis, &clevis_pose, line, GRASP_REACH_M) {
                     Some(grasp) => {
+                        grasp.grip(contacts, self.grip_force_n);
                         let segment = grasp.particles.start + grasp.particles.len() / 2;
                         self.events.push(GraspEvent::Grasped { arm, segment, time_s: self.time_s });
                         self.arms[a].rope_grasp = Some(grasp);
@@ -862,13 +867,30 @@ impl SimWorld {
     fn check_slip(&mut self) {
         let dt = self.config.solver.dt_s;
         for a in 0..self.arms.len() {
-            let (Some(grasp), Some(rope)) = (&self.arms[a].rope_grasp, &self.rope) else { continue };
+            let arm = &mut self.arms[a];
+            let (Some(grasp), Some(rope)) = (&mut arm.rope_grasp, &mut self.rope) else { continue };
             let force = grasp.force_n(&rope.contacts, dt).norm();
-            if force > self.grip_force_n {
+            // Pulled along itself beyond the grip, the rope slides through the jaws (the solver
+            // holds the pull there), which hand the hold on as it goes, until none is left to come
+            // in; yanked far harder than the grip (across the jaws, say), it is torn out.
+            let mut out = force > SLIP_OUT_FACTOR * self.grip_force_n;
+            let pose = *self.physics.bodies[grasp.body].position();
+            while !out {
+                match grasp.follow_slide(&rope.ropes, &mut rope.contacts, &pose, rope.spacing_m) {
+                    Some(true) => {}
+                    Some(false) => out = true,
+                    None => break,
+                }
+            }
+            let sliding = rope.contacts.grips.iter().any(|g| g.body == grasp.body && g.sliding);
+            let started = sliding && !std::mem::replace(&mut arm.sliding, sliding);
+            let (name, time_s) = (arm.name, self.time_s);
+            if out {
                 self.release_rope(a);
                 self.arms[a].slipped = true;
-                let arm = self.arms[a].name;
-                self.events.push(GraspEvent::Slipped { arm, force_n: force, time_s: self.time_s });
+                self.events.push(GraspEvent::Slipped { arm: name, force_n: force, time_s });
+            } else if started {
+                self.events.push(GraspEvent::Slid { arm: name, force_n: force, time_s });
             }
         }
         for a in 0..self.arms.len() {
@@ -955,6 +977,10 @@ pub const HELD_CLEARANCE_M: f64 = 0.003;
 
 /// The rope held by jaws passes through them this far either side of the held run, m.
 pub const JAW_CLEAR_M: f64 = 0.008;
+
+/// Jaws holding the rope let it go when pulled this many times harder than their grip (across
+/// them: along the rope, it slides through them at the grip).
+pub const SLIP_OUT_FACTOR: f64 = 3.0;
 
 /// The jaws hold what lies this far behind the tip, along the tip's z axis, m.
 pub const JAW_CENTRE_OFFSET_M: f64 = 0.005;

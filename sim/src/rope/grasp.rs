@@ -1,7 +1,8 @@
 //! Jaws holding the rope, as [`crate::grasp`] holds the chain: closing jaws take the run of the
 //! rope that passes between them (its particles within reach of their line, hinge to tip) and hold
-//! each where it lies in the jaws' frame ([`super::rigid::Attachment`]); opening lets go; a pull
-//! beyond the grip slips.
+//! each where it lies in the jaws' frame ([`super::rigid::Attachment`]); opening lets go; pulled
+//! along itself harder than the grip, the rope slides through the jaws ([`RopeGrasp::grip`]), and
+//! out of them at its end.
 
 use std::ops::Range;
 
@@ -10,7 +11,7 @@ use rapier3d::math::{Pose, Vector};
 use rapier3d::prelude::*;
 
 use super::Ropes;
-use super::rigid::{Attachment, RigidContacts};
+use super::rigid::{Attachment, Grip, RigidContacts};
 use knotlab_hw::geometry::segment_distance;
 
 /// A run of the rope held by a body.
@@ -92,8 +93,68 @@ impl RopeGrasp {
             / dt_s
     }
 
-    /// Lets go: the attachments go.
+    /// The jaws hold the run by friction: pulled along itself harder than `limit_n`, it slides
+    /// through them ([`Grip`]). Jaws squeezing a suture do; before (session 45) the rope's grip let
+    /// go altogether above its limit, and two grips on a taut thread tore one of them loose in a
+    /// step.
+    pub fn grip(&self, contacts: &mut RigidContacts, limit_n: f64) {
+        contacts.grips.retain(|g| g.body != self.body);
+        contacts.grips.push(Grip {
+            body: self.body,
+            particles: self.particles.clone(),
+            limit_n,
+            slid_local_m: Vector3::zeros(),
+            sliding: false,
+        });
+    }
+
+    /// Once the run has slid a particle's spacing `spacing_m` through the jaws (at `body_pose`),
+    /// hands the hold on to the particles that have come into them, where the ones before them
+    /// were held: `Some(true)`; `Some(false)` if no rope is left to come in (it slides out of the
+    /// jaws); `None` if it has not slid that far (or is not gripped).
+    pub fn follow_slide(
+        &mut self,
+        ropes: &Ropes,
+        contacts: &mut RigidContacts,
+        body_pose: &Pose,
+        spacing_m: f64,
+    ) -> Option<bool> {
+        let g = contacts.grips.iter().position(|g| g.body == self.body)?;
+        let slid = contacts.grips[g].slid_local_m;
+        if slid.norm() < spacing_m {
+            return None;
+        }
+        let strand = ropes.strands.iter().find(|s| s.contains(&self.particles.start))?.clone();
+        let origin = body_pose.transform_point(Vector::ZERO);
+        let slid_world = body_pose.transform_point(Vector::new(slid.x, slid.y, slid.z)) - origin;
+        let slid_world = Vector3::new(slid_world.x, slid_world.y, slid_world.z);
+        // The particles that have come to where the held ones were lie back against the slide.
+        let before = self.particles.start.saturating_sub(1).max(strand.start);
+        let after = self.particles.end.min(strand.end - 1);
+        let forward = (ropes.x[after] - ropes.x[before]).dot(&slid_world) < 0.0;
+        let run = if forward {
+            (self.particles.end < strand.end).then(|| self.particles.start + 1..self.particles.end + 1)
+        } else {
+            (self.particles.start > strand.start).then(|| self.particles.start - 1..self.particles.end - 1)
+        };
+        let Some(run) = run else { return Some(false) };
+        let back = slid.normalize() * spacing_m;
+        for attachment in contacts.attachments.iter_mut() {
+            if attachment.body == self.body && self.particles.contains(&attachment.particle) {
+                attachment.particle = if forward { attachment.particle + 1 } else { attachment.particle - 1 };
+                attachment.local_m -= back;
+            }
+        }
+        let grip = &mut contacts.grips[g];
+        grip.slid_local_m -= back;
+        grip.particles = run.clone();
+        self.particles = run;
+        Some(true)
+    }
+
+    /// Lets go: the attachments go, and the grip.
     pub fn release(self, contacts: &mut RigidContacts) {
+        contacts.grips.retain(|g| g.body != self.body);
         contacts.detach(|a| a.body == self.body && self.particles.contains(&a.particle));
     }
 }

@@ -26,6 +26,26 @@ pub struct Attachment {
     pub local_m: Vector3<f64>,
 }
 
+/// The attachments of one body that hold a run of the rope by friction, as jaws squeezing a suture
+/// do: pulled along the rope harder than `limit_n`, the run slides through them (each substep the
+/// attachments' points give way along the rope by as much as holds the pull to the limit), and
+/// they go on holding it ([`crate::rope::grasp::RopeGrasp::follow_slide`] hands the hold on to
+/// the next particles as it goes).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Grip {
+    /// The body.
+    pub body: RigidBodyHandle,
+    /// The particles it holds.
+    pub particles: Range<usize>,
+    /// The most it holds the rope with along itself, N.
+    pub limit_n: f64,
+    /// How far the run has slid through it since its particles were last handed on, in the body's
+    /// frame, m.
+    pub slid_local_m: Vector3<f64>,
+    /// Whether it slid in the last step.
+    pub sliding: bool,
+}
+
 /// A point fixed in a body that the rope passes through, free to slide along itself (a stitch's
 /// hole through a flap): each substep the rope's point there is moved onto it across the rope, not
 /// along it.
@@ -75,6 +95,8 @@ pub struct RigidContacts {
     pub attachments: Vec<Attachment>,
     /// The impulse each attachment gave its particle over the last step, N s (as `attachments`).
     pub attachment_impulses: Vec<Vector3<f64>>,
+    /// Attachments that hold by friction (jaws on the suture); the rest hold whatever pulls.
+    pub grips: Vec<Grip>,
     /// The points the rope slides through, in order along it.
     pub guides: Vec<Guide>,
     /// The impulse the rope gave each body over the last step, N s, and its moment about the body's
@@ -118,6 +140,9 @@ impl RigidContacts {
     pub fn clear_impulses(&mut self) {
         self.impulses.clear();
         self.attachment_impulses = vec![Vector3::zeros(); self.attachments.len()];
+        for grip in &mut self.grips {
+            grip.sliding = false;
+        }
     }
 
     /// Removes the attachments `which` picks, with their impulses.
@@ -238,6 +263,54 @@ impl Among<'_> {
         Some(body.position().lerp(&pose_after(body, self.dt_s), f))
     }
 
+    /// Each grip's attachment points give way along the rope where holding them would pull it
+    /// harder than the grip's limit over this substep of `h_s` (the body at fraction `f` of the step).
+    fn give_way_in_grips(&mut self, ropes: &Ropes, h_s: f64, f: f64) {
+        for g in 0..self.contacts.grips.len() {
+            let grip = self.contacts.grips[g].clone();
+            let Some(pose) = self.body_pose(grip.body, f) else { continue };
+            let Some(strand) = ropes.strands.iter().find(|s| s.contains(&grip.particles.start)) else {
+                continue;
+            };
+            let held: Vec<usize> = (0..self.contacts.attachments.len())
+                .filter(|&k| {
+                    let a = &self.contacts.attachments[k];
+                    a.body == grip.body && grip.particles.contains(&a.particle) && ropes.w[a.particle] > 0.0
+                })
+                .collect();
+            // The rope's way through the grip.
+            let before = grip.particles.start.saturating_sub(1).max(strand.start);
+            let after = grip.particles.end.min(strand.end - 1);
+            let Some(t) = (ropes.x[after] - ropes.x[before]).try_normalize(1e-12) else { continue };
+            let target = |a: &Attachment| na(pose.transform_point(v(&a.local_m)));
+            // How far the attachments would move the run along the rope, mass-weighted (kg m):
+            // over a substep, an impulse of (that / h).
+            let (mut along, mut mass) = (0.0, 0.0);
+            for &k in &held {
+                let a = self.contacts.attachments[k];
+                let m = 1.0 / ropes.w[a.particle];
+                along += m * t.dot(&(target(&a) - ropes.x[a.particle]));
+                mass += m;
+            }
+            let most = grip.limit_n * h_s * h_s;
+            if mass <= 0.0 || along.abs() <= most {
+                continue;
+            }
+            // The points slide back along the rope, towards the pull, until the rest is the limit.
+            let give = t * ((along - along.signum() * most) / mass);
+            for &k in &held {
+                let a = &mut self.contacts.attachments[k];
+                let to = na(pose.transform_point(v(&a.local_m))) - give;
+                a.local_m = na(pose.inverse_transform_point(v(&to)));
+            }
+            let origin = na(pose.inverse_transform_point(v(&Vector3::zeros())));
+            let given = na(pose.inverse_transform_point(v(&-give))) - origin;
+            let grip = &mut self.contacts.grips[g];
+            grip.slid_local_m += given;
+            grip.sliding = true;
+        }
+    }
+
     fn push(&mut self, body: RigidBodyHandle, impulse: Vector3<f64>, at: Vector3<f64>, f: f64) {
         let com = self
             .bodies
@@ -322,6 +395,7 @@ impl Surroundings for Among<'_> {
             self.candidates[k] = candidates;
         }
         self.contacts.contacts_last = touching;
+        self.give_way_in_grips(ropes, h_s, f1);
         for (k, a) in self.contacts.attachments.clone().into_iter().enumerate() {
             let Some(pose) = self.body_pose(a.body, f1) else { continue };
             let target = na(pose.transform_point(v(&a.local_m)));
