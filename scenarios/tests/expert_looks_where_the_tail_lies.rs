@@ -33,7 +33,10 @@ fn the_point_ahead_of_the_jaws_is_on_the_tail_where_their_line_meets_it() {
     // Jaws 12 mm over the tail, pointing down at it, and a little to one side.
     let side = world.tissue.world_from_tissue.rotation * nalgebra::Vector3::x() * 0.0005;
     let jaw_centre = tail_point + up * 0.012 + side;
-    let found = tail_ahead_of_jaws(&world, &jaw_centre, &-up).expect("a tail ahead");
+    let (found, along) = tail_ahead_of_jaws(&world, &jaw_centre, &-up).expect("a tail ahead");
+    // ... with the way the tail runs there, towards its end.
+    let towards_end = (line[held] - line[*inside.end() + 1]).normalize();
+    assert!((along.norm() - 1.0).abs() < 1e-9 && along.dot(&towards_end) > 0.5, "{along:?}");
     let off_line = |p: &nalgebra::Vector3<f64>| {
         let d = p - jaw_centre;
         (d - up * d.dot(&up)).norm()
@@ -46,11 +49,11 @@ fn the_point_ahead_of_the_jaws_is_on_the_tail_where_their_line_meets_it() {
     let surface = world.tissue.hole_m(&world.physics, knotlab_sim::tissue::Flap::A);
     let height = |p: &nalgebra::Vector3<f64>| (p - surface).dot(&up);
     let low = (*inside.end() + 1..held).map(|i| line[i]).find(|p| height(p) < 0.002).expect("a low point");
-    let over_low = tail_ahead_of_jaws(&world, &(low + up * 0.012), &-up).expect("a tail ahead");
+    let (over_low, _) = tail_ahead_of_jaws(&world, &(low + up * 0.012), &-up).expect("a tail ahead");
     assert!(height(&over_low) >= TAKE_CLEARANCE_M, "{:.2} mm up", height(&over_low) * 1e3);
     // Pointing away from it, the jaws see no tail ahead above the tissue there.
     let away = tail_ahead_of_jaws(&world, &jaw_centre, &up);
-    assert!(away.is_none_or(|p| (p - jaw_centre).dot(&up) >= 0.0), "{away:?} is behind the jaws");
+    assert!(away.is_none_or(|(p, _)| (p - jaw_centre).dot(&up) >= 0.0), "{away:?} is behind the jaws");
 }
 
 #[test]
@@ -105,6 +108,60 @@ fn looking_splits_the_second_throw_at_the_tail_where_the_left_fetches_it() {
         assert!(plan_second_tail_take(&world, &geometry, &variation).is_none());
         let skill = plan_second_throw(&world, &geometry, &variation).expect("a second throw");
         assert!(!skill.name.contains("to the tail"), "{}", skill.name);
+    }
+}
+
+#[test]
+fn the_take_comes_onto_the_tail_along_the_jaws_its_hinge_along_the_tail() {
+    use knotlab_hw::skill::Orientation;
+    use knotlab_sim::world::JAW_CENTRE_OFFSET_M;
+    let world = SimWorld::new(rope_scene(), Rig::shipped().expect("the rig")).expect("the rope scene builds");
+    let variation = knotlab_scenarios::expert::Variation::none();
+    let looks = expert("looks-at-the-tail.toml");
+    let fetch = looks.left_fetches.clone().expect("a fetch");
+    let framed =
+        TieGeometry { left_fetches: Some(LeftFetch { hinge_along_tail: true, ..fetch.clone() }), ..looks };
+    // The left's jaws as they stand, and the tail's point they look at.
+    let tip = world.world_from_tip(ArmName::Left);
+    let jaws = tip.rotation * nalgebra::Vector3::z();
+    let centre = (tip * nalgebra::Point3::new(0.0, 0.0, -JAW_CENTRE_OFFSET_M)).coords;
+    let (tail, along) = tail_ahead_of_jaws(&world, &centre, &jaws).expect("a tail ahead of the jaws");
+    let off_line_m = (tail - centre - jaws * (tail - centre).dot(&jaws)).norm();
+    assert!(off_line_m > 0.002, "the tail lies {:.1} mm off the jaws' line at the start", off_line_m * 1e3);
+    let skill = plan_tail_take(&world, &framed, &variation).expect("the take");
+    let left = skill.track(ArmName::Left).expect("the left");
+    // Keys are the tip's: the jaw centre is the offset behind it along the jaws.
+    let centre_of = |k: &knotlab_hw::skill::PoseKey| {
+        nalgebra::Vector3::from(k.world_position_m) - jaws * JAW_CENTRE_OFFSET_M
+    };
+    let nearest_m = |p: nalgebra::Vector3<f64>| {
+        left.poses.iter().map(|k| (centre_of(k) - p).norm()).fold(f64::INFINITY, f64::min)
+    };
+    // Over the tail first, then onto it along the jaws.
+    let over = tail - jaws * fetch.approach_m;
+    let (to_over, to_tail) = (nearest_m(over), nearest_m(tail));
+    println!(
+        "{:.1} mm off the line: over the tail within {:.2} mm, onto it within {:.2} mm",
+        off_line_m * 1e3,
+        to_over * 1e3,
+        to_tail * 1e3
+    );
+    assert!(to_over < 0.0005 && to_tail < 0.0005, "{to_over} m, {to_tail} m");
+    let when = |p: nalgebra::Vector3<f64>| {
+        left.poses.iter().find(|k| (centre_of(k) - p).norm() < 0.0005).map(|k| k.time_s)
+    };
+    assert!(when(over) < when(tail), "over the tail before onto it");
+    // The hinge (the frame's y) across the jaws along the tail where it lies.
+    let across = (along - jaws * along.dot(&jaws)).normalize();
+    let at_tail = left.poses.iter().find(|k| (centre_of(k) - tail).norm() < 0.0005).expect("at the tail");
+    match at_tail.orientation {
+        Orientation::Frame { quaternion_xyzw: [x, y, z, w] } => {
+            let q = nalgebra::UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(w, x, y, z));
+            assert!((q * nalgebra::Vector3::z()).dot(&jaws) > 0.9999, "the jaws keep their direction");
+            let hinge = q * nalgebra::Vector3::y();
+            assert!(hinge.dot(&across).abs() > 0.999, "the hinge {hinge:?} is not along the tail {across:?}");
+        }
+        other => panic!("the left holds {other:?}, not a frame"),
     }
 }
 

@@ -287,6 +287,74 @@ fn fetching_the_tail_as_one_body_the_right_turns_with_the_left_jaws() {
 }
 
 #[test]
+fn fetching_the_tail_the_right_follows_as_told_and_the_hinge_can_lie_along_the_tail() {
+    use knotlab_hw::skill::Orientation;
+    use knotlab_scenarios::expert::plan::LeftFetch;
+    let world = SimWorld::new(scene(), Rig::shipped().expect("the shipped rig")).expect("the scene builds");
+    let shipped = TieGeometry::default();
+    let fetch = shipped.left_fetches.clone().expect("the shipped left fetches the tail");
+    assert_eq!((fetch.right_follows, fetch.hinge_along_tail), (1.0, false));
+    let with = |fetch: LeftFetch| {
+        let geometry = TieGeometry { left_fetches: Some(fetch), ..shipped.clone() };
+        plan_instrument_tie(&world, &geometry, &Variation::none())
+    };
+    // The fetch: from the left's opening to take the tail to its closing on it.
+    let fetch_window = |skill: &knotlab_hw::skill::Skill| {
+        let left = skill.track(ArmName::Left).expect("the left");
+        let opened = left.jaw.iter().find(|k| k.jaw_rad == shipped.take_tail_jaw_rad).expect("opens").time_s;
+        let closed = left.jaw.iter().find(|k| k.time_s > opened && k.jaw_rad == 0.0).expect("closes").time_s;
+        (opened, closed)
+    };
+    // How far the right's jaws go during the fetch.
+    let right_moves_m = |skill: &knotlab_hw::skill::Skill| {
+        let (from, to) = fetch_window(skill);
+        let right = skill.track(ArmName::Right).expect("the right");
+        let inside: Vec<Vector3<f64>> = right
+            .poses
+            .iter()
+            .filter(|k| k.time_s >= from && k.time_s <= to)
+            .map(|k| Vector3::from(k.world_position_m))
+            .collect();
+        inside.iter().map(|p| (p - inside[0]).norm()).fold(0.0, f64::max)
+    };
+    let all = right_moves_m(&with(fetch.clone()));
+    let half = right_moves_m(&with(LeftFetch { right_follows: 0.5, ..fetch.clone() }));
+    let none = right_moves_m(&with(LeftFetch { right_follows: 0.0, ..fetch.clone() }));
+    println!("the right moves {:.1}, {:.1}, {:.1} mm", all * 1e3, half * 1e3, none * 1e3);
+    assert!(all > 0.02, "the shipped right follows the left's shift: {all} m");
+    assert!((half - 0.5 * all).abs() < 0.002, "half: {half} m of {all} m");
+    assert!(none < 1e-6, "it stays: {none} m");
+
+    // The hinge along the tail: the left holds a whole frame to the tail, its hinge (the frame's y)
+    // across the jaws along the line from the entry point to the assist's jaws; without it the left
+    // only points its jaws.
+    let entry = world.tissue.hole_m(&world.physics, knotlab_sim::tissue::Flap::A);
+    let jaws = world.tissue.world_from_tissue.rotation * Vector3::from(fetch.jaw_direction).normalize();
+    let offset_m = knotlab_sim::world::JAW_CENTRE_OFFSET_M;
+    let assist = (world.world_from_tip(ArmName::Assist) * nalgebra::Point3::new(0.0, 0.0, -offset_m)).coords;
+    let tail = assist - entry;
+    let across = (tail - jaws * tail.dot(&jaws)).normalize();
+    let last_fetch_pose = |skill: &knotlab_hw::skill::Skill| {
+        let (_, closed) = fetch_window(skill);
+        let left = skill.track(ArmName::Left).expect("the left");
+        left.poses.iter().rev().find(|k| k.time_s <= closed).expect("a pose").orientation
+    };
+    match last_fetch_pose(&with(LeftFetch { hinge_along_tail: true, ..fetch.clone() })) {
+        Orientation::Frame { quaternion_xyzw: [x, y, z, w] } => {
+            let q = nalgebra::UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(w, x, y, z));
+            let (hinge, pointing) = (q * Vector3::y(), q * Vector3::z());
+            assert!(pointing.dot(&jaws) > 0.999, "the jaws point {pointing:?}, not {jaws:?}");
+            assert!(hinge.dot(&across).abs() > 0.999, "the hinge {hinge:?} is not along {across:?}");
+        }
+        other => panic!("the left holds {other:?}, not a frame"),
+    }
+    assert!(
+        matches!(last_fetch_pose(&with(fetch)), Orientation::JawDirection { .. }),
+        "the shipped left points its jaws"
+    );
+}
+
+#[test]
 fn the_draw_and_the_run_down_go_as_the_geometry_says() {
     use knotlab_hw::skill::ForceAction;
     let world = SimWorld::new(scene(), Rig::shipped().expect("the shipped rig")).expect("the scene builds");

@@ -189,6 +189,8 @@ impl Default for TieGeometry {
                 stop_short_m: 0.0,
                 as_one_body: false,
                 looks: false,
+                right_follows: 1.0,
+                hinge_along_tail: false,
             }),
             assist_presents: false,
             right_jaws_across_winding: 0.0,
@@ -266,9 +268,25 @@ pub struct LeftFetch {
     /// throw's plan stops with the left's jaws over the tail, and the rest is planned from the world
     /// then ([`plan_tail_take`]), the jaws closing on the tail's point nearest their line, not on
     /// the straight line from the entry point to the assist's jaws (a slack tail sags off it: 3-8 mm
-    /// on the rope, session 44). The first throw only.
+    /// on the rope, session 44). The second throw's fetch looks too where the left takes the tail
+    /// from the assist ([`plan_second_tail_take`]).
     #[serde(default)]
     pub looks: bool,
+    /// Without `as_one_body`, the right follows this fraction of the left's shift (1: all of it, the
+    /// coils carried as they are; 0: it stays, and the long end runs out through the coils as the
+    /// left goes). Carried all the way to a tail the assist holds up, the right brought the needle's
+    /// end of the long end beside the tail (session 45).
+    #[serde(default = "all_the_way")]
+    pub right_follows: f64,
+    /// Without `as_one_body`, the left still turns its whole tip frame, its hinge along the tail (so
+    /// that the tail runs between the open jaws), and the right follows its shift (false: the left
+    /// points its jaws, the solver choosing their roll: the jaws may come onto the tail flat).
+    #[serde(default)]
+    pub hinge_along_tail: bool,
+}
+
+fn all_the_way() -> f64 {
+    1.0
 }
 
 /// How a human performance varies from run to run.
@@ -394,6 +412,9 @@ pub fn plan_instrument_tie(world: &SimWorld, geometry: &TieGeometry, variation: 
     plan_throw(world, geometry, variation, Stage::First { keep_hold: geometry.second_throw.is_some() })
 }
 
+/// How far off the jaws' line the tail they look at may lie for them to go straight onto it, m.
+const OFF_LINE_M: f64 = 0.002;
+
 /// A plan of part of the knot, from the world as it stands (`None`: the geometry asks for none).
 pub type Planner = fn(&SimWorld, &TieGeometry, &Variation) -> Option<Skill>;
 
@@ -507,8 +528,38 @@ fn plan_throw(world: &SimWorld, geometry: &TieGeometry, variation: &Variation, s
         let jaws_to = left.jaw_direction();
         let from = left.position_m();
         let stop_short_m = geometry.fetch().map_or(0.0, |f| f.stop_short_m);
-        if let Some(tail_m) = tail_ahead_of_jaws(world, &from, &jaws_to) {
-            left.go(Path::To(tail_m - jaws_to * stop_short_m), d(0.8));
+        if let Some((tail_m, tail_dir)) = tail_ahead_of_jaws(world, &from, &jaws_to) {
+            let framed = geometry.fetch().is_some_and(|f| f.as_one_body || f.hinge_along_tail);
+            // A tail found well off the jaws' line (the part under them lying low): the jaws go over
+            // it first and come onto it along themselves, not sideways through it (session 45).
+            let off_line_m = (tail_m - from - jaws_to * (tail_m - from).dot(&jaws_to)).norm();
+            let approach_m = geometry.fetch().map_or(0.0, |f| f.approach_m);
+            let mut ways = vec![];
+            if off_line_m > OFF_LINE_M {
+                ways.push(tail_m - jaws_to * (stop_short_m + approach_m));
+            }
+            ways.push(tail_m - jaws_to * stop_short_m);
+            for to in ways {
+                let to = Path::To(to);
+                match left.held_frame().filter(|_| framed) {
+                    // The jaws roll on the way, their hinge along the tail where it lies, so that it
+                    // runs between them: aimed at the line from the entry to the assist, the hinge lay
+                    // across a slack tail and the jaws closed beside it (session 45).
+                    Some(held) => {
+                        let hinge_now = held * Vector3::y();
+                        let hinge = Unit::try_new(tail_dir - jaws_to * tail_dir.dot(&jaws_to), 1e-9)
+                            .map(|h| if h.dot(&hinge_now) >= 0.0 { h } else { -h })
+                            .unwrap_or_else(|| Unit::new_normalize(hinge_now));
+                        let frame = nalgebra::Rotation3::from_basis_unchecked(&[
+                            hinge.cross(&jaws_to),
+                            hinge.into_inner(),
+                            jaws_to,
+                        ]);
+                        left.go_framing(to, d(0.8), frame);
+                    }
+                    None => left.go(to, d(0.8)),
+                }
+            }
         }
         left.wait_until(left.time_s() + pause[4]);
         left.jaw(0.0, d(0.3));
@@ -692,7 +743,7 @@ fn plan_throw(world: &SimWorld, geometry: &TieGeometry, variation: &Variation, s
         left.wait_until(left.time_s() + d(0.3));
         let shift = behind - left.position_m();
         let relocate_from = left.time_s();
-        if fetch.as_one_body {
+        if fetch.as_one_body || fetch.hinge_along_tail {
             // The whole tip frame turns (the hinge along the tail, so that it runs between the open
             // jaws; no roll left to the solver, which may flip it half way and jerk the coils), and
             // the right turns with it about the left's jaws: the coils keep their shape.
@@ -718,17 +769,27 @@ fn plan_throw(world: &SimWorld, geometry: &TieGeometry, variation: &Variation, s
                 .find(|f| left.reaches_framing(behind, *f))
                 .unwrap_or_else(|| frame_with(hinge));
             left.go_framing(Path::To(behind), d(1.5), frame);
-            // The right turns with the jaws' direction only: turned about the jaws as well, it would
-            // go round them and wind or unwind the coils.
-            let rotation = nalgebra::UnitQuaternion::rotation_between(&jaws_from, &jaws_to)
-                .unwrap_or_else(nalgebra::UnitQuaternion::identity);
             right.wait_until(relocate_from);
-            let carried = Path::Carried { pivot_from_m: left_from, pivot_to_m: behind, rotation };
-            right.go(carried, left.time_s() - relocate_from);
+            if fetch.as_one_body {
+                // The right turns with the jaws' direction only: turned about the jaws as well, it
+                // would go round them and wind or unwind the coils.
+                let rotation = nalgebra::UnitQuaternion::rotation_between(&jaws_from, &jaws_to)
+                    .unwrap_or_else(nalgebra::UnitQuaternion::identity);
+                let carried = Path::Carried { pivot_from_m: left_from, pivot_to_m: behind, rotation };
+                right.go(carried, left.time_s() - relocate_from);
+            } else {
+                right.go(
+                    Path::To(right.position_m() + shift * fetch.right_follows),
+                    left.time_s() - relocate_from,
+                );
+            }
         } else {
             left.go_pointing(Path::To(behind), d(1.5), jaws_to);
             right.wait_until(relocate_from);
-            right.go(Path::To(right.position_m() + shift), left.time_s() - relocate_from);
+            right.go(
+                Path::To(right.position_m() + shift * fetch.right_follows),
+                left.time_s() - relocate_from,
+            );
         }
         left.wait_until(left.time_s() + pause[4]);
         if fetch.looks && looks_at_take(stage) {
@@ -853,7 +914,7 @@ fn finish_throw(
     let drawn_to = left.position_m() + draw;
     let shaft = (drawn_to - trocar_of(&world.config, left.arm())).normalize();
     let relaxed = left.jaw_direction().lerp(&shaft, geometry.draw_relax);
-    if geometry.fetch().is_some_and(|f| f.as_one_body) {
+    if geometry.fetch().is_some_and(|f| f.as_one_body || f.hinge_along_tail) {
         // The left holds a whole frame since the fetch: it turns that frame, the roll going with it
         // (handed to the solver, the roll flipped: the jaws jumped at 400-530 mm/s and tore the
         // needle out of the right's jaws).

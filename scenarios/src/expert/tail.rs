@@ -14,12 +14,13 @@ pub const TAKE_CLEARANCE_M: f64 = 0.003;
 /// The tail's point nearest the line of jaws at `jaw_centre_m` pointing along `jaws` (world
 /// frame), ahead of them (not behind the jaw centre), between the stitch and the assist's jaws
 /// (the free end if the assist holds none), of those at least [`TAKE_CLEARANCE_M`] over the
-/// tissue (any, if none is); `None` if the stitch holds no thread or no tail lies ahead.
+/// tissue (any, if none is), and which way the tail runs there (towards its end); `None` if the
+/// stitch holds no thread or no tail lies ahead.
 pub fn tail_ahead_of_jaws(
     world: &SimWorld,
     jaw_centre_m: &Vector3<f64>,
     jaws: &Vector3<f64>,
-) -> Option<Vector3<f64>> {
+) -> Option<(Vector3<f64>, Vector3<f64>)> {
     let inside = world.thread_inside()?;
     let line = world.thread_centreline();
     let from = *inside.end() + 1;
@@ -37,22 +38,26 @@ pub fn tail_ahead_of_jaws(
     let up = world.tissue.world_from_tissue.rotation * Vector3::z();
     let surface = world.tissue.hole_m(&world.physics, Flap::A);
     let clear = |p: &Vector3<f64>| (p - surface).dot(&up) >= TAKE_CLEARANCE_M;
-    // (nearest of the clear points, nearest of all)
-    let mut best: [Option<(f64, Vector3<f64>)>; 2] = [None, None];
+    // (nearest of the clear points, nearest of all), each with the segment it lies on
+    let mut best: [Option<(f64, Vector3<f64>, usize)>; 2] = [None, None];
     for at in from..to {
         // Each segment sampled finely enough for the nearest point to within a tenth of it.
         for k in 0..10 {
             let p = line[at] + (line[at + 1] - line[at]) * (k as f64 / 10.0);
             let Some(off) = off_line(&p) else { continue };
             for (slot, counts) in best.iter_mut().zip([clear(&p), true]) {
-                if counts && slot.is_none_or(|(b, _)| off < b) {
-                    *slot = Some((off, p));
+                if counts && slot.is_none_or(|(b, _, _)| off < b) {
+                    *slot = Some((off, p, at));
                 }
             }
         }
     }
     let [clear_best, any_best] = best;
-    clear_best.or(any_best).map(|(_, p)| p)
+    let (_, point, at) = clear_best.or(any_best)?;
+    // The tail's way there over a few segments either side: one segment turns with its wiggles.
+    let (before, after) = (at.saturating_sub(3).max(from), (at + 4).min(to));
+    let direction = (line[after] - line[before]).try_normalize(1e-12)?;
+    Some((point, direction))
 }
 
 /// Where the tail lies `along` of the way (by segments) from the knot to the left's jaws, and which
