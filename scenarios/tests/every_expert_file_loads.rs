@@ -25,6 +25,7 @@ fn every_expert_file_loads() {
         "two-throws-drawn-ahead.toml",
         "two-throws-on-the-assist.toml",
         "two-throws-leg-behind.toml",
+        "two-throws-looking.toml",
     ] {
         assert!(names.iter().any(|n| n == expected), "{expected} missing from {names:?}");
     }
@@ -34,4 +35,12 @@ fn every_expert_file_loads() {
     assert_eq!(second.tail_hold_from_end_m, Some(0.004));
     assert_eq!(second.tail_end_offered_m, Some(0.005));
     assert_eq!(second.right_draws_to_m, Some([0.035, -0.015, 0.02]));
+    // The looking recipe's first throw is looks-at-the-tail's; its second fetch looks, square to the
+    // tail, the right staying where it wound.
+    let looking = load_tie_geometry(&dir.join("two-throws-looking.toml")).unwrap();
+    let first = load_tie_geometry(&dir.join("looks-at-the-tail.toml")).unwrap();
+    let second = looking.second_throw.clone().expect("a second throw");
+    assert_eq!(knotlab_scenarios::expert::TieGeometry { second_throw: None, ..looking }, first);
+    let fetch = second.left_fetches.expect("the second throw's own fetch");
+    assert!(fetch.looks && fetch.hinge_along_tail && fetch.right_follows == 0.0, "{fetch:?}");
 }

@@ -278,8 +278,10 @@ pub struct LeftFetch {
     /// end of the long end beside the tail (session 45).
     #[serde(default = "all_the_way")]
     pub right_follows: f64,
-    /// Without `as_one_body`, the left still turns its whole tip frame, its hinge along the tail (so
-    /// that the tail runs between the open jaws), and the right follows its shift (false: the left
+    /// The left takes the tail square to it: without `as_one_body` it still turns its whole tip
+    /// frame, its hinge along the tail (so that the tail runs between the open jaws), the right
+    /// following its shift; looking, it turns the hinge along the tail where it lies and, if that
+    /// is off the jaws' line, goes over it before it comes onto it along the jaws (false: the left
     /// points its jaws, the solver choosing their roll: the jaws may come onto the tail flat).
     #[serde(default)]
     pub hinge_along_tail: bool,
@@ -530,12 +532,15 @@ fn plan_throw(world: &SimWorld, geometry: &TieGeometry, variation: &Variation, s
         let stop_short_m = geometry.fetch().map_or(0.0, |f| f.stop_short_m);
         if let Some((tail_m, tail_dir)) = tail_ahead_of_jaws(world, &from, &jaws_to) {
             let framed = geometry.fetch().is_some_and(|f| f.as_one_body || f.hinge_along_tail);
-            // A tail found well off the jaws' line (the part under them lying low): the jaws go over
-            // it first and come onto it along themselves, not sideways through it (session 45).
+            let square = geometry.fetch().is_some_and(|f| f.hinge_along_tail);
+            // Taking the tail square to it, a tail found well off the jaws' line (the part under
+            // them lying low) is gone over first and come onto along the jaws, not sideways through
+            // it (session 45; without `hinge_along_tail` the shipped descent, which on the rope's
+            // seed 3 took the tail where going over it first took the coils).
             let off_line_m = (tail_m - from - jaws_to * (tail_m - from).dot(&jaws_to)).norm();
             let approach_m = geometry.fetch().map_or(0.0, |f| f.approach_m);
             let mut ways = vec![];
-            if off_line_m > OFF_LINE_M {
+            if square && off_line_m > OFF_LINE_M {
                 ways.push(tail_m - jaws_to * (stop_short_m + approach_m));
             }
             ways.push(tail_m - jaws_to * stop_short_m);
