@@ -542,6 +542,48 @@ fn for_the_second_throw_the_assist_takes_the_tail_near_its_end_and_draws_it_wher
 }
 
 #[test]
+fn the_assist_draws_the_tail_no_further_than_its_share_of_the_tail_when_told() {
+    use knotlab_scenarios::expert::tail::tail_length_to;
+    use knotlab_scenarios::expert::{SecondThrow, plan_second_throw};
+    let world = SimWorld::new(scene(), Rig::shipped().expect("the shipped rig")).expect("the scene builds");
+    let entry = world.tissue.hole_m(&world.physics, knotlab_sim::tissue::Flap::A);
+    let held_to = [0.0, 0.08, 0.06];
+    let held_to_world =
+        (world.tissue.world_from_tissue * nalgebra::Point3::from(Vector3::from(held_to))).coords;
+    let length_m = tail_length_to(&world, 0.006).expect("a tail longer than 6 mm");
+    let out = held_to_world - entry;
+    assert!(out.norm() > 0.5 * length_m, "the point is within half the tail: {} m, {length_m} m", out.norm());
+    let drawn_to = |taut: Option<f64>| {
+        let second = SecondThrow {
+            tail_hold_from_end_m: Some(0.006),
+            tail_held_to_m: Some(held_to),
+            tail_held_taut: taut,
+            ..SecondThrow::default()
+        };
+        let geometry = TieGeometry { second_throw: Some(second), ..TieGeometry::default() };
+        let skill = plan_second_throw(&world, &geometry, &Variation::none()).expect("a second throw");
+        let assist = skill.track(ArmName::Assist).expect("the assist");
+        // Where the assist's jaws stand as they let go of the tail: where it was drawn to.
+        let closed_s = assist.jaw.iter().find(|k| k.jaw_rad == 0.0).expect("it takes the tail").time_s;
+        let opened_s =
+            assist.jaw.iter().find(|k| k.time_s > closed_s && k.jaw_rad > 0.0).expect("lets go").time_s;
+        assist
+            .poses
+            .iter()
+            .rfind(|k| k.time_s > closed_s && k.time_s <= opened_s)
+            .map(|k| Vector3::from(k.world_position_m))
+            .expect("a pose")
+    };
+    let offset_m = knotlab_sim::world::JAW_CENTRE_OFFSET_M;
+    let untold = drawn_to(None);
+    assert!((untold - held_to_world).norm() < offset_m + 1e-3, "drawn to the point: {untold:?}");
+    let half = drawn_to(Some(0.5));
+    let expected = entry + out * (0.5 * length_m / out.norm());
+    println!("the tail {:.1} mm; drawn {:.1} mm from the entry", length_m * 1e3, (half - entry).norm() * 1e3);
+    assert!((half - expected).norm() < offset_m + 1e-3, "drawn to {half:?}, not {expected:?}");
+}
+
+#[test]
 fn the_assist_offers_the_tail_end_beside_the_left_jaws_along_their_hinge() {
     use knotlab_hw::skill::Orientation;
     use knotlab_scenarios::expert::{SecondThrow, plan_second_throw};

@@ -52,6 +52,7 @@ impl Check {
         self.direction(&format!("{table}.jaw_direction"), &f.jaw_direction);
         self.range(&format!("{table}.approach_m"), f.approach_m, 0.0, 0.1);
         self.range(&format!("{table}.stop_short_m"), f.stop_short_m, -0.05, 0.05);
+        self.range(&format!("{table}.right_follows"), f.right_follows, 0.0, 1.0);
     }
 }
 
@@ -182,6 +183,15 @@ fn range_problems(g: &TieGeometry) -> Vec<(String, String)> {
                 c.0.push((
                     "second_throw.tail_held_to_m".to_owned(),
                     "needs tail_hold_from_end_m: the assist draws the tail by its end".to_owned(),
+                ));
+            }
+        }
+        if let Some(share) = s.tail_held_taut {
+            c.range("second_throw.tail_held_taut", share, 0.1, 1.0);
+            if s.tail_held_to_m.is_none() {
+                c.0.push((
+                    "second_throw.tail_held_taut".to_owned(),
+                    "needs tail_held_to_m: it bounds how far the assist draws the tail there".to_owned(),
                 ));
             }
         }
@@ -369,11 +379,11 @@ mod tests {
              right_before_draw_m = [[0.3, 0.0, 0.0]]\nleft_run_down_via_m = [[0.0, 0.0, -0.3]]\n\
              right_run_down_via_m = [[0.0, 0.0, 0.0], [0.0, -0.3, 0.0]]\npull_force_n = 0.0\npull_s = 0.0\n\
              run_down_force_n = 0.0\nassist_presents = true\nleft_keeps_tail = true\n\
-             tail_hold_from_end_m = -0.01\ntail_held_to_m = [0.0, 0.5, 0.0]\n\
+             tail_hold_from_end_m = -0.01\ntail_held_to_m = [0.0, 0.5, 0.0]\ntail_held_taut = 2.0\n\
              winding_radius_m = 0.0\nwinding_behind_m = 0.5\nwinding_pitch_m = 0.2\ntake_tail_jaw_rad = 2.0\ntail_end_offered_m = 0.1\n\
              tail_ahead_m = 0.5\n\
              [second_throw.left_fetches]\nalong_tail = 2.0\n\
-             jaw_direction = [0.0, 0.0, -1.0]\napproach_m = 0.01\nstop_short_m = 0.0\n",
+             jaw_direction = [0.0, 0.0, -1.0]\napproach_m = 0.01\nstop_short_m = 0.0\nright_follows = 3.0\n",
             "bad.toml",
         ) else {
             panic!("out of range accepted");
@@ -406,6 +416,8 @@ mod tests {
             "second_throw.left_fetches.along_tail",
             "second_throw.tail_hold_from_end_m",
             "second_throw.tail_held_to_m.y",
+            "second_throw.tail_held_taut",
+            "second_throw.left_fetches.right_follows",
             "second_throw.winding_radius_m",
             "second_throw.winding_behind_m",
             "second_throw.winding_pitch_m",

@@ -19,7 +19,7 @@ use rand_chacha::ChaCha8Rng;
 
 use super::motion::{Follow, Path, TrackBuilder, Tremor};
 use super::second_throw::SecondThrow;
-use super::tail::{tail_ahead_of_jaws, tail_between_knot_and_left, tail_from_its_end};
+use super::tail::{tail_ahead_of_jaws, tail_between_knot_and_left, tail_from_its_end, tail_length_to};
 
 /// Where the expert puts things, in the stitch frame (m), and how hard it pulls.
 #[derive(Clone, Debug, PartialEq, serde::Deserialize, serde::Serialize)]
@@ -404,8 +404,8 @@ enum TailHold {
     /// This fraction of the way from the knot to the left's jaws.
     Along(f64),
     /// This far from the tail's free end, then drawn to `to_m` (stitch frame) once the left has let
-    /// go.
-    FromEnd { from_end_m: f64, to_m: Option<[f64; 3]> },
+    /// go, if `taut` is set no further from the entry point than that share of the tail it holds.
+    FromEnd { from_end_m: f64, to_m: Option<[f64; 3]>, taut: Option<f64> },
 }
 
 /// The plan as a skill, for the world as it stands (its start condition): the first throw, and all
@@ -465,9 +465,11 @@ fn second_start(second: &SecondThrow) -> SecondStart {
     match (second.left_keeps_tail, second.tail_hold_from_end_m, second.left_retakes_from_end_m) {
         (true, _, _) => SecondStart::LeftKeepsTail,
         (false, _, Some(from_end_m)) => SecondStart::LeftRetakes { from_end_m },
-        (false, Some(from_end_m), None) => {
-            SecondStart::AssistTakes(TailHold::FromEnd { from_end_m, to_m: second.tail_held_to_m })
-        }
+        (false, Some(from_end_m), None) => SecondStart::AssistTakes(TailHold::FromEnd {
+            from_end_m,
+            to_m: second.tail_held_to_m,
+            taut: second.tail_held_taut,
+        }),
         (false, None, None) => SecondStart::AssistTakes(TailHold::Along(second.tail_hold_along)),
     }
 }
@@ -614,11 +616,21 @@ fn plan_throw(world: &SimWorld, geometry: &TieGeometry, variation: &Variation, s
                 left.wait_until(assist.time_s() + pause[5]);
                 left.jaw(open, d(0.2));
                 left.wait_until(left.time_s() + d(0.2) + pause[0]);
-                if let TailHold::FromEnd { to_m: Some(to_m), .. } = tail_hold {
+                if let TailHold::FromEnd { to_m: Some(to_m), from_end_m, taut } = tail_hold {
                     // The assist draws the tail by its end to where the left will take it, while the
-                    // left goes to the winding point.
+                    // left goes to the winding point; with `tail_held_taut`, no further from the entry
+                    // point than that share of the tail it holds (the first throw leaves more or
+                    // less of it: drawn to a fixed point, a short tail tore the assist's grip).
+                    let mut to = at(to_m);
+                    if let Some(share) = taut {
+                        let entry = world.tissue.hole_m(&world.physics, Flap::A);
+                        if let Some(length_m) = tail_length_to(world, from_end_m) {
+                            let out = to - entry;
+                            to = entry + out * (share * length_m / out.norm()).min(1.0);
+                        }
+                    }
                     assist.wait_until(left.time_s());
-                    assist.go(Path::To(at(to_m)), d(1.5));
+                    assist.go(Path::To(to), d(1.5));
                 }
             }
             SecondStart::LeftRetakes { from_end_m } => {

@@ -21,6 +21,10 @@ pub struct SecondThrow {
     /// Once the left has let go, the assist draws the tail it holds to here (stitch frame); `None`:
     /// it stays where it took it.
     pub tail_held_to_m: Option<[f64; 3]>,
+    /// ... but no further from the entry point than this share of the thread between the entry and
+    /// the assist's jaws (the first throw leaves a longer or shorter tail: drawn to a fixed point, a
+    /// short one tore the assist's grip, 34 N, session 45); `None`: to `tail_held_to_m` itself.
+    pub tail_held_taut: Option<f64>,
     /// If set, the assist and the left swap parts for the rest of the throw: once the assist holds
     /// the tail by its end (`tail_hold_from_end_m`; drawn to `tail_held_to_m` if set), the left
     /// takes it back this far (along the thread) from its free end and the assist lets go; then the
@@ -123,6 +127,7 @@ impl Default for SecondThrow {
             tail_hold_along: 0.6,
             tail_hold_from_end_m: None,
             tail_held_to_m: None,
+            tail_held_taut: None,
             left_retakes_from_end_m: None,
             winding_point_m: first.winding_point_m,
             left_jaw_direction: None,

@@ -96,3 +96,12 @@ pub fn tail_from_its_end(world: &SimWorld, from_end_m: f64) -> Option<(Vector3<f
     }
     None
 }
+
+/// The thread between the stitch's entry and the tail's point `from_end_m` from its free end, m;
+/// `None` if the stitch holds no thread or the tail is shorter than that.
+pub fn tail_length_to(world: &SimWorld, from_end_m: f64) -> Option<f64> {
+    let inside = world.thread_inside()?;
+    let line = world.thread_centreline();
+    let whole_m: f64 = (*inside.end()..line.len() - 1).map(|at| (line[at + 1] - line[at]).norm()).sum();
+    (whole_m > from_end_m).then_some(whole_m - from_end_m)
+}
