@@ -291,6 +291,14 @@ fn all_the_way() -> f64 {
     1.0
 }
 
+impl LeftFetch {
+    /// Whether the left holds a whole tip frame from the fetch on (as one body, or its hinge along
+    /// the tail), rather than pointing its jaws with the roll left to the solver.
+    pub fn holds_frame(&self) -> bool {
+        self.as_one_body || self.hinge_along_tail
+    }
+}
+
 /// How a human performance varies from run to run.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Variation {
@@ -533,12 +541,11 @@ fn plan_throw(world: &SimWorld, geometry: &TieGeometry, variation: &Variation, s
         let from = left.position_m();
         let stop_short_m = geometry.fetch().map_or(0.0, |f| f.stop_short_m);
         if let Some((tail_m, tail_dir)) = tail_ahead_of_jaws(world, &from, &jaws_to) {
-            let framed = geometry.fetch().is_some_and(|f| f.as_one_body || f.hinge_along_tail);
+            let framed = geometry.fetch().is_some_and(LeftFetch::holds_frame);
             let square = geometry.fetch().is_some_and(|f| f.hinge_along_tail);
             // Taking the tail square to it, a tail found well off the jaws' line (the part under
             // them lying low) is gone over first and come onto along the jaws, not sideways through
-            // it (session 45; without `hinge_along_tail` the shipped descent, which on the rope's
-            // seed 3 took the tail where going over it first took the coils).
+            // it (session 45); without `hinge_along_tail`, the shipped straight descent.
             let off_line_m = (tail_m - from - jaws_to * (tail_m - from).dot(&jaws_to)).norm();
             let approach_m = geometry.fetch().map_or(0.0, |f| f.approach_m);
             let mut ways = vec![];
@@ -760,7 +767,7 @@ fn plan_throw(world: &SimWorld, geometry: &TieGeometry, variation: &Variation, s
         left.wait_until(left.time_s() + d(0.3));
         let shift = behind - left.position_m();
         let relocate_from = left.time_s();
-        if fetch.as_one_body || fetch.hinge_along_tail {
+        if fetch.holds_frame() {
             // The whole tip frame turns (the hinge along the tail, so that it runs between the open
             // jaws; no roll left to the solver, which may flip it half way and jerk the coils), and
             // the right turns with it about the left's jaws: the coils keep their shape.
@@ -931,7 +938,7 @@ fn finish_throw(
     let drawn_to = left.position_m() + draw;
     let shaft = (drawn_to - trocar_of(&world.config, left.arm())).normalize();
     let relaxed = left.jaw_direction().lerp(&shaft, geometry.draw_relax);
-    if geometry.fetch().is_some_and(|f| f.as_one_body || f.hinge_along_tail) {
+    if geometry.fetch().is_some_and(LeftFetch::holds_frame) {
         // The left holds a whole frame since the fetch: it turns that frame, the roll going with it
         // (handed to the solver, the roll flipped: the jaws jumped at 400-530 mm/s and tore the
         // needle out of the right's jaws).

@@ -63,7 +63,7 @@ impl RopeGrasp {
         if off(nearest) > reach_m {
             return None;
         }
-        let strand = ropes.strands.iter().find(|s| s.contains(&nearest))?.clone();
+        let strand = ropes.strand_holding(nearest)?;
         let mut first = nearest;
         while first > strand.start && off(first - 1) <= reach_m {
             first -= 1;
@@ -101,7 +101,6 @@ impl RopeGrasp {
         contacts.grips.retain(|g| g.body != self.body);
         contacts.grips.push(Grip {
             body: self.body,
-            particles: self.particles.clone(),
             limit_n,
             slid_local_m: Vector3::zeros(),
             sliding: false,
@@ -124,14 +123,12 @@ impl RopeGrasp {
         if slid.norm() < spacing_m {
             return None;
         }
-        let strand = ropes.strands.iter().find(|s| s.contains(&self.particles.start))?.clone();
+        let strand = ropes.strand_holding(self.particles.start)?;
         let origin = body_pose.transform_point(Vector::ZERO);
         let slid_world = body_pose.transform_point(Vector::new(slid.x, slid.y, slid.z)) - origin;
         let slid_world = Vector3::new(slid_world.x, slid_world.y, slid_world.z);
         // The particles that have come to where the held ones were lie back against the slide.
-        let before = self.particles.start.saturating_sub(1).max(strand.start);
-        let after = self.particles.end.min(strand.end - 1);
-        let forward = (ropes.x[after] - ropes.x[before]).dot(&slid_world) < 0.0;
+        let forward = ropes.way_through(&self.particles)?.dot(&slid_world) < 0.0;
         let run = if forward {
             (self.particles.end < strand.end).then(|| self.particles.start + 1..self.particles.end + 1)
         } else {
@@ -145,9 +142,7 @@ impl RopeGrasp {
                 attachment.local_m -= back;
             }
         }
-        let grip = &mut contacts.grips[g];
-        grip.slid_local_m -= back;
-        grip.particles = run.clone();
+        contacts.grips[g].slid_local_m -= back;
         self.particles = run;
         Some(true)
     }

@@ -181,6 +181,21 @@ impl Ropes {
         range
     }
 
+    /// The particles of the strand `particle` belongs to, if any.
+    pub fn strand_holding(&self, particle: usize) -> Option<Range<usize>> {
+        self.strands.iter().find(|s| s.contains(&particle)).cloned()
+    }
+
+    /// Which way the rope runs through the run `run` of one strand (from its first particle
+    /// towards its last, over a neighbour either side where the strand has one); `None` for an
+    /// empty run or a strand standing on one point.
+    pub fn way_through(&self, run: &Range<usize>) -> Option<Vector3<f64>> {
+        let strand = self.strand_holding(run.start)?;
+        let before = run.start.saturating_sub(1).max(strand.start);
+        let after = run.end.min(strand.end - 1);
+        (self.x[after] - self.x[before]).try_normalize(1e-12)
+    }
+
     /// The strand a particle belongs to.
     fn strand_of(&self, particle: usize) -> usize {
         self.strands.iter().position(|r| r.contains(&particle)).unwrap_or(usize::MAX)

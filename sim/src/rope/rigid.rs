@@ -33,10 +33,8 @@ pub struct Attachment {
 /// the next particles as it goes).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Grip {
-    /// The body.
+    /// The body: the grip is its attachments (a body holds one run of the rope at a time).
     pub body: RigidBodyHandle,
-    /// The particles it holds.
-    pub particles: Range<usize>,
     /// The most it holds the rope with along itself, N.
     pub limit_n: f64,
     /// How far the run has slid through it since its particles were last handed on, in the body's
@@ -269,19 +267,16 @@ impl Among<'_> {
         for g in 0..self.contacts.grips.len() {
             let grip = self.contacts.grips[g].clone();
             let Some(pose) = self.body_pose(grip.body, f) else { continue };
-            let Some(strand) = ropes.strands.iter().find(|s| s.contains(&grip.particles.start)) else {
-                continue;
-            };
             let held: Vec<usize> = (0..self.contacts.attachments.len())
                 .filter(|&k| {
                     let a = &self.contacts.attachments[k];
-                    a.body == grip.body && grip.particles.contains(&a.particle) && ropes.w[a.particle] > 0.0
+                    a.body == grip.body && ropes.w[a.particle] > 0.0
                 })
                 .collect();
             // The rope's way through the grip.
-            let before = grip.particles.start.saturating_sub(1).max(strand.start);
-            let after = grip.particles.end.min(strand.end - 1);
-            let Some(t) = (ropes.x[after] - ropes.x[before]).try_normalize(1e-12) else { continue };
+            let particles = held.iter().map(|&k| self.contacts.attachments[k].particle);
+            let (Some(first), Some(last)) = (particles.clone().min(), particles.max()) else { continue };
+            let Some(t) = ropes.way_through(&(first..last + 1)) else { continue };
             let target = |a: &Attachment| na(pose.transform_point(v(&a.local_m)));
             // How far the attachments would move the run along the rope, mass-weighted (kg m):
             // over a substep, an impulse of (that / h).
