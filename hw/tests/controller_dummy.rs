@@ -1,12 +1,14 @@
 //! The controller on a rig of dummy devices: a skill runs to its end on its targets; the emergency
 //! stop halts motion within one cycle and holds; the watchdog faults a run whose device goes stale;
-//! force-triggered events open the jaw or hold the tip; unreachable targets and unusable skills are
+//! force-triggered events open the jaw or hold the tip, and fire with another track's; unreachable targets and unusable skills are
 //! refused with typed errors.
 
 mod rigs;
 
 use knotlab_hw::controller::{ArmSetup, Controller, ControllerError, ControllerParams, RunOutcome, Status};
-use knotlab_hw::device::dummy::{DummyArmServo, DummyPedals, VirtualClock};
+use knotlab_hw::device::dummy::{
+    DummyArmServo, DummyForceSensor, DummyInstrumentDrive, DummyPedals, ForceHandle, VirtualClock,
+};
 use knotlab_hw::device::{
     ArmDevices, DeviceError, DeviceId, DeviceKind, DeviceSet, ForceReading, ForceSensor,
 };
@@ -263,6 +265,7 @@ fn a_force_event_opens_the_jaw_when_the_threshold_is_crossed() {
         until_s: 0.8,
         threshold_n: 1.5,
         sustain_s: 0.0,
+        fires_with: None,
         action: ForceAction::OpenJaw { jaw_rad: 0.5 },
     };
     controller.load_skill(hold_still_skill(arm, start, vec![event])).unwrap();
@@ -303,6 +306,7 @@ fn a_force_event_with_a_sustain_ignores_a_shorter_spike() {
         until_s: 0.9,
         threshold_n: 1.0,
         sustain_s: 0.05,
+        fires_with: None,
         action: ForceAction::OpenJaw { jaw_rad: 0.5 },
     };
     controller.load_skill(hold_still_skill(arm, start, vec![event])).unwrap();
@@ -336,6 +340,7 @@ fn a_hold_event_stops_the_tip_until_its_window_closes() {
         until_s: 0.7,
         threshold_n: 0.5,
         sustain_s: 0.0,
+        fires_with: None,
         action: ForceAction::Hold,
     };
     controller.load_skill(hold_still_skill(arm, start, vec![event])).unwrap();
@@ -354,6 +359,98 @@ fn a_hold_event_stops_the_tip_until_its_window_closes() {
     let held = held_tip.expect("the hold started");
     // Held at the target of 0.3 s: 0.3 of the way down by linear interpolation.
     assert!((held.z - (start.z - 0.02 * 0.3)).abs() < 1e-9 + 0.02 * PERIOD_S, "{held:?}");
+}
+
+/// Both instruments of the surgeon's pulls on dummy devices, each with its own force handle.
+fn two_arm_controller() -> (Controller, [ForceHandle; 2]) {
+    let sensors = [DummyForceSensor::new(), DummyForceSensor::new()];
+    let handles = [sensors[0].handle(), sensors[1].handle()];
+    let arms = [ArmName::Left, ArmName::Right];
+    let devices = DeviceSet {
+        arms: arms
+            .into_iter()
+            .zip(sensors)
+            .map(|(arm, force)| {
+                let (joints, _) = parked(arm);
+                let devices = ArmDevices {
+                    servo: Box::new(DummyArmServo::new(joints.arm_rad)),
+                    instrument: Some(Box::new(DummyInstrumentDrive::new(joints.tool))),
+                    force: Some(Box::new(force) as Box<dyn ForceSensor>),
+                };
+                (arm, devices)
+            })
+            .collect(),
+        pedals: Box::new(DummyPedals::new()),
+        masters: Vec::new(),
+        clock: Box::new(VirtualClock::new(PERIOD_S)),
+    };
+    let setups = arms.map(setup);
+    let controller =
+        Controller::new(devices, &setups, ControllerParams::default()).expect("the dummy rig starts");
+    (controller, handles)
+}
+
+#[test]
+fn an_event_that_fires_with_another_stops_both_pulls_at_the_first_force() {
+    let set_force = |fires_with: &str| ForceEvent {
+        name: "set force".into(),
+        from_s: 0.0,
+        until_s: 0.9,
+        threshold_n: 1.0,
+        sustain_s: 0.0,
+        fires_with: Some(fires_with.into()),
+        action: ForceAction::Hold,
+    };
+    let track = |arm: ArmName| {
+        let (_, start) = parked(arm);
+        let mut skill = hold_still_skill(arm, start, vec![set_force("set force")]);
+        skill.tracks.remove(0)
+    };
+    let skill =
+        Skill { name: "pull apart".into(), tracks: vec![track(ArmName::Left), track(ArmName::Right)] };
+    let (mut controller, [left_force, right_force]) = two_arm_controller();
+    controller.load_skill(skill.clone()).unwrap();
+    let mut held = [None, None];
+    for cycle in 0..900 {
+        // The left's thread tightens at 0.3 s; the right's never reads more than 0.2 N.
+        if cycle == 300 {
+            left_force.set(Vector3::new(1.2, 0.0, 0.0));
+        }
+        right_force.set(Vector3::new(0.0, 0.2, 0.0));
+        let record = controller.step().unwrap();
+        for (k, arm) in [ArmName::Left, ArmName::Right].into_iter().enumerate() {
+            let target = record.arm(arm).unwrap().target.expect("a target").world_position_m;
+            // The left holds from the cycle it reads its force (0.301 s, the gauge a cycle behind), the
+            // right from the next.
+            if record.skill_time_s >= 0.302 + k as f64 * PERIOD_S - 1e-9 {
+                assert_eq!(target, *held[k].get_or_insert(target), "{arm} at {}", record.skill_time_s);
+            }
+        }
+    }
+    let fired: Vec<_> = controller.fired_events().iter().map(|f| (f.arm, f.time_s)).collect();
+    assert_eq!(fired.len(), 2, "{fired:?}");
+    assert_eq!(fired[0].0, ArmName::Left);
+    assert_eq!(fired[1].0, ArmName::Right);
+    assert!((fired[1].1 - fired[0].1 - PERIOD_S).abs() < 1e-9, "the right a cycle after the left: {fired:?}");
+    // Without the link the right pulls on to its target.
+    let (mut controller, [left_force, _]) = two_arm_controller();
+    let mut alone = skill;
+    alone.tracks[1].events[0].fires_with = None;
+    controller.load_skill(alone).unwrap();
+    left_force.set(Vector3::new(1.2, 0.0, 0.0));
+    let summary = controller.run_to_end(|_| ()).unwrap();
+    assert_eq!(summary.outcome, RunOutcome::Completed);
+    assert_eq!(controller.fired_events().len(), 1);
+    // A link to a name no other track has is refused, naming the field.
+    let (mut controller, _) = two_arm_controller();
+    let mut dangling =
+        Skill { name: "pull apart".into(), tracks: vec![track(ArmName::Left), track(ArmName::Right)] };
+    dangling.tracks[0].events[0].fires_with = Some("set farce".into());
+    let text = controller.load_skill(dangling).unwrap_err().to_string();
+    assert!(
+        text.contains("tracks[0].events[0].fires_with: no other track has an event named \"set farce\""),
+        "{text}"
+    );
 }
 
 #[test]
@@ -401,6 +498,7 @@ fn skills_the_rig_cannot_run_are_refused() {
         until_s: 0.5,
         threshold_n: 1.0,
         sustain_s: -0.1,
+        fires_with: None,
         action: ForceAction::Hold,
     };
     let text = controller.load_skill(hold_still_skill(arm, start, vec![event])).unwrap_err().to_string();
@@ -429,6 +527,7 @@ fn skills_the_rig_cannot_run_are_refused() {
         until_s: 1.0,
         threshold_n: 1.0,
         sustain_s: 0.0,
+        fires_with: None,
         action: ForceAction::Hold,
     };
     let mut skill = hold_still_skill(arm, start, vec![event]);

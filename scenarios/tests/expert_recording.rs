@@ -157,6 +157,41 @@ fn the_left_pulls_the_tail_to_its_own_set_force_when_given_one() {
 }
 
 #[test]
+fn pulls_told_to_go_on_pass_their_targets_at_the_same_speed_and_stop_together() {
+    let shipped = TieGeometry::default();
+    let on = TieGeometry { pull_on_m: 0.03, pulls_stop_together: true, ..TieGeometry::default() };
+    let world = SimWorld::new(scene(), Rig::shipped().expect("the shipped rig")).expect("the scene builds");
+    let stitch = world.tissue.world_from_tissue;
+    // Where each pull starts and ends, and its speed: it starts 0.5 s before its set force may fire
+    // and ends 1 s before its hold runs out (these plans have no variation).
+    let ends = |geometry: &TieGeometry| {
+        pulls(geometry).map(|(track, set)| {
+            let (start_s, end_s) = (set.from_s - 0.5, set.until_s - 1.0);
+            let at = |t: f64| track.target_at(t).expect("a target").world_position_m;
+            let (from, to) = (at(start_s), at(end_s));
+            (track.arm, from, to, (to - from).norm() / (end_s - start_s), set)
+        })
+    };
+    for ((arm, from, to, speed, set), ((_, _, shipped_to, shipped_speed, shipped_set), target)) in ends(&on)
+        .into_iter()
+        .zip(ends(&shipped).into_iter().zip([shipped.left_pull_to_m, shipped.right_pull_to_m]))
+    {
+        // Shipped, each pull ends at its target (the tip a constant offset from the jaw centre).
+        let shipped_target = stitch * nalgebra::Point3::from(Vector3::from(target));
+        let offset = shipped_to - shipped_target.coords;
+        assert!(offset.norm() < 0.01, "{arm}: the shipped pull ends at its target ({offset:?})");
+        // Told to go on, 30 mm further along the same line, as fast (the jaw centre goes so; the tip,
+        // 5 mm ahead of it along jaws that keep pointing along the shaft, a little differently).
+        let beyond = to - shipped_to;
+        assert!((beyond.norm() - 0.03).abs() < 0.002, "{arm}: {} m on", beyond.norm());
+        assert!(beyond.normalize().dot(&(shipped_to - from).normalize()) > 0.99, "{arm}: along the pull");
+        assert!((speed - shipped_speed).abs() < 0.05 * shipped_speed, "{speed} against {shipped_speed} m/s");
+        assert_eq!(shipped_set.fires_with, None);
+        assert_eq!(set.fires_with.as_deref(), Some("set force"), "each fires with the other's");
+    }
+}
+
+#[test]
 fn each_pull_takes_as_long_as_told() {
     // The pull's last move, to its target, ends where the set-force hold would otherwise run out: it
     // starts with the pull and is `pull_s` long (the plan's pauses and the release come after).

@@ -175,12 +175,15 @@ impl ArmRuntime {
     }
 
     /// The set-point for skill time `time_s` from the arm's track: events, interpolated target, IK
-    /// seeded with the last set-point, the step clamped to the joints' speed. Fired events are pushed.
+    /// seeded with the last set-point, the step clamped to the joints' speed. Fired events are pushed;
+    /// `fired_names` holds the names of the events other tracks fired before this cycle (for
+    /// [`crate::skill::ForceEvent::fires_with`]).
     pub(super) fn compute(
         &mut self,
         track: &Track,
         time_s: f64,
         fired: &mut Vec<FiredEvent>,
+        fired_names: &[(ArmName, String)],
     ) -> Result<(), ControllerError> {
         let arm = self.name();
         let force_n = self.shaft_force_n.norm();
@@ -195,7 +198,11 @@ impl ArmRuntime {
             };
             let sustained =
                 state.above_since_s.is_some_and(|since| time_s - since >= event.sustain_s - 1e-12);
-            if state.fired_at_s.is_none() && sustained {
+            let joined = inside
+                && event.fires_with.as_ref().is_some_and(|name| {
+                    fired_names.iter().any(|(other, fired)| *other != arm && fired == name)
+                });
+            if state.fired_at_s.is_none() && (sustained || joined) {
                 state.fired_at_s = Some(time_s);
                 state.hold = self.last_target.or(target);
                 fired.push(FiredEvent { arm, event: i, time_s, force_n });

@@ -356,9 +356,18 @@ impl Controller {
         {
             let time_s = self.skill_cycle as f64 * self.period_s;
             self.skill_time_s = time_s;
+            // Events see the names fired in earlier cycles only: every arm's this cycle alike.
+            let fired_names: Vec<(ArmName, String)> = self
+                .fired
+                .iter()
+                .filter_map(|f| {
+                    let track = skill.tracks.iter().find(|t| t.arm == f.arm)?;
+                    Some((f.arm, track.events.get(f.event)?.name.clone()))
+                })
+                .collect();
             for arm in &mut self.arms {
                 if let Some(t) = arm.track {
-                    arm.compute(&skill.tracks[t], time_s, &mut self.fired)?;
+                    arm.compute(&skill.tracks[t], time_s, &mut self.fired, &fired_names)?;
                     arm.write()?;
                 }
             }

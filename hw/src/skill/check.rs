@@ -144,6 +144,19 @@ impl Skill {
                         format!("{} is not a duration (s >= 0)", event.sustain_s),
                     );
                 }
+                if let Some(name) = &event.fires_with {
+                    let elsewhere = self
+                        .tracks
+                        .iter()
+                        .enumerate()
+                        .any(|(other, o)| other != t && o.events.iter().any(|e| &e.name == name));
+                    if !elsewhere {
+                        p.add(
+                            format!("{ep}.fires_with"),
+                            format!("no other track has an event named {name:?}"),
+                        );
+                    }
+                }
                 if let ForceAction::OpenJaw { jaw_rad } = event.action
                     && !(jaw_rad.is_finite() && jaw_rad >= 0.0)
                 {

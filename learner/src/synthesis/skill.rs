@@ -234,6 +234,7 @@ fn force_keys(
         until_s: slot.1,
         threshold_n: p.max_force_n,
         sustain_s: 0.0,
+        fires_with: None,
         action: ForceAction::OpenJaw { jaw_rad: to_rad },
     });
 }

@@ -126,6 +126,7 @@ fn range_problems(g: &TieGeometry) -> Vec<(String, String)> {
     }
     c.range("draw_s", g.draw_s, 0.1, 60.0);
     c.range("pull_s", g.pull_s, 0.1, 60.0);
+    c.range("pull_on_m", g.pull_on_m, 0.0, 0.2);
     if let Some(v) = g.tail_end_offered_m {
         c.range("tail_end_offered_m", v, 0.0, 0.05);
         if g.fetch().is_some() {

@@ -18,6 +18,7 @@ use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
 use super::motion::{Follow, Path, TrackBuilder, Tremor};
+use super::reach::reach_along;
 use super::second_throw::SecondThrow;
 use super::tail::{tail_ahead_of_jaws, tail_between_knot_and_left, tail_from_its_end, tail_length_to};
 
@@ -130,6 +131,14 @@ pub struct TieGeometry {
     /// How long each pull takes to its target, s (it stops sooner at its set force; a fast pull
     /// carries the gauge's reading past the set force before the arm stops).
     pub pull_s: f64,
+    /// Past its target each pull goes on this much further the same way, at the same speed, within
+    /// the instrument's reach, m: to be stopped by its set force rather than by where it was sent
+    /// (a slack loop never strains a pull that stops at its target: session 45, the wound 3.9 mm open
+    /// at release; sent beyond, 0.14 mm).
+    pub pull_on_m: f64,
+    /// Whether both pulls stop as soon as either reaches its set force (the other pulling on tore
+    /// the tail out of the left's stopped jaws: session 45, 16.5 N).
+    pub pulls_stop_together: bool,
     /// Where the assist retreats to.
     pub assist_retreat_m: [f64; 3],
     /// Every move is slowed until no joint needs more than this fraction of its rated speed.
@@ -220,6 +229,8 @@ impl Default for TieGeometry {
             left_pull_to_m: [0.0, 0.06, 0.01],
             right_pull_to_m: [0.0, -0.05, 0.005],
             pull_s: 2.5,
+            pull_on_m: 0.0,
+            pulls_stop_together: false,
             assist_retreat_m: [0.04, 0.04, 0.04],
             speed_fraction: 0.3,
             draw_back_m: 0.032,
@@ -896,6 +907,9 @@ fn plan_throw(world: &SimWorld, geometry: &TieGeometry, variation: &Variation, s
     finish_throw(world, geometry, variation, stage, [left, right, assist])
 }
 
+/// The name of the pulls' force events (each pull's `fires_with` names the other's).
+const SET_FORCE: &str = "set force";
+
 /// The rest of a throw once the left has closed on the tail: the assist lets go and retreats, the
 /// left draws the tail out of its coils, both run the knot down and pull to the set force.
 fn finish_throw(
@@ -976,27 +990,46 @@ fn finish_throw(
                 until_s: track.time_s(),
                 threshold_n,
                 sustain_s: 0.0,
+                fires_with: None,
                 action: ForceAction::Hold,
             });
         }
     };
     let pull_s = left.time_s().max(right.time_s()) + 0.3;
     let tail_pull_force_n = geometry.tail_pull_force_n.unwrap_or(geometry.pull_force_n);
+    // Each pull to its target, or on past it within reach (`pull_on_m`), at the same speed.
+    let pull = |track: &mut TrackBuilder, to: [f64; 3]| {
+        track.wait_until(pull_s);
+        let (from, to) = (track.position_m(), at(to));
+        let beyond = to + (to - from).try_normalize(1e-12).unwrap_or_default() * geometry.pull_on_m;
+        let end = match world.rig.arm(track.arm()).model.tool.instrument_geometry() {
+            Some(instrument) => {
+                let trocar = trocar_of(&world.config, track.arm());
+                reach_along(instrument, &trocar, &track.jaw_direction(), &from, &beyond)
+            }
+            None => beyond,
+        };
+        let to_target_m = (to - from).norm();
+        let stretch = if to_target_m > 1e-9 { (end - from).norm() / to_target_m } else { 1.0 };
+        // The jaws keep pointing as they do: turning them along the shaft on the way passes the
+        // straight wrist, where the arm crawls and the pull never reaches its force.
+        track.go(Path::To(end), d(geometry.pull_s) * stretch.max(0.1));
+    };
+    let fires_with = geometry.pulls_stop_together.then(|| SET_FORCE.to_owned());
     if let Stage::First { keep_hold: true } = stage {
         // The pulls hold the knot cinched until the second throw: both stop at the set force (or
         // where they were going) and hold there together to the end of this plan.
-        for (track, to) in [(&mut left, geometry.left_pull_to_m), (&mut right, geometry.right_pull_to_m)] {
-            track.wait_until(pull_s);
-            track.go(Path::To(at(to)), d(geometry.pull_s));
-        }
+        pull(&mut left, geometry.left_pull_to_m);
+        pull(&mut right, geometry.right_pull_to_m);
         let end_s = left.time_s().max(right.time_s()) + 1.0;
         for (track, threshold_n) in [(&mut left, tail_pull_force_n), (&mut right, geometry.pull_force_n)] {
             track.event(ForceEvent {
-                name: "set force".into(),
+                name: SET_FORCE.into(),
                 from_s: pull_s + d(0.5),
                 until_s: end_s,
                 threshold_n,
                 sustain_s: geometry.pull_force_sustain_s,
+                fires_with: fires_with.clone(),
                 action: ForceAction::Hold,
             });
             track.wait_until(end_s);
@@ -1016,21 +1049,19 @@ fn finish_throw(
         (&mut left, geometry.left_pull_to_m, tail_pull_force_n, left_let_go),
         (&mut right, geometry.right_pull_to_m, geometry.pull_force_n, open),
     ] {
-        track.wait_until(pull_s);
         let from_s = pull_s;
-        // The jaws keep pointing as they do: turning them along the shaft on the way passes the
-        // straight wrist, where the arm crawls and the pull never reaches its force.
-        track.go(Path::To(at(to)), d(geometry.pull_s));
+        pull(track, to);
         // The hold ends as the jaws start to open, or, with `hold_through_release`, once they are
         // open: ended before, the arm goes on towards where the pull was headed as it lets go.
         let release_s = track.time_s() + 1.0;
         let hold_until_s = if geometry.hold_through_release { release_s + d(0.2) + 0.3 } else { release_s };
         track.event(ForceEvent {
-            name: "set force".into(),
+            name: SET_FORCE.into(),
             from_s: from_s + d(0.5),
             until_s: hold_until_s,
             threshold_n,
             sustain_s: geometry.pull_force_sustain_s,
+            fires_with: fires_with.clone(),
             action: if geometry.hold_at_force {
                 ForceAction::Hold
             } else {
