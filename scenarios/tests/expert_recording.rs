@@ -157,7 +157,7 @@ fn the_left_pulls_the_tail_to_its_own_set_force_when_given_one() {
 }
 
 #[test]
-fn pulls_told_to_go_on_pass_their_targets_at_the_same_speed_and_stop_together() {
+fn pulls_told_to_go_on_pass_their_targets_level_at_the_same_speed_and_stop_together() {
     let shipped = TieGeometry::default();
     let on = TieGeometry { pull_on_m: 0.03, pulls_stop_together: true, ..TieGeometry::default() };
     let world = SimWorld::new(scene(), Rig::shipped().expect("the shipped rig")).expect("the scene builds");
@@ -180,15 +180,52 @@ fn pulls_told_to_go_on_pass_their_targets_at_the_same_speed_and_stop_together() 
         let shipped_target = stitch * nalgebra::Point3::from(Vector3::from(target));
         let offset = shipped_to - shipped_target.coords;
         assert!(offset.norm() < 0.01, "{arm}: the shipped pull ends at its target ({offset:?})");
-        // Told to go on, 30 mm further along the same line, as fast (the jaw centre goes so; the tip,
-        // 5 mm ahead of it along jaws that keep pointing along the shaft, a little differently).
+        // Told to go on, 30 mm further the same way level with the tissue, as fast (the jaw centre
+        // goes so; the tip, 5 mm ahead of it along jaws that keep pointing along the shaft, a little
+        // differently).
+        let normal = stitch.rotation * Vector3::z();
+        let level = |v: Vector3<f64>| v - normal * normal.dot(&v);
         let beyond = to - shipped_to;
         assert!((beyond.norm() - 0.03).abs() < 0.002, "{arm}: {} m on", beyond.norm());
-        assert!(beyond.normalize().dot(&(shipped_to - from).normalize()) > 0.99, "{arm}: along the pull");
+        assert!(beyond.normalize().dot(&level(shipped_to - from).normalize()) > 0.99, "{arm}: the same way");
         assert!((speed - shipped_speed).abs() < 0.05 * shipped_speed, "{speed} against {shipped_speed} m/s");
         assert_eq!(shipped_set.fires_with, None);
         assert_eq!(set.fires_with.as_deref(), Some("set force"), "each fires with the other's");
     }
+}
+
+#[test]
+fn pulls_told_to_go_on_out_of_reach_stop_within_it() {
+    let rig = Rig::shipped().expect("the shipped rig");
+    let world = SimWorld::new(scene(), rig.clone()).expect("the scene builds");
+    let far = TieGeometry { pull_on_m: 0.2, ..TieGeometry::default() };
+    let skill = plan_instrument_tie(&world, &far, &Variation::human(3));
+    let mut cut_short = 0;
+    for (track, (_, set)) in
+        [ArmName::Left, ArmName::Right].map(|arm| skill.track(arm).expect("it pulls")).iter().zip(pulls(&far))
+    {
+        let model = &rig.arm(track.arm).model;
+        let trocar = trocar_of(&world.config, track.arm);
+        let mut joints = world.arm(track.arm).command;
+        for key in &track.poses {
+            let target = track.target_at(key.time_s).expect("a target");
+            joints = model.solve_tip(&target, &trocar, &joints).unwrap_or_else(|e| {
+                panic!("the {} arm cannot reach its key at {:.2} s: {e}", track.arm, key.time_s)
+            });
+        }
+        // Where the pull ends against where it would have, the shipped target 0.2 m further on.
+        let start = track.target_at(set.from_s - 0.5).expect("a target").world_position_m;
+        let end = track
+            .target_at(skill.tracks.iter().map(|t| t.poses.last().unwrap().time_s).fold(0.0, f64::max))
+            .unwrap()
+            .world_position_m;
+        let shipped = if track.arm == ArmName::Left { far.left_pull_to_m } else { far.right_pull_to_m };
+        let asked = (world.tissue.world_from_tissue * nalgebra::Point3::from(Vector3::from(shipped))).coords;
+        if (end - start).norm() < (asked - start).norm() + 0.2 - 0.01 {
+            cut_short += 1;
+        }
+    }
+    assert!(cut_short > 0, "0.2 m on is out of the arms' reach at this scene: some pull must stop short");
 }
 
 #[test]

@@ -119,12 +119,4 @@ impl Tool {
             Tool::Endoscope { geometry } => geometry.coupling_m,
         }
     }
-
-    /// The instrument's dimensions (`None` for the endoscope).
-    pub fn instrument_geometry(&self) -> Option<&InstrumentGeometry> {
-        match self {
-            Tool::Instrument { geometry, .. } => Some(geometry),
-            Tool::Endoscope { .. } => None,
-        }
-    }
 }

@@ -7,7 +7,6 @@ pub mod diagnose;
 pub mod geometry_file;
 pub mod motion;
 pub mod plan;
-pub mod reach;
 pub mod record;
 pub mod second_throw;
 pub mod tail;

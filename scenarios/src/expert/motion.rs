@@ -116,6 +116,9 @@ impl Follow {
     }
 }
 
+/// The step along a way at which [`TrackBuilder::reach_towards`] tries the arm's reach, m.
+const REACH_STEP_M: f64 = 0.002;
+
 /// Builds one arm's track: jaw-centre moves turned into tip keys every `key_period_s`.
 pub struct TrackBuilder {
     arm: ArmName,
@@ -310,6 +313,29 @@ impl TrackBuilder {
             })
             .collect();
         follow.check(&keys, 1.0).is_some()
+    }
+
+    /// The furthest point of the straight way from the jaw centre to `end_m` that the arm reaches
+    /// holding its jaws as they are: `end_m` when it reaches it; short of the first point it cannot
+    /// reach (the instrument's insertion or the arm's own reach) by one step of `REACH_STEP_M`, as a
+    /// margin for the tremor.
+    pub fn reach_towards(&self, end_m: Vector3<f64>) -> Vector3<f64> {
+        let Some(follow) = &self.follow else { return end_m };
+        let start = self.position_m;
+        let length_m = (end_m - start).norm();
+        let steps = (length_m / REACH_STEP_M).ceil().max(1.0) as usize;
+        let point = |i: usize| start + (end_m - start) * (i as f64 / steps as f64);
+        let mut joints = follow.joints;
+        for i in 1..=steps {
+            let key = self.make_key(self.time_s, point(i), self.hold);
+            let solved = knotlab_hw::skill::keys::pose_at(std::slice::from_ref(&key), key.time_s)
+                .and_then(|target| follow.model.solve_tip(&target, &follow.trocar_m, &joints).ok());
+            match solved {
+                Some(next) => joints = next,
+                None => return point(i.saturating_sub(2)),
+            }
+        }
+        end_m
     }
 
     /// Holds still until `time_s` (a pause, or waiting for another instrument).

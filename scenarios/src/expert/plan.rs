@@ -18,7 +18,6 @@ use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
 use super::motion::{Follow, Path, TrackBuilder, Tremor};
-use super::reach::reach_along;
 use super::second_throw::SecondThrow;
 use super::tail::{tail_ahead_of_jaws, tail_between_knot_and_left, tail_from_its_end, tail_length_to};
 
@@ -131,8 +130,8 @@ pub struct TieGeometry {
     /// How long each pull takes to its target, s (it stops sooner at its set force; a fast pull
     /// carries the gauge's reading past the set force before the arm stops).
     pub pull_s: f64,
-    /// Past its target each pull goes on this much further the same way, at the same speed, within
-    /// the instrument's reach, m: to be stopped by its set force rather than by where it was sent
+    /// Past its target each pull goes on this much further the same way (level with the tissue), at
+    /// the same speed, within the arm's reach, m: to be stopped by its set force rather than by where it was sent
     /// (a slack loop never strains a pull that stops at its target: session 45, the wound 3.9 mm open
     /// at release; sent beyond, 0.14 mm).
     pub pull_on_m: f64,
@@ -1001,14 +1000,12 @@ fn finish_throw(
     let pull = |track: &mut TrackBuilder, to: [f64; 3]| {
         track.wait_until(pull_s);
         let (from, to) = (track.position_m(), at(to));
-        let beyond = to + (to - from).try_normalize(1e-12).unwrap_or_default() * geometry.pull_on_m;
-        let end = match world.rig.arm(track.arm()).model.tool.instrument_geometry() {
-            Some(instrument) => {
-                let trocar = trocar_of(&world.config, track.arm());
-                reach_along(instrument, &trocar, &track.jaw_direction(), &from, &beyond)
-            }
-            None => beyond,
-        };
+        // On level with the tissue: the pulls come down to it, and going on down they pressed the
+        // instrument into it (7 N, read as the set force).
+        let normal = world_from_stitch.rotation * Vector3::z();
+        let way = (to - from) - normal * normal.dot(&(to - from));
+        let beyond = to + way.try_normalize(1e-12).unwrap_or_default() * geometry.pull_on_m;
+        let end = track.reach_towards(beyond);
         let to_target_m = (to - from).norm();
         let stretch = if to_target_m > 1e-9 { (end - from).norm() / to_target_m } else { 1.0 };
         // The jaws keep pointing as they do: turning them along the shaft on the way passes the
