@@ -614,6 +614,40 @@ fn for_the_second_throw_the_assist_takes_the_tail_near_its_end_and_draws_it_wher
 }
 
 #[test]
+fn the_left_lets_go_of_the_first_throw_before_the_second_when_told() {
+    use knotlab_scenarios::expert::SecondThrow;
+    let world = SimWorld::new(scene(), Rig::shipped().expect("the shipped rig")).expect("the scene builds");
+    let first = |left_lets_go_first: bool| {
+        let second =
+            SecondThrow { tail_hold_from_end_m: Some(0.006), left_lets_go_first, ..SecondThrow::default() };
+        let geometry = TieGeometry { second_throw: Some(second), ..TieGeometry::default() };
+        plan_instrument_tie(&world, &geometry, &Variation::none())
+    };
+    let last_jaw = |skill: &knotlab_hw::skill::Skill, arm: ArmName| {
+        skill.track(arm).expect("the arm").jaw.last().expect("jaw keys").jaw_rad
+    };
+    // Held: both keep their jaws shut on the ends to the end of the first throw.
+    let held = first(false);
+    assert_eq!((last_jaw(&held, ArmName::Left), last_jaw(&held, ArmName::Right)), (0.0, 0.0));
+    // Let go: the left opens on the tail, the right keeps the needle, and each pull's hold lasts until
+    // the left's jaws are open.
+    let let_go = first(true);
+    assert!(last_jaw(&let_go, ArmName::Left) >= SimWorld::JAW_OPEN_RAD - 1e-9);
+    assert_eq!(last_jaw(&let_go, ArmName::Right), 0.0);
+    let left = let_go.track(ArmName::Left).expect("the left");
+    let opened_s = left.jaw.last().expect("jaw keys").time_s;
+    for arm in [ArmName::Left, ArmName::Right] {
+        let track = let_go.track(arm).expect("the arm");
+        let set = track.events.iter().find(|e| e.name == "set force").expect("a set force");
+        assert!(
+            set.until_s >= opened_s,
+            "{arm}: the hold ends at {} s, the jaws open at {opened_s} s",
+            set.until_s
+        );
+    }
+}
+
+#[test]
 fn the_assist_draws_the_tail_no_further_than_its_share_of_the_tail_when_told() {
     use knotlab_scenarios::expert::tail::tail_length_to;
     use knotlab_scenarios::expert::{SecondThrow, plan_second_throw};

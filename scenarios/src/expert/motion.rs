@@ -119,6 +119,9 @@ impl Follow {
 /// The step along a way at which [`TrackBuilder::reach_towards`] tries the arm's reach, m.
 const REACH_STEP_M: f64 = 0.002;
 
+/// How far short of the edge of its reach [`TrackBuilder::reach_towards`] stops an arm, m.
+const REACH_MARGIN_M: f64 = 0.01;
+
 /// Builds one arm's track: jaw-centre moves turned into tip keys every `key_period_s`.
 pub struct TrackBuilder {
     arm: ArmName,
@@ -316,9 +319,10 @@ impl TrackBuilder {
     }
 
     /// The furthest point of the straight way from the jaw centre to `end_m` that the arm reaches
-    /// holding its jaws as they are: `end_m` when it reaches it; short of the first point it cannot
-    /// reach (the instrument's insertion or the arm's own reach) by one step of `REACH_STEP_M`, as a
-    /// margin for the tremor.
+    /// holding its jaws as they are: `end_m` when it reaches it; else `REACH_MARGIN_M` short of the
+    /// first point it cannot reach (the instrument's insertion or the arm's own reach: held at the
+    /// edge of its reach, its elbow nearly straight, the left's jaws jumped 5 mm about the hold and
+    /// tore the tail out of them).
     pub fn reach_towards(&self, end_m: Vector3<f64>) -> Vector3<f64> {
         let Some(follow) = &self.follow else { return end_m };
         let start = self.position_m;
@@ -332,7 +336,11 @@ impl TrackBuilder {
                 .and_then(|target| follow.model.solve_tip(&target, &follow.trocar_m, &joints).ok());
             match solved {
                 Some(next) => joints = next,
-                None => return point(i.saturating_sub(2)),
+                None => {
+                    let reached = point(i - 1);
+                    let back = (reached - start).norm().min(REACH_MARGIN_M);
+                    return reached - (end_m - start).normalize() * back;
+                }
             }
         }
         end_m

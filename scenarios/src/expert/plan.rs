@@ -1015,10 +1015,14 @@ fn finish_throw(
     let fires_with = geometry.pulls_stop_together.then(|| SET_FORCE.to_owned());
     if let Stage::First { keep_hold: true } = stage {
         // The pulls hold the knot cinched until the second throw: both stop at the set force (or
-        // where they were going) and hold there together to the end of this plan.
+        // where they were going) and hold there together to the end of this plan; or the left then
+        // lets go of the tail where it stopped, its hold lasting until its jaws are open, and the
+        // right holds on to the needle and the long end.
+        let left_lets_go = geometry.second_throw.as_ref().is_some_and(|s| s.left_lets_go_first);
         pull(&mut left, geometry.left_pull_to_m);
         pull(&mut right, geometry.right_pull_to_m);
-        let end_s = left.time_s().max(right.time_s()) + 1.0;
+        let held_s = left.time_s().max(right.time_s()) + 1.0;
+        let end_s = if left_lets_go { held_s + d(0.2) + 0.3 } else { held_s };
         for (track, threshold_n) in [(&mut left, tail_pull_force_n), (&mut right, geometry.pull_force_n)] {
             track.event(ForceEvent {
                 name: SET_FORCE.into(),
@@ -1029,10 +1033,15 @@ fn finish_throw(
                 fires_with: fires_with.clone(),
                 action: ForceAction::Hold,
             });
-            track.wait_until(end_s);
+            track.wait_until(held_s);
             hold_from_run_down(track);
         }
-        assist.wait_until(end_s);
+        if left_lets_go {
+            left.jaw(open.max(geometry.take_tail_jaw_rad), d(0.2));
+        }
+        for track in [&mut left, &mut right, &mut assist] {
+            track.wait_until(end_s);
+        }
         return Skill {
             name: "instrument tie: surgeon's knot, first throw".into(),
             tracks: vec![left.build(), right.build(), assist.build()],

@@ -25,6 +25,11 @@ pub struct SecondThrow {
     /// the assist's jaws (the first throw leaves a longer or shorter tail: drawn to a fixed point, a
     /// short one tore the assist's grip, 34 N, session 45); `None`: to `tail_held_to_m` itself.
     pub tail_held_taut: Option<f64>,
+    /// The left lets go of the tail once the first throw's pulls are done, the right holding on: the
+    /// double throw, cinched, holds by itself, and the assist then takes the tail where it lies (held
+    /// taut by the left through the hand-over, the tail tore out of the left's jaws or the assist's,
+    /// 15-78 N, session 46).
+    pub left_lets_go_first: bool,
     /// If set, the assist and the left swap parts for the rest of the throw: once the assist holds
     /// the tail by its end (`tail_hold_from_end_m`; drawn to `tail_held_to_m` if set), the left
     /// takes it back this far (along the thread) from its free end and the assist lets go; then the
@@ -128,6 +133,7 @@ impl Default for SecondThrow {
             tail_hold_from_end_m: None,
             tail_held_to_m: None,
             tail_held_taut: None,
+            left_lets_go_first: false,
             left_retakes_from_end_m: None,
             winding_point_m: first.winding_point_m,
             left_jaw_direction: None,
