@@ -26,6 +26,7 @@ fn every_expert_file_loads() {
         "two-throws-on-the-assist.toml",
         "two-throws-leg-behind.toml",
         "two-throws-looking.toml",
+        "looks-and-cinches.toml",
     ] {
         assert!(names.iter().any(|n| n == expected), "{expected} missing from {names:?}");
     }
@@ -43,4 +44,14 @@ fn every_expert_file_loads() {
     assert_eq!(knotlab_scenarios::expert::TieGeometry { second_throw: None, ..looking }, first);
     let fetch = second.left_fetches.expect("the second throw's own fetch");
     assert!(fetch.looks && fetch.hinge_along_tail && fetch.right_follows == 0.0, "{fetch:?}");
+    // The cinching recipe is looks-at-the-tail's with pulls that go on to their set force.
+    let cinches = load_tie_geometry(&dir.join("looks-and-cinches.toml")).unwrap();
+    let expected = knotlab_scenarios::expert::TieGeometry {
+        pull_on_m: 0.2,
+        pulls_stop_together: true,
+        tail_pull_force_n: Some(1.0),
+        hold_through_release: true,
+        ..load_tie_geometry(&dir.join("looks-at-the-tail.toml")).unwrap()
+    };
+    assert_eq!(cinches, expected);
 }
