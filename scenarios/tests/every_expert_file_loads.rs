@@ -27,6 +27,7 @@ fn every_expert_file_loads() {
         "two-throws-leg-behind.toml",
         "two-throws-looking.toml",
         "looks-and-cinches.toml",
+        "two-throws-cinched.toml",
     ] {
         assert!(names.iter().any(|n| n == expected), "{expected} missing from {names:?}");
     }
@@ -54,4 +55,10 @@ fn every_expert_file_loads() {
         ..load_tie_geometry(&dir.join("looks-at-the-tail.toml")).unwrap()
     };
     assert_eq!(cinches, expected);
+    // The cinched two-throw recipe: that first throw (its pulls on 0.12 m), the left letting go of it.
+    let cinched = load_tie_geometry(&dir.join("two-throws-cinched.toml")).unwrap();
+    let second = cinched.second_throw.clone().expect("a second throw");
+    assert!(second.left_lets_go_first && second.tail_held_taut == Some(0.9), "{second:?}");
+    let first = knotlab_scenarios::expert::TieGeometry { pull_on_m: 0.12, ..cinches };
+    assert_eq!(knotlab_scenarios::expert::TieGeometry { second_throw: None, ..cinched }, first);
 }

@@ -20,6 +20,20 @@ fn coils_on_the_left() -> TieGeometry {
     common::expert("coils-on-the-left.toml")
 }
 
+/// Whether the arm reaches every key of `track` in turn, each solved from the last; else which not.
+fn reaches_every_key(world: &SimWorld, rig: &Rig, track: &knotlab_hw::skill::Track) -> Result<(), String> {
+    let model = &rig.arm(track.arm).model;
+    let trocar = trocar_of(&world.config, track.arm);
+    let mut joints = world.arm(track.arm).command;
+    for key in &track.poses {
+        let target = track.target_at(key.time_s).expect("a target");
+        joints = model
+            .solve_tip(&target, &trocar, &joints)
+            .map_err(|e| format!("the {} arm cannot reach its key at {:.2} s: {e}", track.arm, key.time_s))?;
+    }
+    Ok(())
+}
+
 #[test]
 fn the_plan_is_reachable_for_every_variation() {
     let rig = Rig::shipped().expect("the shipped rig");
@@ -29,17 +43,8 @@ fn the_plan_is_reachable_for_every_variation() {
         skill.check().expect("a well-formed skill");
         assert_eq!(skill.tracks.len(), 3, "left, right and assist");
         for track in &skill.tracks {
-            let model = &rig.arm(track.arm).model;
-            let trocar = trocar_of(&world.config, track.arm);
-            let mut joints = world.arm(track.arm).command;
-            for key in &track.poses {
-                let target = track.target_at(key.time_s).expect("a target");
-                joints = model.solve_tip(&target, &trocar, &joints).unwrap_or_else(|e| {
-                    panic!(
-                        "seed {seed}: the {} arm cannot reach its key at {:.2} s: {e}",
-                        track.arm, key.time_s
-                    )
-                });
+            if let Err(e) = reaches_every_key(&world, &rig, track) {
+                panic!("seed {seed}: {e}");
             }
         }
         let right = skill.track(ArmName::Right).expect("the right winds");
@@ -204,15 +209,7 @@ fn pulls_told_to_go_on_out_of_reach_stop_within_it() {
     for (track, (_, set)) in
         [ArmName::Left, ArmName::Right].map(|arm| skill.track(arm).expect("it pulls")).iter().zip(pulls(&far))
     {
-        let model = &rig.arm(track.arm).model;
-        let trocar = trocar_of(&world.config, track.arm);
-        let mut joints = world.arm(track.arm).command;
-        for key in &track.poses {
-            let target = track.target_at(key.time_s).expect("a target");
-            joints = model.solve_tip(&target, &trocar, &joints).unwrap_or_else(|e| {
-                panic!("the {} arm cannot reach its key at {:.2} s: {e}", track.arm, key.time_s)
-            });
-        }
+        reaches_every_key(&world, &rig, track).unwrap();
         // Where the pull ends against where it would have, the shipped target 0.2 m further on.
         let start = track.target_at(set.from_s - 0.5).expect("a target").world_position_m;
         let end = track
