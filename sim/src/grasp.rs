@@ -68,6 +68,40 @@ pub fn jaw_line_m(world_from_tip: &IsometryMatrix3<f64>, jaw_offset_m: f64) -> (
     (hinge, world_from_tip.translation.vector)
 }
 
+/// Where the jaws' faces are: the jaws turn about their hinge (the tip frame's y) and face each
+/// other across the plane through their line square to it, as wide either side of it as they are
+/// round. Thread held between them lies with its whole width inside that band; thread near their
+/// line but further along the hinge lies beside the jaws, not between them: a coil wound round them
+/// (on the rope scene's seed 3 the left took its own coil lying in the notch beside its opening
+/// jaws, 1.32 mm from their line and all of it along the hinge: session 46).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct JawFaces {
+    /// A point on the jaws' line (world, m).
+    pub on_line_m: Vector3<f64>,
+    /// The hinge's direction (world, unit).
+    pub hinge: Vector3<f64>,
+    /// How far either side of the faces' plane along the hinge a thread's centre may lie to be held
+    /// between them, m.
+    pub half_width_m: f64,
+}
+
+impl JawFaces {
+    /// The faces of jaws of `jaw_radius_m` whose tip frame is `world_from_tip`, for a thread of
+    /// `thread_radius_m`: its centre no further along the hinge than the jaws' radius less its own.
+    pub fn of(world_from_tip: &IsometryMatrix3<f64>, jaw_radius_m: f64, thread_radius_m: f64) -> Self {
+        Self {
+            on_line_m: world_from_tip.translation.vector,
+            hinge: world_from_tip.rotation * Vector3::y(),
+            half_width_m: (jaw_radius_m - thread_radius_m).max(0.0),
+        }
+    }
+
+    /// Whether a thread's centre at `p_m` (world) lies between the faces (not beside the jaws).
+    pub fn between(&self, p_m: &Vector3<f64>) -> bool {
+        (p_m - self.on_line_m).dot(&self.hinge).abs() <= self.half_width_m
+    }
+}
+
 impl Grasp {
     /// Attaches the thread segment or the needle that passes nearest the jaws' line (from their hinge,
     /// twice `jaw_offset_m` behind the tip, to the tip), if it comes within reach of it: what lies
@@ -152,25 +186,31 @@ impl Grasp {
     ) -> bool {
         let (hinge, tip) = jaw_line_m(world_from_tip, jaw_offset_m);
         let reach_m = crate::world::GRASP_REACH_M;
-        let nearest = capsules
-            .iter()
-            .map(|c| (segment_distance(&c.a_m, &c.b_m, &hinge, &tip), c))
-            .min_by(|a, b| a.0.total_cmp(&b.0));
-        let Some((distance_m, capsule)) = nearest else { return false };
-        if distance_m > reach_m {
-            return false;
-        }
-        // Where along the jaws it passes: its point nearest their line, measured from the hinge.
+        let faces = JawFaces::of(world_from_tip, jaw_radius_m, thread_radius_m);
         let axis = tip - hinge;
         let length_m = axis.norm();
         let along = |p: &Vector3<f64>| (p - hinge).dot(&axis) / length_m;
-        let points = (0..=8).map(|i| capsule.a_m + (capsule.b_m - capsule.a_m) * (i as f64 / 8.0));
-        let nearest_point = points
-            .min_by(|p, q| {
-                let off = |x: &Vector3<f64>| (x - hinge - axis * (along(x) / length_m)).norm();
-                off(p).total_cmp(&off(q))
+        // Each capsule's point nearest the jaws' line (of nine along it).
+        let nearest_point = |c: &crate::tunnelling::Capsule| {
+            let points = (0..=8).map(|i| c.a_m + (c.b_m - c.a_m) * (i as f64 / 8.0));
+            points
+                .min_by(|p, q| {
+                    let off = |x: &Vector3<f64>| (x - hinge - axis * (along(x) / length_m)).norm();
+                    off(p).total_cmp(&off(q))
+                })
+                .unwrap_or(c.a_m)
+        };
+        // The nearest capsule within reach that passes between the faces, not beside the jaws.
+        let nearest = capsules
+            .iter()
+            .filter_map(|c| {
+                let distance_m = segment_distance(&c.a_m, &c.b_m, &hinge, &tip);
+                (distance_m <= reach_m).then(|| (distance_m, nearest_point(c)))
             })
-            .unwrap_or(capsule.a_m);
+            .filter(|(_, point)| faces.between(point))
+            .min_by(|a, b| a.0.total_cmp(&b.0));
+        let Some((_, nearest_point)) = nearest else { return false };
+        // Where along the jaws it passes, measured from the hinge.
         let z_m = along(&nearest_point).clamp(0.0, length_m);
         let room_m = z_m * (0.5 * jaw_rad).sin() - jaw_radius_m;
         room_m <= thread_radius_m

@@ -470,7 +470,10 @@ impl SimWorld {
             let between = || {
                 let tip = poses[self.rig.arm(arm.name).tip_link];
                 let line = crate::grasp::jaw_line_m(&tip, JAW_CENTRE_OFFSET_M);
-                RopeGrasp::run_along(&rope.ropes, line, GRASP_REACH_M)
+                let thread_radius_m = self.config.thread.radius_m;
+                let faces = Self::jaw_radius_m(&self.rig, arm.name)
+                    .map(|r| crate::grasp::JawFaces::of(&tip, r, thread_radius_m));
+                RopeGrasp::run_between(&rope.ropes, line, GRASP_REACH_M, faces.as_ref())
                     .map_or(0..0, |run| run.start.saturating_sub(clear)..(run.end + clear).min(count))
             };
             let held = match (&arm.grasp, &arm.rope_grasp) {
@@ -798,15 +801,7 @@ impl SimWorld {
     /// Whether arm `a`'s closing jaws squeeze the thread between them ([`Grasp::squeezes`]).
     fn jaws_squeeze_thread(&self, a: usize, poses: &[IsometryMatrix3<f64>]) -> bool {
         let rig_arm = self.rig.arm(self.arms[a].name);
-        // The jaws' radius: their capsules', from the robot model.
-        let jaw_link = format!("{}_jaw_1", self.arms[a].name.as_str());
-        let jaw_radius_m = self.rig.tree.links.iter().filter(|l| l.name == jaw_link).find_map(|l| {
-            l.collisions.iter().find_map(|c| match c.shape {
-                knotlab_hw::rig::Shape::Capsule { radius_m, .. } => Some(radius_m),
-                _ => None,
-            })
-        });
-        let Some(jaw_radius_m) = jaw_radius_m else { return false };
+        let Some(jaw_radius_m) = Self::jaw_radius_m(&self.rig, self.arms[a].name) else { return false };
         let capsules = match &self.rope {
             Some(rope) => rope
                 .centreline()
@@ -825,6 +820,17 @@ impl SimWorld {
         )
     }
 
+    /// The radius of `arm`'s jaws: their capsules', from the robot model (`None` without jaws).
+    fn jaw_radius_m(rig: &Rig, arm: ArmName) -> Option<f64> {
+        let jaw_link = format!("{}_jaw_1", arm.as_str());
+        rig.tree.links.iter().filter(|l| l.name == jaw_link).find_map(|l| {
+            l.collisions.iter().find_map(|c| match c.shape {
+                knotlab_hw::rig::Shape::Capsule { radius_m, .. } => Some(radius_m),
+                _ => None,
+            })
+        })
+    }
+
     /// Closes `arm`'s grasp on the thread or needle between its jaws, if any; true when it holds.
     fn try_grasp(&mut self, arm: ArmName, poses: &[IsometryMatrix3<f64>]) -> bool {
         let Some(a) = self.arms.iter().position(|x| x.name == arm) else { return false };
@@ -835,6 +841,7 @@ impl SimWorld {
             .and_then(|j| self.link_bodies[self.rig.tree.joints[j].parent]);
         let Some(clevis) = clevis else { return false };
         let tip = poses[rig_arm.tip_link];
+        let jaw_radius_m = Self::jaw_radius_m(&self.rig, arm);
         let needle = self.needle.world_points_m(&self.physics, &self.thread);
         let needle_body = self.needle.body;
         let physics = &mut self.physics;
@@ -849,8 +856,19 @@ impl SimWorld {
                 let Some(rope) = &mut self.rope else { return false };
                 let clevis_pose = *self.physics.bodies[clevis].position();
                 let line = crate::grasp::jaw_line_m(&tip, JAW_CENTRE_OFFSET_M);
+                let thread_radius_m = self.config.thread.radius_m;
+                let faces = jaw_radius_m.map(|r| crate::grasp::JawFaces::of(&tip, r, thread_radius_m));
                 let (ropes, contacts) = (&rope.ropes, &mut rope.contacts);
-                match RopeGrasp::try_close(ropes, contacts, clevis, &clevis_pose, line, GRASP_REACH_M) {
+                let closed = RopeGrasp::try_close_between(
+                    ropes,
+                    contacts,
+                    clevis,
+                    &clevis_pose,
+                    line,
+                    GRASP_REACH_M,
+                    faces.as_ref(),
+                );
+                match closed {
                     Some(grasp) => {
                         grasp.grip(contacts, self.grip_force_n);
                         let segment = grasp.particles.start + grasp.particles.len() / 2;

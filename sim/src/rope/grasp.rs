@@ -12,6 +12,7 @@ use rapier3d::prelude::*;
 
 use super::Ropes;
 use super::rigid::{Attachment, Grip, RigidContacts};
+use crate::grasp::JawFaces;
 use knotlab_hw::geometry::segment_distance;
 
 /// A run of the rope held by a body.
@@ -34,10 +35,24 @@ impl RopeGrasp {
         contacts: &mut RigidContacts,
         body: RigidBodyHandle,
         body_pose: &Pose,
-        (hinge_m, tip_m): (Vector3<f64>, Vector3<f64>),
+        line: (Vector3<f64>, Vector3<f64>),
         reach_m: f64,
     ) -> Option<Self> {
-        let run = Self::run_along(ropes, (hinge_m, tip_m), reach_m)?;
+        Self::try_close_between(ropes, contacts, body, body_pose, line, reach_m, None)
+    }
+
+    /// [`Self::try_close`] taking only particles between the jaws' `faces`, if given (a coil wound
+    /// round the jaws lies beside them).
+    pub fn try_close_between(
+        ropes: &Ropes,
+        contacts: &mut RigidContacts,
+        body: RigidBodyHandle,
+        body_pose: &Pose,
+        (hinge_m, tip_m): (Vector3<f64>, Vector3<f64>),
+        reach_m: f64,
+        faces: Option<&JawFaces>,
+    ) -> Option<Self> {
+        let run = Self::run_between(ropes, (hinge_m, tip_m), reach_m, faces)?;
         for p in run.clone() {
             let x = ropes.x[p];
             let local = body_pose.inverse_transform_point(Vector::new(x.x, x.y, x.z));
@@ -55,11 +70,23 @@ impl RopeGrasp {
     /// the one nearest it, in its strand; `None` if none is within reach.
     pub fn run_along(
         ropes: &Ropes,
-        (hinge_m, tip_m): (Vector3<f64>, Vector3<f64>),
+        line: (Vector3<f64>, Vector3<f64>),
         reach_m: f64,
     ) -> Option<Range<usize>> {
+        Self::run_between(ropes, line, reach_m, None)
+    }
+
+    /// [`Self::run_along`] around the particle nearest the line of those between the jaws'
+    /// `faces`, if given; its run stays within reach of the line.
+    pub fn run_between(
+        ropes: &Ropes,
+        (hinge_m, tip_m): (Vector3<f64>, Vector3<f64>),
+        reach_m: f64,
+        faces: Option<&JawFaces>,
+    ) -> Option<Range<usize>> {
         let off = |p: usize| segment_distance(&ropes.x[p], &ropes.x[p], &hinge_m, &tip_m);
-        let nearest = (0..ropes.x.len()).min_by(|a, b| off(*a).total_cmp(&off(*b)))?;
+        let between = |p: &usize| faces.is_none_or(|f| f.between(&ropes.x[*p]));
+        let nearest = (0..ropes.x.len()).filter(between).min_by(|a, b| off(*a).total_cmp(&off(*b)))?;
         if off(nearest) > reach_m {
             return None;
         }
