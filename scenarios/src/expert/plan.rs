@@ -131,9 +131,9 @@ pub struct TieGeometry {
     /// carries the gauge's reading past the set force before the arm stops).
     pub pull_s: f64,
     /// Past its target each pull goes on this much further the same way (level with the tissue), at
-    /// the same speed, within the arm's reach, m: to be stopped by its set force rather than by where it was sent
-    /// (a slack loop never strains a pull that stops at its target: session 45, the wound 3.9 mm open
-    /// at release; sent beyond, 0.14 mm).
+    /// the same speed, within the arm's reach, m: to be stopped by its set force rather than by where
+    /// it was sent (a slack loop never strains a pull that stops at its target: session 45, the wound
+    /// 3.9 mm open at release; sent beyond, 0.14 mm).
     pub pull_on_m: f64,
     /// Whether both pulls stop as soon as either reaches its set force (the other pulling on tore
     /// the tail out of the left's stopped jaws: session 45, 16.5 N).
