@@ -1,7 +1,7 @@
 //! The controller on a rig of dummy devices: a skill runs to its end on its targets; the emergency
 //! stop halts motion within one cycle and holds; the watchdog faults a run whose device goes stale;
-//! force-triggered events open the jaw or hold the tip, and fire with another track's; unreachable targets and unusable skills are
-//! refused with typed errors.
+//! force-triggered events open the jaw or hold the tip, and fire with another track's; unreachable
+//! targets and unusable skills are refused with typed errors.
 
 mod rigs;
 

@@ -156,6 +156,13 @@ fn range_problems(g: &TieGeometry) -> Vec<(String, String)> {
         if let Some(v) = s.tail_hold_from_end_m {
             c.range("second_throw.tail_hold_from_end_m", v, 0.0, 1.0);
         }
+        if s.left_keeps_tail && s.left_lets_go_first {
+            c.0.push((
+                "second_throw.left_lets_go_first".to_owned(),
+                "cannot be set with left_keeps_tail: the left cannot both let go of the tail and keep it"
+                    .to_owned(),
+            ));
+        }
         if s.left_keeps_tail && s.tail_hold_from_end_m.is_some() {
             c.0.push((
                 "second_throw.tail_hold_from_end_m".to_owned(),
@@ -379,7 +386,7 @@ mod tests {
              right_follows_draw = -5.0\nright_draws_to_m = [0.3, 0.0, 0.0]\ndraw_s = 100.0\n\
              right_before_draw_m = [[0.3, 0.0, 0.0]]\nleft_run_down_via_m = [[0.0, 0.0, -0.3]]\n\
              right_run_down_via_m = [[0.0, 0.0, 0.0], [0.0, -0.3, 0.0]]\npull_force_n = 0.0\npull_s = 0.0\n\
-             run_down_force_n = 0.0\nassist_presents = true\nleft_keeps_tail = true\n\
+             run_down_force_n = 0.0\nassist_presents = true\nleft_keeps_tail = true\nleft_lets_go_first = true\n\
              tail_hold_from_end_m = -0.01\ntail_held_to_m = [0.0, 0.5, 0.0]\ntail_held_taut = 2.0\n\
              winding_radius_m = 0.0\nwinding_behind_m = 0.5\nwinding_pitch_m = 0.2\ntake_tail_jaw_rad = 2.0\ntail_end_offered_m = 0.1\n\
              tail_ahead_m = 0.5\n\
@@ -418,6 +425,7 @@ mod tests {
             "second_throw.tail_hold_from_end_m",
             "second_throw.tail_held_to_m.y",
             "second_throw.tail_held_taut",
+            "second_throw.left_lets_go_first",
             "second_throw.left_fetches.right_follows",
             "second_throw.winding_radius_m",
             "second_throw.winding_behind_m",
