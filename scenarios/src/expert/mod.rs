@@ -3,6 +3,7 @@
 //! and what the devices read meanwhile is the demonstration ([`record`]); [`diagnose`] measures what a run
 //! did to the thread.
 
+pub mod clearance;
 pub mod diagnose;
 pub mod geometry_file;
 pub mod motion;

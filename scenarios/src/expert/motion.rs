@@ -1,11 +1,12 @@
 //! Human-like motion for the scripted expert: minimum-jerk segments (`hw`'s profile), straight or
 //! along an arc, a small tremor, and a builder that turns them into a track's time-stamped keys.
 
+use knotlab_hw::kinematics::tool::Tool;
 use knotlab_hw::kinematics::{ArmJoints, ArmModel};
 use knotlab_hw::rig::ArmName;
 use knotlab_hw::skill::{ForceEvent, JawKey, Orientation, PoseKey, Track};
 use knotlab_sim::world::JAW_CENTRE_OFFSET_M;
-use nalgebra::{Rotation3, UnitQuaternion, UnitVector3, Vector3};
+use nalgebra::{Point3, Rotation3, UnitQuaternion, UnitVector3, Vector3};
 
 pub use knotlab_hw::skill::profile::min_jerk;
 
@@ -223,6 +224,19 @@ impl TrackBuilder {
         let follow = self.follow.as_ref()?;
         let r = follow.model.world_from_tip(&follow.joints).rotation;
         Some(UnitQuaternion::from_rotation_matrix(&r))
+    }
+
+    /// The instrument's wrist at the last key, from the arm's model: its pitch axis (where the shaft
+    /// ends) and its yaw axis (where the jaws hinge), world frame, m (`None` without a model or an
+    /// instrument).
+    pub fn wrist_m(&self) -> Option<(Vector3<f64>, Vector3<f64>)> {
+        let follow = self.follow.as_ref()?;
+        let Tool::Instrument { geometry, .. } = follow.model.tool else { return None };
+        let shaft = follow.model.shaft_axis(&follow.joints);
+        let pitch = shaft.origin_m + shaft.direction * geometry.shaft_m;
+        let tip = follow.model.world_from_tip(&follow.joints);
+        let yaw = (tip * Point3::new(0.0, 0.0, -geometry.jaw_m)).coords;
+        Some((pitch, yaw))
     }
 
     /// The tip frame the jaws are held in now, `world_from_tip`: the one asked for, or the arm's

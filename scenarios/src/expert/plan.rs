@@ -17,6 +17,7 @@ use nalgebra::{Isometry3, Point3, Unit, Vector3};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
+use super::clearance::{Circle, Wrist, clear_of_wrist, link_name, link_radius_m};
 use super::motion::{Follow, Path, TrackBuilder, Tremor};
 use super::second_throw::SecondThrow;
 use super::tail::{tail_ahead_of_jaws, tail_between_knot_and_left, tail_from_its_end, tail_length_to};
@@ -52,7 +53,8 @@ pub struct TieGeometry {
     /// reaches back past the circle to where the long end leaves the coils for the exit, to at
     /// right angles to the left's jaws (its shaft's direction with the part along them taken out).
     pub right_jaws_across_winding: f64,
-    /// The winding circles this far behind the left's jaw centre (towards its wrist), m.
+    /// The winding circles this far behind the left's jaw centre (towards its wrist), m; less if the
+    /// thread in the right's jaws would pass through the left's wrist there ([`super::clearance`]).
     pub winding_behind_m: f64,
     /// The winding advances this far along the left's jaws (towards their tips; negative: towards
     /// the wrist) per turn, m: a helix, not a circle. (Session 36: tried so that the second turn
@@ -382,6 +384,11 @@ fn take_tail(
 /// The jaw centre of an arm as its links stand (world frame, m).
 fn jaw_centre_m(world: &SimWorld, arm: ArmName) -> Vector3<f64> {
     (world.world_from_tip(arm) * Point3::new(0.0, 0.0, -JAW_CENTRE_OFFSET_M)).coords
+}
+
+/// The radius of the left's wrist link, m (`None` if the robot model has no capsule for it).
+fn wrist_radius_m(world: &SimWorld) -> Option<f64> {
+    link_radius_m(&world.rig, &link_name(ArmName::Left, "wrist"))
 }
 
 /// Which throw a plan ties, and what the instruments hold when it starts.
@@ -720,6 +727,21 @@ fn plan_throw(world: &SimWorld, geometry: &TieGeometry, variation: &Variation, s
     left.go_framing(Path::To(winding_point), d(2.0), left_frame);
     right.wait_until(l1_s);
     let winding_start = centre + start_dir.into_inner() * geometry.winding_radius_m;
+    // The circle moved towards the jaws' tips until the thread in the right's jaws, going round it,
+    // keeps clear of the left's wrist (at most to the jaw centre).
+    let pitch_m = geometry.winding_pitch_m * axis.dot(&jaws).signum();
+    let planned =
+        Circle { centre_m: centre, axis, start_m: winding_start, turns: geometry.winding_turns, pitch_m };
+    let circle = match (left.wrist_m(), wrist_radius_m(world)) {
+        (Some((pitch_m, yaw_m)), Some(radius_m)) => {
+            let trocar_m = trocar_of(&world.config, ArmName::Left);
+            let wrist = Wrist { pitch_m, yaw_m, trocar_m, radius_m };
+            let thread_m = world.config.thread.radius_m;
+            clear_of_wrist(&planned, &wrist, thread_m, &jaws, geometry.winding_behind_m.max(0.0)).0
+        }
+        _ => planned,
+    };
+    let (centre, winding_start) = (circle.centre_m, circle.start_m);
     let shaft = (centre - trocar_of(&world.config, ArmName::Right)).normalize();
     match across(shaft).filter(|_| geometry.right_jaws_across_winding > 0.0) {
         Some(jaws_across) => {
@@ -744,7 +766,7 @@ fn plan_throw(world: &SimWorld, geometry: &TieGeometry, variation: &Variation, s
             axis,
             turns: geometry.winding_turns,
             // `axis` is the jaws' or their reverse (the turns' sense): the advance is along the jaws.
-            pitch_m: geometry.winding_pitch_m * axis.dot(&jaws).signum(),
+            pitch_m,
         },
         d(geometry.winding_s),
     );
