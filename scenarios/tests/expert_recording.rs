@@ -393,6 +393,34 @@ fn fetching_the_tail_the_right_follows_as_told_and_the_hinge_can_lie_along_the_t
     assert!(all > 0.02, "the shipped right follows the left's shift: {all} m");
     assert!((half - 0.5 * all).abs() < 0.002, "half: {half} m of {all} m");
     assert!(none < 1e-6, "it stays: {none} m");
+    // Beside the left's jaws instead: from the end of the fetch (before the left comes onto the
+    // tail, 0.8 s, then closes, 0.4 s) to its closing, the right's jaw centre stands that far from
+    // the left's (in the stitch frame).
+    let offset_m = [-0.015, 0.0, 0.012];
+    let beside = with(LeftFetch { right_beside_m: Some(offset_m), ..fetch.clone() });
+    let (_, closed) = fetch_window(&beside);
+    let centre_at = |arm: ArmName, time_s: f64| {
+        let poses = &beside.track(arm).expect("the arm").poses;
+        let key = poses.iter().rev().find(|k| k.time_s <= time_s + 1e-9).expect("a key");
+        let tip = Vector3::from(key.world_position_m);
+        let along = match key.orientation {
+            Orientation::Frame { quaternion_xyzw: [x, y, z, w] } => {
+                nalgebra::UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(w, x, y, z))
+                    * Vector3::z()
+            }
+            Orientation::JawDirection { direction } => Vector3::from(direction).normalize(),
+            Orientation::AlongShaft => (tip - trocar_of(&world.config, arm)).normalize(),
+        };
+        tip - along * knotlab_sim::world::JAW_CENTRE_OFFSET_M
+    };
+    let asked = world.tissue.world_from_tissue.rotation * Vector3::from(offset_m);
+    for time_s in [closed - 1.25, closed - 0.8, closed] {
+        let apart = centre_at(ArmName::Right, time_s) - centre_at(ArmName::Left, time_s);
+        assert!(
+            (apart - asked).norm() < 1e-3,
+            "at {time_s} s the right stands {apart:?} from the left, not {asked:?}"
+        );
+    }
 
     // The hinge along the tail: the left holds a whole frame to the tail, its hinge (the frame's y)
     // across the jaws along the line from the entry point to the assist's jaws; without it the left

@@ -53,6 +53,9 @@ impl Check {
         self.range(&format!("{table}.approach_m"), f.approach_m, 0.0, 0.1);
         self.range(&format!("{table}.stop_short_m"), f.stop_short_m, -0.05, 0.05);
         self.range(&format!("{table}.right_follows"), f.right_follows, 0.0, 1.0);
+        if let Some(offset) = &f.right_beside_m {
+            self.point(&format!("{table}.right_beside_m"), offset);
+        }
     }
 }
 
@@ -391,7 +394,8 @@ mod tests {
              winding_radius_m = 0.0\nwinding_behind_m = 0.5\nwinding_pitch_m = 0.2\ntake_tail_jaw_rad = 2.0\ntail_end_offered_m = 0.1\n\
              tail_ahead_m = 0.5\n\
              [second_throw.left_fetches]\nalong_tail = 2.0\n\
-             jaw_direction = [0.0, 0.0, -1.0]\napproach_m = 0.01\nstop_short_m = 0.0\nright_follows = 3.0\n",
+             jaw_direction = [0.0, 0.0, -1.0]\napproach_m = 0.01\nstop_short_m = 0.0\nright_follows = 3.0\n\
+             right_beside_m = [0.0, 0.0, 0.3]\n",
             "bad.toml",
         ) else {
             panic!("out of range accepted");
@@ -427,6 +431,7 @@ mod tests {
             "second_throw.tail_held_taut",
             "second_throw.left_lets_go_first",
             "second_throw.left_fetches.right_follows",
+            "second_throw.left_fetches.right_beside_m.z",
             "second_throw.winding_radius_m",
             "second_throw.winding_behind_m",
             "second_throw.winding_pitch_m",

@@ -200,6 +200,7 @@ impl Default for TieGeometry {
                 as_one_body: false,
                 looks: false,
                 right_follows: 1.0,
+                right_beside_m: None,
                 hinge_along_tail: false,
             }),
             assist_presents: false,
@@ -290,6 +291,14 @@ pub struct LeftFetch {
     /// end of the long end beside the tail (session 45).
     #[serde(default = "all_the_way")]
     pub right_follows: f64,
+    /// Without `as_one_body`, if set: the right goes to this offset from the left's jaw centre
+    /// (stitch frame, m) as the left fetches, instead of following a share of its shift, and keeps it
+    /// as the left comes onto the tail. The turn round the left's jaws needs the long end's thread
+    /// from the knot round the jaws to the needle: left where it wound, the right stood too far from
+    /// jaws taken 65-85 mm away to the tail and the turn came off their tips on the way; carried with
+    /// their shift it went past them towards the tail (session 47).
+    #[serde(default)]
+    pub right_beside_m: Option<[f64; 3]>,
     /// The left takes the tail square to it: without `as_one_body` it still turns its whole tip
     /// frame, its hinge along the tail (so that the tail runs between the open jaws), the right
     /// following its shift; looking, it turns the hinge along the tail where it lies and, if that
@@ -570,8 +579,9 @@ fn plan_throw(world: &SimWorld, geometry: &TieGeometry, variation: &Variation, s
                 ways.push(tail_m - jaws_to * (stop_short_m + approach_m));
             }
             ways.push(tail_m - jaws_to * stop_short_m);
-            for to in ways {
-                let to = Path::To(to);
+            let beside = geometry.fetch().and_then(|f| f.right_beside_m).map(dir);
+            for to_m in ways {
+                let (to, from_s) = (Path::To(to_m), left.time_s());
                 match left.held_frame().filter(|_| framed) {
                     // The jaws roll on the way, their hinge along the tail where it lies, so that it
                     // runs between them: aimed at the line from the entry to the assist, the hinge lay
@@ -589,6 +599,11 @@ fn plan_throw(world: &SimWorld, geometry: &TieGeometry, variation: &Variation, s
                         left.go_framing(to, d(0.8), frame);
                     }
                     None => left.go(to, d(0.8)),
+                }
+                // The right keeps beside the left's jaws (the turn's thread), if told.
+                if let Some(offset_m) = beside {
+                    right.wait_until(from_s);
+                    right.go(Path::To(to_m + offset_m), left.time_s() - from_s);
                 }
             }
         }
@@ -798,6 +813,11 @@ fn plan_throw(world: &SimWorld, geometry: &TieGeometry, variation: &Variation, s
         left.jaw(geometry.take_tail_jaw_rad, d(0.3));
         left.wait_until(left.time_s() + d(0.3));
         let shift = behind - left.position_m();
+        // Where the right goes meanwhile: beside the left's jaws, or a share of their shift.
+        let right_fetching = |from: Vector3<f64>| match fetch.right_beside_m {
+            Some(offset) => behind + dir(offset),
+            None => from + shift * fetch.right_follows,
+        };
         let relocate_from = left.time_s();
         if fetch.holds_frame() {
             // The whole tip frame turns (the hinge along the tail, so that it runs between the open
@@ -834,18 +854,12 @@ fn plan_throw(world: &SimWorld, geometry: &TieGeometry, variation: &Variation, s
                 let carried = Path::Carried { pivot_from_m: left_from, pivot_to_m: behind, rotation };
                 right.go(carried, left.time_s() - relocate_from);
             } else {
-                right.go(
-                    Path::To(right.position_m() + shift * fetch.right_follows),
-                    left.time_s() - relocate_from,
-                );
+                right.go(Path::To(right_fetching(right.position_m())), left.time_s() - relocate_from);
             }
         } else {
             left.go_pointing(Path::To(behind), d(1.5), jaws_to);
             right.wait_until(relocate_from);
-            right.go(
-                Path::To(right.position_m() + shift * fetch.right_follows),
-                left.time_s() - relocate_from,
-            );
+            right.go(Path::To(right_fetching(right.position_m())), left.time_s() - relocate_from);
         }
         left.wait_until(left.time_s() + pause[4]);
         if fetch.looks && looks_at_take(stage) {
@@ -864,7 +878,12 @@ fn plan_throw(world: &SimWorld, geometry: &TieGeometry, variation: &Variation, s
         }
         // The jaws' centre stops short of the tail, so the tail lies towards their tips, ahead of
         // the coils: every coil then passes over it when the jaws draw back.
-        left.go(Path::To(on_tail - jaws_to * fetch.stop_short_m), d(0.8));
+        let (onto, onto_s) = (on_tail - jaws_to * fetch.stop_short_m, left.time_s());
+        left.go(Path::To(onto), d(0.8));
+        if let Some(offset) = fetch.right_beside_m {
+            right.wait_until(onto_s);
+            right.go(Path::To(onto + dir(offset)), left.time_s() - onto_s);
+        }
         left.wait_until(left.time_s() + pause[4]);
         left.jaw(0.0, d(0.3));
         left.wait_until(left.time_s() + d(0.3) + 0.1);
