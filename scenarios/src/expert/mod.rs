@@ -11,6 +11,7 @@ pub mod plan;
 pub mod record;
 pub mod second_throw;
 pub mod tail;
+pub mod turn_thread;
 
 pub use geometry_file::{GeometryFileError, load_tie_geometry, parse_tie_geometry};
 pub use plan::{

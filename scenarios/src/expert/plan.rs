@@ -21,6 +21,7 @@ use super::clearance::{Circle, Wrist, clear_of_wrist, link_name, link_radius_m};
 use super::motion::{Follow, Path, TrackBuilder, Tremor};
 use super::second_throw::SecondThrow;
 use super::tail::{tail_ahead_of_jaws, tail_between_knot_and_left, tail_from_its_end, tail_length_to};
+use super::turn_thread::along_within_long_end;
 
 /// Where the expert puts things, in the stitch frame (m), and how hard it pulls.
 #[derive(Clone, Debug, PartialEq, serde::Deserialize, serde::Serialize)]
@@ -263,7 +264,8 @@ impl TieGeometry {
 #[serde(deny_unknown_fields)]
 pub struct LeftFetch {
     /// Where on the tail the left closes: this fraction of the way from the entry point to the
-    /// assist's jaws.
+    /// assist's jaws, or less, as far as the long end reaches with the turns round the left's jaws
+    /// ([`super::turn_thread`]).
     pub along_tail: f64,
     /// Where the left's jaws point to take it (stitch frame).
     pub jaw_direction: [f64; 3],
@@ -294,9 +296,9 @@ pub struct LeftFetch {
     /// Without `as_one_body`, if set: the right goes to this offset from the left's jaw centre
     /// (stitch frame, m) as the left fetches, instead of following a share of its shift, and keeps it
     /// as the left comes onto the tail. The turn round the left's jaws needs the long end's thread
-    /// from the knot round the jaws to the needle: left where it wound, the right stood too far from
-    /// jaws taken 65-85 mm away to the tail and the turn came off their tips on the way; carried with
-    /// their shift it went past them towards the tail (session 47).
+    /// from the knot round the jaws to the needle ([`super::turn_thread`]): left where it wound, the
+    /// right stood too far from jaws taken 65-85 mm away to the tail and the turn came off their tips
+    /// on the way; carried with their shift it went past them towards the tail (session 47).
     #[serde(default)]
     pub right_beside_m: Option<[f64; 3]>,
     /// The left takes the tail square to it: without `as_one_body` it still turns its whole tip
@@ -806,8 +808,26 @@ fn plan_throw(world: &SimWorld, geometry: &TieGeometry, variation: &Variation, s
         // coils stay as they are): to a point behind the tail along the new jaw direction, then onto
         // the tail, jaws open.
         let tail_hold = assist.position_m();
-        let on_tail = entry + (tail_hold - entry) * fetch.along_tail;
         let jaws_to = dir(fetch.jaw_direction).normalize();
+        // No further out than the long end reaches with the turns round the jaws.
+        let (left_from, right_from) = (left.position_m(), right.position_m());
+        let right_at = |jaws_m: &Vector3<f64>| match fetch.right_beside_m {
+            Some(offset) => jaws_m + dir(offset),
+            None => right_from + (jaws_m - jaws_to * fetch.approach_m - left_from) * fetch.right_follows,
+        };
+        let along = match world.stitch_arc_at_m(Flap::B) {
+            Some(long_end_m) => along_within_long_end(
+                fetch.along_tail,
+                long_end_m,
+                geometry.winding_turns,
+                &exit,
+                &entry,
+                &tail_hold,
+                right_at,
+            ),
+            None => fetch.along_tail,
+        };
+        let on_tail = entry + (tail_hold - entry) * along;
         let behind = on_tail - jaws_to * fetch.approach_m;
         left.wait_until(wound_s + pause[3]);
         left.jaw(geometry.take_tail_jaw_rad, d(0.3));
