@@ -784,6 +784,31 @@ fn first_reaches(track: &knotlab_hw::skill::Track, point_m: &Vector3<f64>) -> Op
 }
 
 #[test]
+fn once_wound_the_assist_brings_the_tail_where_told_before_the_left_fetches_it() {
+    let world = SimWorld::new(scene(), Rig::shipped().expect("the shipped rig")).expect("the scene builds");
+    let to_m = [0.0, 0.02, 0.03];
+    let geometry = TieGeometry { tail_brought_to_m: Some(to_m), ..TieGeometry::default() };
+    let skill = plan_instrument_tie(&world, &geometry, &Variation::none());
+    let track = |arm| skill.track(arm).expect("the arm");
+    let point = (world.tissue.world_from_tissue * nalgebra::Point3::from(Vector3::from(to_m))).coords;
+    let brought_s = first_reaches(track(ArmName::Assist), &point).expect("the assist brings the tail");
+    let opened_s = track(ArmName::Left)
+        .jaw
+        .iter()
+        .find(|k| k.jaw_rad == geometry.take_tail_jaw_rad && k.time_s > 1.0)
+        .expect("the left opens to take the tail")
+        .time_s;
+    assert!(brought_s <= opened_s, "brought at {brought_s} s, the left opened at {opened_s} s");
+    // ... and the left fetches it there: its share of the way from the entry to the tail brought.
+    let entry = world.tissue.hole_m(&world.physics, knotlab_sim::tissue::Flap::A);
+    let along = geometry.left_fetches.as_ref().expect("the shipped fetch").along_tail;
+    let on_tail = entry + (point - entry) * along;
+    assert!(first_reaches(track(ArmName::Left), &on_tail).is_some_and(|t| t > opened_s));
+    let shipped = plan_instrument_tie(&world, &TieGeometry::default(), &Variation::none());
+    assert_eq!(first_reaches(shipped.track(ArmName::Assist).expect("the assist"), &point), None);
+}
+
+#[test]
 fn the_winding_advances_along_the_jaws_by_its_pitch() {
     let world = SimWorld::new(scene(), Rig::shipped().expect("the shipped rig")).expect("the scene builds");
     let flat = TieGeometry::default();

@@ -74,6 +74,9 @@ fn range_problems(g: &TieGeometry) -> Vec<(String, String)> {
     for (k, p) in g.tail_via_m.iter().enumerate() {
         c.point(&format!("tail_via_m[{k}]"), p);
     }
+    if let Some(p) = &g.tail_brought_to_m {
+        c.point("tail_brought_to_m", p);
+    }
     c.direction("winding_towards", &g.winding_towards);
     if let Some(d) = &g.left_jaw_direction {
         c.direction("left_jaw_direction", d);
@@ -187,6 +190,9 @@ fn range_problems(g: &TieGeometry) -> Vec<(String, String)> {
                         .to_owned(),
                 ));
             }
+        }
+        if let Some(p) = &s.tail_brought_to_m {
+            c.point("second_throw.tail_brought_to_m", p);
         }
         if let Some(p) = &s.tail_held_to_m {
             c.point("second_throw.tail_held_to_m", p);
@@ -391,6 +397,7 @@ mod tests {
              right_run_down_via_m = [[0.0, 0.0, 0.0], [0.0, -0.3, 0.0]]\npull_force_n = 0.0\npull_s = 0.0\n\
              run_down_force_n = 0.0\nassist_presents = true\nleft_keeps_tail = true\nleft_lets_go_first = true\n\
              tail_hold_from_end_m = -0.01\ntail_held_to_m = [0.0, 0.5, 0.0]\ntail_held_taut = 2.0\n\
+             tail_brought_to_m = [0.0, 0.0, -0.3]\n\
              winding_radius_m = 0.0\nwinding_behind_m = 0.5\nwinding_pitch_m = 0.2\ntake_tail_jaw_rad = 2.0\ntail_end_offered_m = 0.1\n\
              tail_ahead_m = 0.5\n\
              [second_throw.left_fetches]\nalong_tail = 2.0\n\
@@ -428,6 +435,7 @@ mod tests {
             "second_throw.left_fetches.along_tail",
             "second_throw.tail_hold_from_end_m",
             "second_throw.tail_held_to_m.y",
+            "second_throw.tail_brought_to_m.z",
             "second_throw.tail_held_taut",
             "second_throw.left_lets_go_first",
             "second_throw.left_fetches.right_follows",

@@ -101,6 +101,13 @@ pub struct TieGeometry {
     /// While the right winds, the assist moves the tail this fraction of the way to the entry
     /// point, giving thread.
     pub tail_give_fraction: f64,
+    /// Once the right has wound, the assist brings the tail it holds here (stitch frame) before the
+    /// left fetches it; `None`: it stays. Held far out while the right winds (held near, the tail
+    /// was caught in the turn and torn from the assist's jaws, 32 N), brought near the stitch for the
+    /// take: the long end reaches no further with the turn round the left's jaws
+    /// ([`super::turn_thread`]), and taken far from its end, the tail's bight must be drawn through
+    /// the turn (session 47).
+    pub tail_brought_to_m: Option<[f64; 3]>,
     /// First the knot is run down onto the wound: the left draws the tail up and out over the tail's
     /// flap to here, while the right takes its jaws, and the knot just under them, down to
     /// `right_run_down_to_m`. With both ends pulled from above (session 24: left (0, 0.01, 0.045),
@@ -223,6 +230,7 @@ impl Default for TieGeometry {
             tail_via_m: Vec::new(),
             assist_jaw_direction: None,
             tail_give_fraction: 0.0,
+            tail_brought_to_m: None,
             left_run_down_to_m: [0.0, 0.04, 0.05],
             right_run_down_to_m: [0.0, -0.012, 0.012],
             left_run_down_via_m: Vec::new(),
@@ -799,6 +807,9 @@ fn plan_throw(world: &SimWorld, geometry: &TieGeometry, variation: &Variation, s
     assist.wait_until(left.time_s() + pause[2]);
     assist
         .go(Path::To(tail_now + (entry - tail_now) * geometry.tail_give_fraction), wound_s - assist.time_s());
+    if let Some(to_m) = geometry.tail_brought_to_m {
+        assist.go(Path::To(at(to_m)), d(1.5));
+    }
 
     if left_keeps_tail {
         // The left holds the tail already: the turn lies round its jaws behind the tail.
@@ -829,7 +840,7 @@ fn plan_throw(world: &SimWorld, geometry: &TieGeometry, variation: &Variation, s
         };
         let on_tail = entry + (tail_hold - entry) * along;
         let behind = on_tail - jaws_to * fetch.approach_m;
-        left.wait_until(wound_s + pause[3]);
+        left.wait_until(wound_s.max(assist.time_s()) + pause[3]);
         left.jaw(geometry.take_tail_jaw_rad, d(0.3));
         left.wait_until(left.time_s() + d(0.3));
         let shift = behind - left.position_m();

@@ -25,6 +25,9 @@ pub struct SecondThrow {
     /// the assist's jaws (the first throw leaves a longer or shorter tail: drawn to a fixed point, a
     /// short one tore the assist's grip, 34 N, session 45); `None`: to `tail_held_to_m` itself.
     pub tail_held_taut: Option<f64>,
+    /// Once the right has wound, the assist brings the tail here (stitch frame) before the left
+    /// fetches it ([`TieGeometry::tail_brought_to_m`]); `None`: as the first throw.
+    pub tail_brought_to_m: Option<[f64; 3]>,
     /// The left lets go of the tail once the first throw's pulls are done, the right holding on: the
     /// double throw, cinched, holds by itself, and the assist then takes the tail where it lies (held
     /// taut by the left through the hand-over, the tail tore out of the left's jaws or the assist's,
@@ -133,6 +136,7 @@ impl Default for SecondThrow {
             tail_hold_from_end_m: None,
             tail_held_to_m: None,
             tail_held_taut: None,
+            tail_brought_to_m: None,
             left_lets_go_first: false,
             left_retakes_from_end_m: None,
             winding_point_m: first.winding_point_m,
@@ -205,6 +209,7 @@ impl SecondThrow {
             winding_pitch_m: self.winding_pitch_m.unwrap_or(first.winding_pitch_m),
             winding_lead_rad: self.winding_lead_rad.unwrap_or(first.winding_lead_rad),
             winding_turns: self.winding_turns,
+            tail_brought_to_m: self.tail_brought_to_m.or(first.tail_brought_to_m),
             left_run_down_to_m: self.left_run_down_to_m,
             right_run_down_to_m: self.right_run_down_to_m,
             left_run_down_via_m: self.left_run_down_via_m.clone(),
@@ -270,6 +275,9 @@ mod tests {
         );
         assert_eq!((own.run_down_force_n, own.winding_lead_rad), (Some(2.5), -1.5));
         assert_eq!((same.loosen_m, own.loosen_m), (first.loosen_m, 0.006));
+        let brought = SecondThrow { tail_brought_to_m: Some([0.0, 0.02, 0.03]), ..SecondThrow::default() }
+            .applied_to(&first);
+        assert_eq!((same.tail_brought_to_m, brought.tail_brought_to_m), (None, Some([0.0, 0.02, 0.03])));
         let held =
             SecondThrow { hold_through_release: Some(true), ..SecondThrow::default() }.applied_to(&first);
         assert_eq!((same.hold_through_release, held.hold_through_release), (false, true));
