@@ -808,7 +808,10 @@ fn plan_throw(world: &SimWorld, geometry: &TieGeometry, variation: &Variation, s
     assist
         .go(Path::To(tail_now + (entry - tail_now) * geometry.tail_give_fraction), wound_s - assist.time_s());
     if let Some(to_m) = geometry.tail_brought_to_m {
-        assist.go(Path::To(at(to_m)), d(1.5));
+        // Its wrist straightening on the way (held as they took the tail far out, the jaws needed
+        // the wrist at its limits on the way back: the move slowed and jerked, and the tail was lost).
+        let to = at(to_m);
+        assist.go_pointing(Path::To(to), d(1.5), to - trocar_of(&world.config, ArmName::Assist));
     }
 
     if left_keeps_tail {
