@@ -59,6 +59,8 @@ fn every_expert_file_loads() {
     let cinched = load_tie_geometry(&dir.join("two-throws-cinched.toml")).unwrap();
     let second = cinched.second_throw.clone().expect("a second throw");
     assert!(second.left_lets_go_first && second.tail_held_taut == Some(0.9), "{second:?}");
+    let fetch = second.left_fetches.as_ref().expect("the second throw's own fetch");
+    assert_eq!(fetch.right_beside_m, Some([-0.015, 0.0, 0.012]), "the right keeps beside the left's jaws");
     let first = knotlab_scenarios::expert::TieGeometry { pull_on_m: 0.12, ..cinches };
     assert_eq!(knotlab_scenarios::expert::TieGeometry { second_throw: None, ..cinched }, first);
 }

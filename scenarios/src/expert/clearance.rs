@@ -8,6 +8,7 @@
 //! the winding (session 47, seeds 0 and 2). The first throw's circle, 3 mm behind, keeps 0.8 mm clear
 //! (seed 0) and is not moved.
 
+use knotlab_hw::geometry::segment_distance;
 use knotlab_hw::rig::{ArmName, Rig, Shape};
 use nalgebra::{Rotation3, UnitVector3, Vector3};
 
@@ -65,11 +66,8 @@ pub struct Wrist {
 impl Wrist {
     /// Distance from the wrist's and shaft's axes, m.
     fn distance_m(&self, point_m: &Vector3<f64>) -> f64 {
-        segment_distance_m(point_m, &self.pitch_m, &self.yaw_m).min(segment_distance_m(
-            point_m,
-            &self.pitch_m,
-            &self.trocar_m,
-        ))
+        let wrist = segment_distance(point_m, point_m, &self.pitch_m, &self.yaw_m);
+        wrist.min(segment_distance(point_m, point_m, &self.pitch_m, &self.trocar_m))
     }
 }
 
@@ -116,13 +114,6 @@ pub fn link_radius_m(rig: &Rig, link: &str) -> Option<f64> {
 /// The name of an arm's link in the rig's robot model (`left_wrist`, say).
 pub fn link_name(arm: ArmName, link: &str) -> String {
     format!("{}_{link}", arm.as_str())
-}
-
-fn segment_distance_m(p: &Vector3<f64>, a: &Vector3<f64>, b: &Vector3<f64>) -> f64 {
-    let ab = b - a;
-    let s =
-        if ab.norm_squared() > 0.0 { ((p - a).dot(&ab) / ab.norm_squared()).clamp(0.0, 1.0) } else { 0.0 };
-    (p - (a + ab * s)).norm()
 }
 
 #[cfg(test)]

@@ -106,7 +106,7 @@ pub struct TieGeometry {
     /// was caught in the turn and torn from the assist's jaws, 32 N), brought near the stitch for the
     /// take: the long end reaches no further with the turn round the left's jaws
     /// ([`super::turn_thread`]), and taken far from its end, the tail's bight must be drawn through
-    /// the turn (session 47).
+    /// the turn. (Session 47: on the way the assist lost the tail in every run so far, 15-62 N.)
     pub tail_brought_to_m: Option<[f64; 3]>,
     /// First the knot is run down onto the wound: the left draws the tail up and out over the tail's
     /// flap to here, while the right takes its jaws, and the knot just under them, down to
@@ -754,9 +754,10 @@ fn plan_throw(world: &SimWorld, geometry: &TieGeometry, variation: &Variation, s
     let winding_start = centre + start_dir.into_inner() * geometry.winding_radius_m;
     // The circle moved towards the jaws' tips until the thread in the right's jaws, going round it,
     // keeps clear of the left's wrist (at most to the jaw centre).
-    let pitch_m = geometry.winding_pitch_m * axis.dot(&jaws).signum();
-    let planned =
-        Circle { centre_m: centre, axis, start_m: winding_start, turns: geometry.winding_turns, pitch_m };
+    // `axis` is the jaws' or their reverse (the turns' sense): the advance is along the jaws.
+    let advance_m = geometry.winding_pitch_m * axis.dot(&jaws).signum();
+    let turns = geometry.winding_turns;
+    let planned = Circle { centre_m: centre, axis, start_m: winding_start, turns, pitch_m: advance_m };
     let circle = match (left.wrist_m(), wrist_radius_m(world)) {
         (Some((pitch_m, yaw_m)), Some(radius_m)) => {
             let trocar_m = trocar_of(&world.config, ArmName::Left);
@@ -786,13 +787,7 @@ fn plan_throw(world: &SimWorld, geometry: &TieGeometry, variation: &Variation, s
     // R2: the right winds the long end around the left's jaws, after the left is there.
     right.wait_until(left.time_s() + pause[2]);
     right.go(
-        Path::Around {
-            centre_m: centre,
-            axis,
-            turns: geometry.winding_turns,
-            // `axis` is the jaws' or their reverse (the turns' sense): the advance is along the jaws.
-            pitch_m,
-        },
+        Path::Around { centre_m: centre, axis, turns: geometry.winding_turns, pitch_m: advance_m },
         d(geometry.winding_s),
     );
     // Then it gives a little thread back, so the coils loosen enough to slide along the jaws.
