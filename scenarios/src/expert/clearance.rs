@@ -49,8 +49,9 @@ impl Circle {
     }
 }
 
-/// The left's wrist as the thread in the right's jaws must keep clear of it: its wrist link (from the pitch axis
-/// to the yaw axis) and its shaft (from the pitch axis to the trocar), capsules of `radius_m`.
+/// The left's wrist as the thread in the right's jaws must keep clear of it: its wrist link (from
+/// the pitch axis to the yaw axis) and its shaft (from the pitch axis to the trocar), capsules of
+/// `radius_m`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Wrist {
     /// Where the shaft ends (the wrist's pitch axis), m.
