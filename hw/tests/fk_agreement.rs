@@ -1,5 +1,5 @@
 //! The closed-form FK and the FK computed by walking the URDF's joint tree agree: two descriptions of
-//! one robot must never drift apart.
+//! one robot must never drift apart. The links' sizes are read from the same URDF.
 
 mod common;
 
@@ -85,4 +85,12 @@ fn writing_one_arm_leaves_the_others_at_zero() {
     assert!(distance(&left[right_tip], &zero[right_tip]) < 1e-15);
     let left_tip = rig.arm(ArmName::Left).tip_link;
     assert!(distance(&left[left_tip], &zero[left_tip]) > 0.01);
+}
+
+#[test]
+fn a_links_radius_is_its_capsules_in_the_shipped_urdf() {
+    let rig = Rig::shipped().expect("the shipped rig");
+    assert_eq!(rig.link_radius_m(ArmName::Left, "wrist"), Some(0.004));
+    assert_eq!(rig.link_radius_m(ArmName::Right, "jaw_1"), Some(0.0015));
+    assert_eq!(rig.link_radius_m(ArmName::Left, "no_such_link"), None);
 }

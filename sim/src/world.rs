@@ -822,13 +822,7 @@ impl SimWorld {
 
     /// The radius of `arm`'s jaws: their capsules', from the robot model (`None` without jaws).
     fn jaw_radius_m(rig: &Rig, arm: ArmName) -> Option<f64> {
-        let jaw_link = format!("{}_jaw_1", arm.as_str());
-        rig.tree.links.iter().filter(|l| l.name == jaw_link).find_map(|l| {
-            l.collisions.iter().find_map(|c| match c.shape {
-                knotlab_hw::rig::Shape::Capsule { radius_m, .. } => Some(radius_m),
-                _ => None,
-            })
-        })
+        rig.link_radius_m(arm, "jaw_1")
     }
 
     /// Closes `arm`'s grasp on the thread or needle between its jaws, if any; true when it holds.

@@ -77,6 +77,18 @@ pub struct Rig {
 }
 
 impl Rig {
+    /// The radius of `arm`'s link `link` (`wrist`, `jaw_1`: the URDF's `<arm>_<link>`), its first
+    /// capsule's, m; `None` if it has no capsule.
+    pub fn link_radius_m(&self, arm: ArmName, link: &str) -> Option<f64> {
+        let name = format!("{}_{link}", arm.as_str());
+        self.tree.links.iter().filter(|l| l.name == name).find_map(|l| {
+            l.collisions.iter().find_map(|c| match c.shape {
+                Shape::Capsule { radius_m, .. } => Some(radius_m),
+                _ => None,
+            })
+        })
+    }
+
     /// The rig shipped with knotlab.
     pub fn shipped() -> Result<Self, RigError> {
         Self::from_urdf_str(DEFAULT_URDF, DEFAULT_URDF_NAME)

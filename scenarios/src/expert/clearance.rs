@@ -9,7 +9,6 @@
 //! (seed 0) and is not moved.
 
 use knotlab_hw::geometry::segment_distance;
-use knotlab_hw::rig::{ArmName, Rig, Shape};
 use nalgebra::{Rotation3, UnitVector3, Vector3};
 
 /// How far the circle is moved along the jaws at a time, m.
@@ -100,21 +99,6 @@ pub fn clear_of_wrist(
         moved_m += STEP_M;
     }
     (circle.moved(towards_tips.into_inner() * moved_m), moved_m)
-}
-
-/// The radius of a link's first capsule in the rig's robot model, m (`None` if it has none).
-pub fn link_radius_m(rig: &Rig, link: &str) -> Option<f64> {
-    rig.tree.links.iter().filter(|l| l.name == link).find_map(|l| {
-        l.collisions.iter().find_map(|c| match c.shape {
-            Shape::Capsule { radius_m, .. } => Some(radius_m),
-            _ => None,
-        })
-    })
-}
-
-/// The name of an arm's link in the rig's robot model (`left_wrist`, say).
-pub fn link_name(arm: ArmName, link: &str) -> String {
-    format!("{}_{link}", arm.as_str())
 }
 
 #[cfg(test)]

@@ -17,7 +17,7 @@ use nalgebra::{Isometry3, Point3, Unit, Vector3};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
-use super::clearance::{Circle, Wrist, clear_of_wrist, link_name, link_radius_m};
+use super::clearance::{Circle, Wrist, clear_of_wrist};
 use super::motion::{Follow, Path, TrackBuilder, Tremor};
 use super::second_throw::SecondThrow;
 use super::tail::{tail_ahead_of_jaws, tail_between_knot_and_left, tail_from_its_end, tail_length_to};
@@ -407,7 +407,7 @@ fn jaw_centre_m(world: &SimWorld, arm: ArmName) -> Vector3<f64> {
 
 /// The radius of the left's wrist link, m (`None` if the robot model has no capsule for it).
 fn wrist_radius_m(world: &SimWorld) -> Option<f64> {
-    link_radius_m(&world.rig, &link_name(ArmName::Left, "wrist"))
+    world.rig.link_radius_m(ArmName::Left, "wrist")
 }
 
 /// Which throw a plan ties, and what the instruments hold when it starts.
