@@ -348,6 +348,7 @@ impl SimWorld {
                     &mut physics,
                     &tissue,
                     &config.tissue,
+                    config.stitch.slide_friction_n,
                     &robot_colliders,
                 );
                 (Thread::empty(rope.spacing_m), needle, Some(rope))

@@ -21,22 +21,30 @@ fn the_rope_scene_holds_the_needle_the_tail_and_the_stitch_standing_still() {
     let arcs =
         |w: &SimWorld| [w.stitch_arc_at_m(Flap::B), w.stitch_arc_at_m(Flap::A)].map(|a| a.expect("through"));
     let before = arcs(&w);
+    let mut settled = before;
     let mut largest_force_n: f64 = 0.0;
-    for _ in 0..1000 {
+    for k in 1..=1000 {
         w.step().expect("the scene stays healthy");
         for arm in [ArmName::Left, ArmName::Right, ArmName::Assist] {
             largest_force_n = largest_force_n.max(w.arm(arm).filtered_force_n.norm());
         }
+        if k == 100 {
+            settled = arcs(&w);
+        }
     }
     let after = arcs(&w);
     println!(
-        "events {:?}; stitch at {before:?} -> {after:?} m; gap {:.2} mm; largest gauge {largest_force_n:.2} N",
+        "events {:?}; stitch at {before:?} -> {settled:?} (0.1 s) -> {after:?} m; gap {:.2} mm; largest gauge {largest_force_n:.2} N",
         w.events,
         w.wound_gap_m() * 1e3
     );
     assert!(w.arm(ArmName::Right).holds() && w.arm(ArmName::Assist).holds(), "{:?}", w.events);
-    for (b, a) in before.iter().zip(&after) {
-        assert!((b - a).abs() < 0.002, "the thread slid through the stitch: {before:?} -> {after:?} m");
+    // The thread settles by a few millimetres as the scene starts (the assist's grip slides at the
+    // first step), and the stitch's friction then holds it where it is (without it, it swung on by
+    // 1.8-2.6 mm: session 47).
+    for ((b, s), a) in before.iter().zip(&settled).zip(&after) {
+        assert!((b - a).abs() < 0.005, "the thread slid through the stitch: {before:?} -> {after:?} m");
+        assert!((s - a).abs() < 0.001, "the thread slid once settled: {settled:?} -> {after:?} m");
     }
     let line = w.thread_centreline();
     let rope_m: f64 = line.windows(2).map(|p| (p[1] - p[0]).norm()).sum();

@@ -432,6 +432,21 @@ pub(super) fn thread_through(
     at: f64,
     target: &Vector3<f64>,
 ) -> Option<(ParticleMoves, f64)> {
+    thread_through_held(ropes, at, target, 0.0, 1.0)
+}
+
+/// As [`thread_through`], but the rope's point at `at` is also held along the rope by friction up
+/// to `friction_n` (this substep `h_s` long): moved onto `target` along the rope as well while that
+/// takes no more force, so that the rope does not slide and stays at `at`; past it, moved by as much
+/// as that force does, and the rope slides (where it now passes is searched as in
+/// [`thread_through`]).
+pub(super) fn thread_through_held(
+    ropes: &mut Ropes,
+    at: f64,
+    target: &Vector3<f64>,
+    friction_n: f64,
+    h_s: f64,
+) -> Option<(ParticleMoves, f64)> {
     let last = ropes.x.len().checked_sub(1).filter(|l| *l >= 1)?;
     let sigma = at.clamp(0.0, (last - 1) as f64 + 0.999_999);
     let i = sigma.floor() as usize;
@@ -440,18 +455,25 @@ pub(super) fn thread_through(
     let along = (ropes.x[b] - ropes.x[a]).try_normalize(1e-15)?;
     let here = ropes.x[a] * (1.0 - t) + ropes.x[b] * t;
     let miss = target - here;
-    let across = miss - along * miss.dot(&along);
+    let along_miss_m = miss.dot(&along);
+    let across = miss - along * along_miss_m;
     let weights = [(a, 1.0 - t), (b, t)];
     let wsum: f64 = weights.iter().map(|(p, f)| ropes.w[*p] * f * f).sum();
+    // The most the friction moves the point along the rope (its force times h² over the point's
+    // inverse mass): it holds if that is enough.
+    let grip_m = friction_n * wsum * h_s * h_s;
+    let held = along_miss_m.abs() <= grip_m;
+    let drag = along * along_miss_m.clamp(-grip_m, grip_m);
     let mut moves = [(a, Vector3::zeros()), (b, Vector3::zeros())];
     if wsum > 0.0 {
         for (k, (p, f)) in weights.into_iter().enumerate() {
-            let dx = across * (ropes.w[p] * f / wsum);
+            let dx = (across + drag) * (ropes.w[p] * f / wsum);
             ropes.x[p] += dx;
             moves[k] = (p, dx);
         }
     }
-    Some((moves, nearest_on_rope(ropes, target, i, last)))
+    let now_at = if held && friction_n > 0.0 { sigma } else { nearest_on_rope(ropes, target, i, last) };
+    Some((moves, now_at))
 }
 
 /// The place on the rope (particle index plus fraction) nearest `target`, searched over the

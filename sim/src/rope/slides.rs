@@ -10,7 +10,7 @@ use nalgebra::Vector3;
 use rapier3d::math::{Pose, Vector};
 use rapier3d::prelude::*;
 
-use super::rigid::{nearest_on_rope, thread_through};
+use super::rigid::{nearest_on_rope, thread_through_held};
 use super::{Ropes, Surroundings};
 use crate::scene::TissueParams;
 use crate::tissue::{FLAP_OUTWARD_TRAVEL_M, Flap, Tissue};
@@ -36,6 +36,9 @@ pub struct SlideStitch {
     slides: [Slide; 2],
     /// Each flap pulled open with this force besides its spring, N ([B, A]).
     pub load_n: [f64; 2],
+    /// The friction holding the thread in each flap, N (`stitch.slide_friction_n`), split between
+    /// its two stitch points; 0 (as built): the thread slides through them freely.
+    pub slide_friction_n: f64,
     /// The stitch points [exit, exit deep, entry deep, entry]: which flap, where in its rest frame
     /// (world frame at rest), and where the rope passes (a particle's index plus a fraction).
     points: [(usize, Vector3<f64>, f64); 4],
@@ -66,7 +69,7 @@ impl SlideStitch {
             (flap.index(), at, nearest_on_rope(ropes, &at, nearest, last))
         };
         let points = tissue.stitch_points_m(physics).map(|(flap, at)| point(flap, at));
-        Self { tissue: *params, slides, load_n: [0.0; 2], points }
+        Self { tissue: *params, slides, load_n: [0.0; 2], slide_friction_n: 0.0, points }
     }
 
     /// Where the rope passes the exit (B) or the entry (A): a particle's index plus a fraction.
@@ -109,7 +112,10 @@ impl Surroundings for SlideStitch {
             let (flap, rest_at, at) = self.points[k];
             let slide = &self.slides[flap];
             let target = rest_at + slide.outward * slide.u_m;
-            let Some((moves, now_at)) = thread_through(ropes, at, &target) else { continue };
+            let friction_n = 0.5 * self.slide_friction_n;
+            let Some((moves, now_at)) = thread_through_held(ropes, at, &target, friction_n, h_s) else {
+                continue;
+            };
             for (p, dx) in moves {
                 if ropes.w[p] > 0.0 {
                     outward_n[flap] -= slide.outward.dot(&dx) / (ropes.w[p] * h_s * h_s);
