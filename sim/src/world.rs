@@ -341,16 +341,18 @@ impl SimWorld {
                 (thread, needle, None)
             }
             ThreadModel::Rope => {
-                let (rope, needle) = SceneRope::build(
+                let (mut rope, needle) = SceneRope::build(
                     &config.thread,
                     &config.needle,
                     &layout,
                     &mut physics,
                     &tissue,
                     &config.tissue,
-                    config.stitch.slide_friction_n,
                     &robot_colliders,
                 );
+                if let Some(stitch) = &mut rope.stitch {
+                    stitch.slide_friction_n = config.stitch.slide_friction_n;
+                }
                 (Thread::empty(rope.spacing_m), needle, Some(rope))
             }
         };

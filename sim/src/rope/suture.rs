@@ -71,9 +71,9 @@ pub fn rope_params(thread: &ThreadParams) -> RopeParams {
 impl SceneRope {
     /// Lays the rope along `layout` (needle end first; thread left over runs on straight beyond
     /// its last point), swages it to a new needle body, threads it through the stitch's points of
-    /// `tissue` (held there by `slide_friction_n` of friction in each flap) and lets it touch
-    /// `touched` (the instruments' colliders) and the tissue. Returns the rope and the needle's
-    /// geometry in its body's frame.
+    /// `tissue` (sliding freely: set its `slide_friction_n`) and lets it touch `touched` (the
+    /// instruments' colliders) and the tissue. Returns the rope and the needle's geometry in its
+    /// body's frame.
     pub fn build(
         thread: &ThreadParams,
         needle: &NeedleParams,
@@ -81,7 +81,6 @@ impl SceneRope {
         physics: &mut Physics,
         tissue: &Tissue,
         tissue_params: &TissueParams,
-        slide_friction_n: f64,
         touched: &[ColliderHandle],
     ) -> (Self, Needle) {
         let params = rope_params(thread);
@@ -95,8 +94,7 @@ impl SceneRope {
             *f = -Vector3::z() * weight_per_particle_n;
         }
         let (geometry, needle_body) = Self::needle(needle, physics, &ropes, thread.linear_damping_per_s);
-        let mut stitch = SlideStitch::new(tissue, tissue_params, physics, &ropes);
-        stitch.slide_friction_n = slide_friction_n;
+        let stitch = SlideStitch::new(tissue, tissue_params, physics, &ropes);
         let mut tissue_colliders: Vec<ColliderHandle> = tissue.flap_colliders.to_vec();
         tissue_colliders.extend(physics.bodies[tissue.pad].colliders().iter().copied());
         let colliders = touched.iter().chain(&tissue_colliders).map(|c| (*c, 0..0)).collect();
