@@ -947,6 +947,13 @@ impl SimWorld {
                 for h in &self.arms[a].instrument_bodies {
                     total += rope.contacts.impulse_on(*h) / dt;
                 }
+                // ... and its pull on the needle these jaws hold, which reaches them through the
+                // needle: applied to the needle before Rapier's step, the joint takes it up in its
+                // first substeps and its last one (all the grasp reads) shows none of it
+                // (`sim/tests/needle_gauge_missed_the_ropes_pull.rs`).
+                if self.arms[a].grasp.as_ref().is_some_and(|g| g.on_needle) {
+                    total += rope.contacts.impulse_on(rope.needle_body) / dt;
+                }
             }
             let arm = &mut self.arms[a];
             arm.filtered_force_n =
