@@ -1121,19 +1121,23 @@ fn finish_throw(
     // were opened to take it: jaws opened less still squeeze it, and the grip held through the
     // holding test; session 44).
     let left_let_go = open.max(geometry.take_tail_jaw_rad);
-    for (track, to, threshold_n, let_go) in [
-        (&mut left, geometry.left_pull_to_m, tail_pull_force_n, left_let_go),
-        (&mut right, geometry.right_pull_to_m, geometry.pull_force_n, open),
-    ] {
-        let from_s = pull_s;
-        pull(track, to);
+    let pulls = [
+        (geometry.left_pull_to_m, tail_pull_force_n, left_let_go),
+        (geometry.right_pull_to_m, geometry.pull_force_n, open),
+    ];
+    pull(&mut left, pulls[0].0);
+    pull(&mut right, pulls[1].0);
+    // Both let go together, a second after the later pull's end, whether or not the set force was
+    // reached: a pull sent on within reach may run longer than the other (ended at its own time, the
+    // left let go of the tail while the right was still drawing the long end's slack, session 48).
+    let release_s = left.time_s().max(right.time_s()) + 1.0;
+    for (track, (_, threshold_n, let_go)) in [&mut left, &mut right].into_iter().zip(pulls) {
         // The hold ends as the jaws start to open, or, with `hold_through_release`, once they are
         // open: ended before, the arm goes on towards where the pull was headed as it lets go.
-        let release_s = track.time_s() + 1.0;
         let hold_until_s = if geometry.hold_through_release { release_s + d(0.2) + 0.3 } else { release_s };
         track.event(ForceEvent {
             name: SET_FORCE.into(),
-            from_s: from_s + d(0.5),
+            from_s: pull_s + d(0.5),
             until_s: hold_until_s,
             threshold_n,
             sustain_s: geometry.pull_force_sustain_s,
@@ -1144,8 +1148,7 @@ fn finish_throw(
                 ForceAction::OpenJaw { jaw_rad: let_go }
             },
         });
-        track.wait_until(track.time_s() + 1.0);
-        // Both let go at the end, whether or not the set force was reached.
+        track.wait_until(release_s);
         track.jaw(let_go, d(0.2));
         track.wait_until(track.time_s() + d(0.2) + 0.3);
         hold_from_run_down(track);
