@@ -201,8 +201,8 @@ pub struct StitchParams {
     pub depth_m: f64,
     /// Position along the wound, m.
     pub along_m: f64,
-    /// Friction force resisting the thread sliding through each flap, N. The capsule chain's stitch
-    /// only: the rope (`thread.model = "rope"`) slides through its stitch freely (session 47).
+    /// Friction force resisting the thread sliding through each flap, N (the rope splits it between
+    /// the flap's two stitch points).
     pub slide_friction_n: f64,
 }
 
