@@ -28,6 +28,7 @@ fn every_expert_file_loads() {
         "two-throws-looking.toml",
         "looks-and-cinches.toml",
         "two-throws-cinched.toml",
+        "both-ends-cinch.toml",
     ] {
         assert!(names.iter().any(|n| n == expected), "{expected} missing from {names:?}");
     }
@@ -55,6 +56,16 @@ fn every_expert_file_loads() {
         ..load_tie_geometry(&dir.join("looks-at-the-tail.toml")).unwrap()
     };
     assert_eq!(cinches, expected);
+    // Cinched by both ends: looks-at-the-tail's with each pull going on to its own set force, slower.
+    let both = load_tie_geometry(&dir.join("both-ends-cinch.toml")).unwrap();
+    let expected = knotlab_scenarios::expert::TieGeometry {
+        pull_s: 5.0,
+        pulls_stop_together: false,
+        pull_force_n: 1.0,
+        tail_pull_force_n: Some(0.3),
+        ..cinches.clone()
+    };
+    assert_eq!(both, expected);
     // The cinched two-throw recipe: that first throw (its pulls on 0.12 m), the left letting go of it.
     let cinched = load_tie_geometry(&dir.join("two-throws-cinched.toml")).unwrap();
     let second = cinched.second_throw.clone().expect("a second throw");
