@@ -168,12 +168,19 @@ fn pulls_told_to_go_on_pass_their_targets_level_at_the_same_speed_and_stop_toget
     let world = SimWorld::new(scene(), Rig::shipped().expect("the shipped rig")).expect("the scene builds");
     let stitch = world.tissue.world_from_tissue;
     // Where each pull starts and ends, and its speed: it starts 0.5 s before its set force may fire
-    // and ends 1 s before its hold runs out (these plans have no variation).
+    // and ends where its target stops moving, at the latest 1 s before its hold runs out (these plans
+    // have no variation; the pull that ends sooner holds still until both let go).
     let ends = |geometry: &TieGeometry| {
         pulls(geometry).map(|(track, set)| {
-            let (start_s, end_s) = (set.from_s - 0.5, set.until_s - 1.0);
             let at = |t: f64| track.target_at(t).expect("a target").world_position_m;
-            let (from, to) = (at(start_s), at(end_s));
+            let start_s = set.from_s - 0.5;
+            let last = at(set.until_s - 1.0);
+            let end_s = (0..)
+                .map(|k| start_s + k as f64 * 0.001)
+                .take_while(|t| *t <= set.until_s - 1.0)
+                .find(|t| (at(*t) - last).norm() < 1e-9)
+                .expect("the pull ends before its hold runs out");
+            let (from, to) = (at(start_s), last);
             (track.arm, from, to, (to - from).norm() / (end_s - start_s), set)
         })
     };
@@ -197,6 +204,39 @@ fn pulls_told_to_go_on_pass_their_targets_level_at_the_same_speed_and_stop_toget
         assert_eq!(shipped_set.fires_with, None);
         assert_eq!(set.fires_with.as_deref(), Some("set force"), "each fires with the other's");
     }
+}
+
+#[test]
+fn pulls_of_different_lengths_let_go_together() {
+    // Sent 0.2 m on, the pulls stop where each arm's reach ends, one sooner than the other; both
+    // hold until a second after the later one's end and open their jaws then, together (each letting
+    // go at its own end, the left let go of the tail while the right still drew: session 48).
+    let far = TieGeometry { pull_on_m: 0.2, hold_through_release: true, ..TieGeometry::default() };
+    let [(left, left_set), (right, right_set)] = pulls(&far);
+    let opening_s = |track: &knotlab_hw::skill::Track| {
+        let last = track.jaw.last().expect("jaw keys");
+        track.jaw.iter().rev().find(|k| k.jaw_rad < last.jaw_rad).expect("it was shut").time_s
+    };
+    let pull_end_s = |track: &knotlab_hw::skill::Track, set: &knotlab_hw::skill::ForceEvent| {
+        let at = |t: f64| track.target_at(t).expect("a target").world_position_m;
+        let last = at(opening_s(track));
+        (0..)
+            .map(|k| set.from_s - 0.5 + k as f64 * 0.001)
+            .find(|t| (at(*t) - last).norm() < 1e-9)
+            .expect("the pull ends")
+    };
+    let (left_end_s, right_end_s) = (pull_end_s(&left, &left_set), pull_end_s(&right, &right_set));
+    println!("the pulls end at {left_end_s:.3} s and {right_end_s:.3} s");
+    assert!(
+        (left_end_s - right_end_s).abs() > 0.1,
+        "the pulls end together: {left_end_s} s, {right_end_s} s"
+    );
+    assert!((opening_s(&left) - opening_s(&right)).abs() < 1e-9, "the jaws open at different times");
+    assert!(
+        (opening_s(&left) - (left_end_s.max(right_end_s) + 1.0)).abs() < 0.01,
+        "a second after the later"
+    );
+    assert_eq!(left_set.until_s, right_set.until_s, "the holds last alike");
 }
 
 #[test]
