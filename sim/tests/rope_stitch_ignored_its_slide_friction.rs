@@ -6,12 +6,12 @@
 //! between its two stitch points: drawn out by one end, the rope slides through only once the pull
 //! reaches the stitch's friction.
 
-use knotlab_sim::physics::Physics;
+mod common;
+
 use knotlab_sim::rope::rigid::{Attachment, RigidContacts};
 use knotlab_sim::rope::slides::SlideStitch;
 use knotlab_sim::rope::{RopeParams, Ropes};
-use knotlab_sim::scene::parse_scene;
-use knotlab_sim::tissue::{Flap, Tissue};
+use knotlab_sim::tissue::Flap;
 use nalgebra::Vector3;
 use rapier3d::prelude::*;
 
@@ -19,18 +19,10 @@ use rapier3d::prelude::*;
 /// drawn end once the rope slides (the median over the last half second), N, and how far the rope
 /// slid through the entry point, m.
 fn drawn_through(slide_friction_n: f64) -> (f64, f64) {
-    let scene = parse_scene(include_str!("../../scenarios/rope.toml"), "rope.toml").expect("the rope scene");
-    let dt_s = scene.solver.dt_s;
-    let mut physics = Physics::new(&scene.solver);
-    let tissue = Tissue::build(&mut physics, &scene.tissue, &scene.stitch);
-    let frame = tissue.world_from_tissue;
-    let (up, across) = (frame.rotation * Vector3::z(), frame.rotation * Vector3::y());
-    let stitch = tissue.stitch_points_m(&physics).map(|(_, p)| p);
     // The exit's end 2 cm up and 1 cm out from its hole; the entry's a 3 cm tail lying up and out.
-    let ends = [stitch[0] + up * 0.02 - across * 0.01, stitch[3] + up * 0.02 + across * 0.02];
-    let mut path = vec![ends[0]];
-    path.extend(stitch);
-    path.push(ends[1]);
+    let common::StitchBench { scene, mut physics, tissue, across, ends, path, .. } =
+        common::rope_stitch_bench([0.02, 0.01], [0.02, 0.02]);
+    let dt_s = scene.solver.dt_s;
     let spacing_m = 0.0009;
     let mut ropes = Ropes::new(RopeParams { damping_per_s: 10.0, ..RopeParams::default() });
     let strand = ropes.add_strand_along(&path, spacing_m);

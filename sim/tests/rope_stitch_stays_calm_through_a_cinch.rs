@@ -7,29 +7,21 @@
 //! as the world to a flap) the same cinch spiked the pull to 45 N, and in the expert's runs the lag
 //! fed back until a flap moved at 21-32 m/s (`device_fault`, or the holding test unhealthy).
 
-use knotlab_sim::physics::Physics;
+mod common;
+
 use knotlab_sim::rope::rigid::{Attachment, RigidContacts};
 use knotlab_sim::rope::slides::SlideStitch;
 use knotlab_sim::rope::{RopeParams, Ropes};
-use knotlab_sim::scene::parse_scene;
-use knotlab_sim::tissue::{Flap, Tissue};
+use knotlab_sim::tissue::Flap;
 use nalgebra::Vector3;
 use rapier3d::prelude::*;
 
 #[test]
 fn a_cinched_stitch_keeps_its_flaps_slow_and_its_pull_near_the_set_force() {
-    let scene = parse_scene(include_str!("../../scenarios/rope.toml"), "rope.toml").expect("the rope scene");
-    let dt_s = scene.solver.dt_s;
-    let mut physics = Physics::new(&scene.solver);
-    let tissue = Tissue::build(&mut physics, &scene.tissue, &scene.stitch);
-    let frame = tissue.world_from_tissue;
-    let (up, across) = (frame.rotation * Vector3::z(), frame.rotation * Vector3::y());
-    let stitch = tissue.stitch_points_m(&physics).map(|(_, p)| p);
     // Each end 2 cm up and 1 cm out from its hole, the thread slack by a few millimetres.
-    let ends = [stitch[0] + up * 0.02 - across * 0.01, stitch[3] + up * 0.02 + across * 0.01];
-    let mut path = vec![ends[0]];
-    path.extend(stitch);
-    path.push(ends[1]);
+    let common::StitchBench { scene, mut physics, tissue, across, ends, path, .. } =
+        common::rope_stitch_bench([0.02, 0.01], [0.02, 0.01]);
+    let dt_s = scene.solver.dt_s;
     let spacing_m = 0.0009;
     let mut ropes = Ropes::new(RopeParams {
         static_friction: 0.5,

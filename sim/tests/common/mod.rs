@@ -1,10 +1,13 @@
-//! What the sim tests share: the default scene's world, and the left's jaws opened, then closed on a
-//! thread laid across them with gravity off.
+//! What the sim tests share: the default scene's world, the left's jaws opened, then closed on a
+//! thread laid across them with gravity off, and the rope scene's tissue with a way through its
+//! stitch.
 #![allow(dead_code)]
 
 use knotlab_hw::kinematics::ArmJoints;
 use knotlab_hw::rig::{ArmName, Rig};
-use knotlab_sim::scene::parse_scene;
+use knotlab_sim::physics::Physics;
+use knotlab_sim::scene::{SceneConfig, parse_scene};
+use knotlab_sim::tissue::Tissue;
 use knotlab_sim::world::SimWorld;
 use rapier3d::prelude::*;
 
@@ -43,7 +46,7 @@ pub fn close_left_weightless(w: &mut SimWorld, open: ArmJoints, steps: usize) {
 }
 
 /// `scenarios/short-suture-friction-0.5.toml`, the scene the rope's knot trials use.
-pub fn short_suture_friction_0_5() -> knotlab_sim::scene::SceneConfig {
+pub fn short_suture_friction_0_5() -> SceneConfig {
     parse_scene(
         include_str!("../../../scenarios/short-suture-friction-0.5.toml"),
         "short-suture-friction-0.5.toml",
@@ -72,4 +75,39 @@ pub fn rope_at_friction_0_5() -> knotlab_sim::rope::RopeParams {
         damping_per_s: 10.0,
         ..Default::default()
     }
+}
+
+/// The rope scene's tissue in a physics world of its own, and a way for a rope through its stitch.
+pub struct StitchBench {
+    pub scene: SceneConfig,
+    pub physics: Physics,
+    pub tissue: Tissue,
+    /// Out of the tissue, world frame.
+    pub up: nalgebra::Vector3<f64>,
+    /// Across the wound, towards the entry's flap, world frame.
+    pub across: nalgebra::Vector3<f64>,
+    /// The rope's two ends, the exit's and the entry's, world frame, m.
+    pub ends: [nalgebra::Vector3<f64>; 2],
+    /// From the exit's end through the stitch's four points to the entry's end, world frame, m.
+    pub path: Vec<nalgebra::Vector3<f64>>,
+}
+
+/// [`StitchBench`] with the exit's end `exit_end_m` (up, out) from its hole and the entry's end
+/// `entry_end_m` from its own, m.
+pub fn rope_stitch_bench(exit_end_m: [f64; 2], entry_end_m: [f64; 2]) -> StitchBench {
+    let scene =
+        parse_scene(include_str!("../../../scenarios/rope.toml"), "rope.toml").expect("the rope scene");
+    let mut physics = Physics::new(&scene.solver);
+    let tissue = Tissue::build(&mut physics, &scene.tissue, &scene.stitch);
+    let frame = tissue.world_from_tissue;
+    let (up, across) = (frame.rotation * nalgebra::Vector3::z(), frame.rotation * nalgebra::Vector3::y());
+    let stitch = tissue.stitch_points_m(&physics).map(|(_, p)| p);
+    let ends = [
+        stitch[0] + up * exit_end_m[0] - across * exit_end_m[1],
+        stitch[3] + up * entry_end_m[0] + across * entry_end_m[1],
+    ];
+    let mut path = vec![ends[0]];
+    path.extend(stitch);
+    path.push(ends[1]);
+    StitchBench { scene, physics, tissue, up, across, ends, path }
 }
