@@ -92,8 +92,7 @@ fn interpolate(samples: &[(f64, [f64; 6])], time_s: f64) -> [f64; 6] {
 #[test]
 fn the_same_skill_on_sim_and_on_melfa_agrees_within_one_cycles_step() {
     let rig = Rig::shipped().expect("the shipped rig");
-    let scene =
-        parse_scene(include_str!("../scenarios/default.toml"), "default.toml").expect("the shipped scene");
+    let scene = parse_scene(include_str!("../scenarios/chain.toml"), "chain.toml").expect("the chain scene");
     let trocar = Vector3::from(scene.trocars.left);
     let filter_s = scene.servo.time_constant_s;
     let mut backend = SimBackend::new(SimWorld::new(scene, rig.clone()).expect("the scene builds"));

@@ -6,7 +6,7 @@ use common::{json, knotlab};
 
 #[test]
 fn sim_json_prints_the_figures() {
-    let (code, v) = json(&["sim", "--scene", "scenarios/default.toml", "--seconds", "0.4", "--json"]);
+    let (code, v) = json(&["sim", "--scene", "scenarios/chain.toml", "--seconds", "0.4", "--json"]);
     assert_eq!(code, 0, "{v}");
     for key in [
         "max_stretch_ratio",
@@ -52,6 +52,10 @@ fn a_bad_scene_or_time_is_refused_clearly() {
     let (code, _, err) = knotlab(&["sim", "--scene", "/nonexistent/scene.toml"]);
     assert_eq!(code, 1);
     assert!(err.contains("/nonexistent/scene.toml: cannot read"), "{err}");
+    // The stress sequence measures the capsule chain: the nominal scene's rope is refused, named.
+    let (code, _, err) = knotlab(&["sim", "--scene", "scenarios/default.toml", "--seconds", "0.1"]);
+    assert_eq!(code, 1);
+    assert!(err.contains("scenarios/default.toml: thread.model") && err.contains("chain"), "{err}");
     let (code, _, err) = knotlab(&["sim", "--seconds", "0"]);
     assert_eq!(code, 1);
     assert!(err.contains("--seconds"), "{err}");

@@ -18,8 +18,9 @@ fn every_expert_file_loads() {
         }
     }
     names.sort();
-    // The shipped plan's listing and the second-throw recipes are all there.
+    // The base plan's listing, the shipped plan and the second-throw recipes are all there.
     for expected in [
+        "base.toml",
         "instrument-tie.toml",
         "two-throws-tail-end.toml",
         "two-throws-drawn-ahead.toml",
@@ -28,7 +29,6 @@ fn every_expert_file_loads() {
         "two-throws-looking.toml",
         "looks-and-cinches.toml",
         "two-throws-cinched.toml",
-        "both-ends-cinch.toml",
     ] {
         assert!(names.iter().any(|n| n == expected), "{expected} missing from {names:?}");
     }
@@ -56,8 +56,9 @@ fn every_expert_file_loads() {
         ..load_tie_geometry(&dir.join("looks-at-the-tail.toml")).unwrap()
     };
     assert_eq!(cinches, expected);
-    // Cinched by both ends: looks-at-the-tail's with each pull going on to its own set force, slower.
-    let both = load_tie_geometry(&dir.join("both-ends-cinch.toml")).unwrap();
+    // The shipped plan, cinched by both ends: looks-at-the-tail's with each pull going on to its own
+    // set force, slower.
+    let both = load_tie_geometry(&dir.join("instrument-tie.toml")).unwrap();
     let expected = knotlab_scenarios::expert::TieGeometry {
         pull_s: 5.0,
         pulls_stop_together: false,

@@ -19,7 +19,7 @@ use knotlab_sim::scene::parse_scene;
 use knotlab_sim::world::SimWorld;
 
 fn rope_scene() -> knotlab_sim::scene::SceneConfig {
-    parse_scene(include_str!("../rope.toml"), "rope.toml").expect("the rope scene")
+    parse_scene(include_str!("../default.toml"), "default.toml").expect("the shipped scene")
 }
 
 #[test]
@@ -173,7 +173,7 @@ fn on_the_rope_the_left_takes_the_tail_it_looked_at() {
         RecordOptions { cycles_per_sample: 10, stop_after_s: Some(15.5), ..RecordOptions::default() };
     let run = demonstrate_with(
         rope_scene(),
-        "scenarios/rope.toml",
+        "scenarios/default.toml",
         1,
         true,
         &expert("looks-at-the-tail.toml"),

@@ -12,7 +12,7 @@ use knotlab_sim::world::{SimWorld, trocar_of};
 use nalgebra::Vector3;
 
 fn scene() -> knotlab_sim::scene::SceneConfig {
-    parse_scene(include_str!("../default.toml"), "default.toml").expect("the shipped scene")
+    parse_scene(include_str!("../chain.toml"), "chain.toml").expect("the chain scene")
 }
 
 /// The experimental expert file `experts/coils-on-the-left.toml`.
@@ -74,7 +74,7 @@ fn the_plan_is_reachable_for_every_variation() {
 #[test]
 fn a_recorded_run_is_a_valid_100_hz_demonstration_that_round_trips() {
     let options = RecordOptions { cycles_per_sample: 10, ..RecordOptions::default() };
-    let run = demonstrate(scene(), "scenarios/default.toml", 3, true, &options, None).expect("records");
+    let run = demonstrate(scene(), "scenarios/chain.toml", 3, true, &options, None).expect("records");
     assert_eq!(run.fault, None, "the controller ran the skill to its end");
     let demo = &run.demonstration;
     demo.validate().expect("what the loader accepts");

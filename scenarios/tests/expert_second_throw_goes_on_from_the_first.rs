@@ -34,14 +34,14 @@ fn parse(events: &[String]) -> (Vec<Grasped>, Vec<Released>) {
 
 #[test]
 fn the_assist_takes_the_tail_and_the_left_lets_it_go() {
-    let scene = parse_scene(include_str!("../default.toml"), "default.toml").expect("the shipped scene");
+    let scene = parse_scene(include_str!("../chain.toml"), "chain.toml").expect("the chain scene");
     let geometry = TieGeometry { second_throw: Some(SecondThrow::default()), ..TieGeometry::default() };
     // Seed 0's first throw ends at 26.6 s; the assist has the tail at 29.7 s, the left lets go at
     // 30.2 s.
     let options =
         RecordOptions { cycles_per_sample: 10, stop_after_s: Some(31.0), ..RecordOptions::default() };
-    let run = demonstrate_with(scene, "scenarios/default.toml", 0, true, &geometry, &options, None)
-        .expect("records");
+    let run =
+        demonstrate_with(scene, "scenarios/chain.toml", 0, true, &geometry, &options, None).expect("records");
     assert_eq!(run.fault, None);
     assert!(run.simulated_s > 30.9, "recorded on past the first throw: {} s", run.simulated_s);
     let (grasped, released) = parse(&run.events);

@@ -12,7 +12,7 @@ use knotlab_sim::world::SimWorld;
 
 #[test]
 fn jaws_wound_pointing_up_then_turned_down_to_the_tail() {
-    let scene = parse_scene(include_str!("../default.toml"), "default.toml").expect("the shipped scene");
+    let scene = parse_scene(include_str!("../chain.toml"), "chain.toml").expect("the chain scene");
     let world = SimWorld::new(scene, Rig::shipped().expect("the shipped rig")).expect("the scene builds");
     let geometry = TieGeometry { left_jaw_direction: Some([0.0, 0.0, 1.0]), ..TieGeometry::default() };
     let down = geometry.left_fetches.as_ref().map(|f| f.jaw_direction);

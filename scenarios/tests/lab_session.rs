@@ -36,7 +36,7 @@ fn teleoperate_then_the_skill_pedal_then_the_emergency_stop() {
     let pattern = load_pattern(&root.join("patterns/knot_tying.toml")).expect("the shipped pattern");
     let knowledge = learn(&demonstration, &pattern).expect("learned");
     let learned = Learned { knowledge, demonstration };
-    let scene = parse_scene(include_str!("../default.toml"), "default.toml").expect("the shipped scene");
+    let scene = parse_scene(include_str!("../chain.toml"), "chain.toml").expect("the chain scene");
     let rig = Rig::shipped().expect("the shipped rig");
     let config = parse_rig_config(SIM_RIG_TOML, "sim.toml").expect("the sim rig");
     let world = SimWorld::new(scene, rig.clone()).expect("the scene builds");

@@ -14,7 +14,7 @@ use nalgebra::Vector3;
 
 fn backend() -> (SimBackend, Rig) {
     let scene =
-        parse_scene(include_str!("../../scenarios/default.toml"), "default.toml").expect("the shipped scene");
+        parse_scene(include_str!("../../scenarios/chain.toml"), "chain.toml").expect("the shipped scene");
     let rig = Rig::shipped().expect("the shipped rig");
     (SimBackend::new(SimWorld::new(scene, rig.clone()).expect("the scene builds")), rig)
 }

@@ -13,8 +13,7 @@ use knotlab_sim::thread::ThreadParams;
 
 #[test]
 fn a_square_knot_drawn_straight_through_one_strand_slides_under_the_load_the_flat_one_holds() {
-    let scene =
-        parse_scene(include_str!("../../scenarios/default.toml"), "default.toml").expect("shipped scene");
+    let scene = parse_scene(include_str!("../../scenarios/chain.toml"), "chain.toml").expect("shipped scene");
     let thread = ThreadParams { friction_on_itself: Some(0.5), ..scene.thread };
     let flat = ReefParams::snug_then_load(0.006, 0.3, true);
     let capsized = ReefParams { capsize_s: 1.0, ..flat };

@@ -9,7 +9,7 @@ use nalgebra::Vector3;
 
 fn world() -> SimWorld {
     let scene =
-        parse_scene(include_str!("../../scenarios/default.toml"), "default.toml").expect("the shipped scene");
+        parse_scene(include_str!("../../scenarios/chain.toml"), "chain.toml").expect("the shipped scene");
     SimWorld::new(scene, Rig::shipped().expect("the shipped rig")).expect("the scene builds")
 }
 

@@ -22,7 +22,7 @@ fn close_on_thread(jaw_rad: f64, from_hinge_m: f64, off_m: f64) -> (SimWorld, us
 /// it towards their tips), `from_hinge_m` out along them and `off_m` off their line across the
 /// opening; closes them; returns the world and the thread's middle segment.
 fn close_on_tilted(jaw_rad: f64, from_hinge_m: f64, off_m: f64, tilt_rad: f64) -> (SimWorld, usize) {
-    let mut w = common::default_world();
+    let mut w = common::chain_world();
     let open = common::open_left_jaws(&mut w, jaw_rad);
     let tip = w.world_from_tip(ArmName::Left);
     // The hinge is twice the jaw-centre offset behind the tip, the jaws along the tip's z, opening

@@ -10,8 +10,7 @@ use nalgebra::Point3;
 
 #[test]
 fn the_suture_crosses_the_wound_at_the_stitch_depth() {
-    let scene =
-        parse_scene(include_str!("../../scenarios/default.toml"), "default.toml").expect("shipped scene");
+    let scene = parse_scene(include_str!("../../scenarios/chain.toml"), "chain.toml").expect("shipped scene");
     let depth_m = scene.stitch.depth_m;
     let mut w = SimWorld::new(scene, Rig::shipped().expect("shipped rig")).expect("the shipped scene builds");
     for _ in 0..300 {

@@ -55,7 +55,7 @@ fn an_unreachable_trocar_is_named() {
 
 #[test]
 fn a_grasp_holds_below_its_grip_force() {
-    let mut w = common::default_world();
+    let mut w = common::chain_world();
     let segment = grasp_middle(&mut w);
     assert!((w.thread.segments.len() / 2).abs_diff(segment) <= 1, "held segment {segment}");
     let held_at = w.physics.bodies[w.thread.segments[segment]].translation();
@@ -71,7 +71,7 @@ fn a_grasp_holds_below_its_grip_force() {
 
 #[test]
 fn a_grasp_slips_above_its_grip_force() {
-    let mut w = common::default_world();
+    let mut w = common::chain_world();
     grasp_middle(&mut w);
     let grip = w.grip_force_n;
     assert!(pull(&mut w, 2.0 * grip), "held above the grip force: {:?}", w.events);
@@ -80,7 +80,7 @@ fn a_grasp_slips_above_its_grip_force() {
 
 #[test]
 fn opening_the_jaws_releases() {
-    let mut w = common::default_world();
+    let mut w = common::chain_world();
     grasp_middle(&mut w);
     let mut open = w.arm(ArmName::Left).command;
     open.tool.jaw_rad = 0.6;

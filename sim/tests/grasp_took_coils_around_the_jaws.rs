@@ -15,7 +15,7 @@ fn close_on(
     offset_from_jaw_frame: impl Fn(&nalgebra::IsometryMatrix3<f64>) -> (Vector3<f64>, Vector3<f64>),
 ) -> bool {
     let scene =
-        parse_scene(include_str!("../../scenarios/default.toml"), "default.toml").expect("the shipped scene");
+        parse_scene(include_str!("../../scenarios/chain.toml"), "chain.toml").expect("the shipped scene");
     let mut w = SimWorld::new(scene, Rig::shipped().expect("the shipped rig")).expect("the scene builds");
     w.free_thread();
     w.physics.gravity = Vector::ZERO;

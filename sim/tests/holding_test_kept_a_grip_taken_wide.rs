@@ -11,7 +11,8 @@ use knotlab_sim::world::SimWorld;
 
 #[test]
 fn release_all_lets_go_of_a_tail_taken_wider_than_the_usual_opening() {
-    let scene = parse_scene(include_str!("../../scenarios/rope.toml"), "rope.toml").expect("the rope scene");
+    let scene =
+        parse_scene(include_str!("../../scenarios/default.toml"), "default.toml").expect("the shipped scene");
     let mut w = SimWorld::new(scene, Rig::shipped().expect("the rig")).expect("the rope scene builds");
     let assist = w.arms.iter().position(|a| a.name == ArmName::Assist).expect("an assist");
     assert!(w.arms[assist].holds(), "the assist holds the tail");

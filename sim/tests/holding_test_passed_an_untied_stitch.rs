@@ -23,8 +23,7 @@ fn run(w: &mut SimWorld, steps: usize) {
 /// tension closes the wound, then let go: a stitch with no knot. Returns the world and the gap the
 /// tension left.
 fn closed_untied_stitch() -> (SimWorld, f64) {
-    let scene =
-        parse_scene(include_str!("../../scenarios/default.toml"), "default.toml").expect("shipped scene");
+    let scene = parse_scene(include_str!("../../scenarios/chain.toml"), "chain.toml").expect("shipped scene");
     let mut w = SimWorld::new(scene, Rig::shipped().expect("shipped rig")).expect("the scene builds");
     for arm in [ArmName::Right, ArmName::Assist] {
         let mut open = w.arm(arm).command;

@@ -14,8 +14,7 @@ use std::f64::consts::TAU;
 
 #[test]
 fn a_full_turn_of_the_wrist_joint_spins_no_link_faster_than_the_joint() {
-    let scene =
-        parse_scene(include_str!("../../scenarios/default.toml"), "default.toml").expect("shipped scene");
+    let scene = parse_scene(include_str!("../../scenarios/chain.toml"), "chain.toml").expect("shipped scene");
     let rig = Rig::shipped().expect("shipped rig");
     let joint_speed_limit_rad_s = rig
         .tree

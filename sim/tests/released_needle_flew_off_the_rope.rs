@@ -12,7 +12,8 @@ use nalgebra::Vector3;
 
 #[test]
 fn a_released_needle_stays_on_the_ropes_end() {
-    let scene = parse_scene(include_str!("../../scenarios/rope.toml"), "rope.toml").expect("the rope scene");
+    let scene =
+        parse_scene(include_str!("../../scenarios/default.toml"), "default.toml").expect("the shipped scene");
     let mut w =
         SimWorld::new(scene, Rig::shipped().expect("the shipped rig")).expect("the rope scene builds");
     for _ in 0..100 {

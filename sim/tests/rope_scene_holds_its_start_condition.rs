@@ -1,4 +1,4 @@
-//! The scene with the suture as the rope (`scenarios/rope.toml`, `thread.model = "rope"`) builds in
+//! The nominal scene, its suture the rope (`scenarios/default.toml`, `thread.model = "rope"`), builds in
 //! the task's start condition and keeps it while the instruments stand still for a second: the right
 //! jaws hold the needle (a body of its own, the rope swaged to it), the assist's hold the tail, the
 //! thread stays through the stitch, the rope keeps its length, the gauges read no more than the
@@ -11,7 +11,8 @@ use knotlab_sim::world::SimWorld;
 
 #[test]
 fn the_rope_scene_holds_the_needle_the_tail_and_the_stitch_standing_still() {
-    let scene = parse_scene(include_str!("../../scenarios/rope.toml"), "rope.toml").expect("the rope scene");
+    let scene =
+        parse_scene(include_str!("../../scenarios/default.toml"), "default.toml").expect("the shipped scene");
     let length_m = scene.thread.length_m;
     let mut w =
         SimWorld::new(scene, Rig::shipped().expect("the shipped rig")).expect("the rope scene builds");

@@ -7,8 +7,7 @@ use knotlab_sim::stress::run_stress;
 use knotlab_sim::world::SimWorld;
 
 fn state_after(seed: u64) -> (Vec<u64>, Vec<u64>) {
-    let scene =
-        parse_scene(include_str!("../../scenarios/default.toml"), "default.toml").expect("shipped scene");
+    let scene = parse_scene(include_str!("../../scenarios/chain.toml"), "chain.toml").expect("shipped scene");
     let mut w = SimWorld::new(scene, Rig::shipped().expect("shipped rig")).expect("the shipped scene builds");
     w.reseed(seed);
     let report = run_stress(&mut w, 1.0, &[], &mut |_, _| {});

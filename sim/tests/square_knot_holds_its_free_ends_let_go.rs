@@ -13,8 +13,7 @@ use knotlab_sim::scene::parse_scene;
 use knotlab_sim::thread::ThreadParams;
 
 fn loaded(friction_on_itself: f64, load_n: f64, release_free: bool) -> Result<ReefOutcome, HealthError> {
-    let scene =
-        parse_scene(include_str!("../../scenarios/default.toml"), "default.toml").expect("shipped scene");
+    let scene = parse_scene(include_str!("../../scenarios/chain.toml"), "chain.toml").expect("shipped scene");
     let thread = ThreadParams { friction_on_itself: Some(friction_on_itself), ..scene.thread };
     let params = ReefParams::snug_then_load(0.006, load_n, release_free);
     run_reef(&scene.solver, &thread, &params)

@@ -11,8 +11,7 @@ const PULL: CinchParams = CinchParams { top_tension_n: 3.0, ramp_s: 1.5, ccd: fa
 
 #[test]
 fn the_shipped_thread_holds_a_double_wrap_pulled_to_3_n() {
-    let scene =
-        parse_scene(include_str!("../../scenarios/default.toml"), "default.toml").expect("shipped scene");
+    let scene = parse_scene(include_str!("../../scenarios/chain.toml"), "chain.toml").expect("shipped scene");
     let held = run_cinch(&scene.solver, &scene.thread, &PULL).expect("a healthy pull");
     assert_eq!(held.first_pass_tension_n, None, "{held:?}");
     assert_eq!(held.passes, 0, "{held:?}");
@@ -23,8 +22,7 @@ fn the_shipped_thread_holds_a_double_wrap_pulled_to_3_n() {
 
 #[test]
 fn corrected_at_0_1_m_s_the_strand_passes_through_below_3_n() {
-    let scene =
-        parse_scene(include_str!("../../scenarios/default.toml"), "default.toml").expect("shipped scene");
+    let scene = parse_scene(include_str!("../../scenarios/chain.toml"), "chain.toml").expect("shipped scene");
     let slow = SolverParams { max_corrective_speed_m_s: 0.1, ..scene.solver };
     let through = run_cinch(&slow, &scene.thread, &PULL).expect("a healthy pull");
     let tension_n = through.first_pass_tension_n.expect("a pass below 3 N");

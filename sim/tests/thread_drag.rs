@@ -10,8 +10,7 @@ use nalgebra::{Point3, Vector3};
 use rapier3d::prelude::*;
 
 fn world() -> SimWorld {
-    let scene =
-        parse_scene(include_str!("../../scenarios/default.toml"), "default.toml").expect("shipped scene");
+    let scene = parse_scene(include_str!("../../scenarios/chain.toml"), "chain.toml").expect("shipped scene");
     SimWorld::new(scene, Rig::shipped().expect("shipped rig")).expect("the shipped scene builds")
 }
 

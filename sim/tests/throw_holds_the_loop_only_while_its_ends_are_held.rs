@@ -12,8 +12,7 @@ use knotlab_sim::scene::parse_scene;
 use knotlab_sim::thread::ThreadParams;
 
 fn loaded(release: bool, friction: f64, loop_n: f64) -> knotlab_sim::cinch::HoldingOutcome {
-    let scene =
-        parse_scene(include_str!("../../scenarios/default.toml"), "default.toml").expect("shipped scene");
+    let scene = parse_scene(include_str!("../../scenarios/chain.toml"), "chain.toml").expect("shipped scene");
     let thread = ThreadParams { friction, friction_on_itself: None, ..scene.thread };
     let params = HoldingParams {
         snug_n: 1.0,

@@ -9,8 +9,7 @@ use knotlab_sim::world::SimWorld;
 use rapier3d::prelude::*;
 
 fn world() -> SimWorld {
-    let scene =
-        parse_scene(include_str!("../../scenarios/default.toml"), "default.toml").expect("shipped scene");
+    let scene = parse_scene(include_str!("../../scenarios/chain.toml"), "chain.toml").expect("shipped scene");
     SimWorld::new(scene, Rig::shipped().expect("shipped rig")).expect("the shipped scene builds")
 }
 

@@ -19,8 +19,7 @@ const GENTLE: CapstanParams = CapstanParams { low_n: 0.2, ..PULL };
 
 #[test]
 fn the_shipped_thread_holds_a_double_wrap_at_a_tension_ratio_of_1_5() {
-    let scene =
-        parse_scene(include_str!("../../scenarios/default.toml"), "default.toml").expect("shipped scene");
+    let scene = parse_scene(include_str!("../../scenarios/chain.toml"), "chain.toml").expect("shipped scene");
     assert!(!scene.thread.twist_free, "the shipped thread locks its twist");
     let held = run_capstan(&scene.solver, &scene.thread, &GENTLE).expect("a healthy pull");
     assert!(held.slip_m.abs() < 0.005, "{held:?}");
@@ -35,8 +34,7 @@ fn the_shipped_thread_holds_a_double_wrap_at_a_tension_ratio_of_1_5() {
 
 #[test]
 fn with_the_twist_free_it_slides_even_at_friction_1() {
-    let scene =
-        parse_scene(include_str!("../../scenarios/default.toml"), "default.toml").expect("shipped scene");
+    let scene = parse_scene(include_str!("../../scenarios/chain.toml"), "chain.toml").expect("shipped scene");
     let rolling = ThreadParams { twist_free: true, friction: 1.0, friction_on_itself: None, ..scene.thread };
     // Slid until its held end jammed against the other strand, or off it (a strand that flies off trips
     // the speed check).

@@ -10,7 +10,7 @@ use clap::Args;
 use serde::Serialize;
 
 use knotlab_learner::demonstration::write_demonstration;
-use knotlab_scenarios::expert::{DemoRun, RecordOptions, TieGeometry, demonstrate_with, load_tie_geometry};
+use knotlab_scenarios::expert::{DemoRun, RecordOptions, demonstrate_with, load_tie_geometry};
 use knotlab_sim::scene::load_scene;
 
 use super::numbers::{Numbers, parse_list};
@@ -34,10 +34,11 @@ pub struct DemoArgs {
     /// Perform like a machine: nominal speed, fixed pauses, no tremor.
     #[arg(long)]
     no_variation: bool,
-    /// Where the expert puts things, from this TOML file (keys left out keep the shipped plan's; see
-    /// scenarios/experts/instrument-tie.toml).
-    #[arg(long, value_name = "FILE")]
-    expert: Option<PathBuf>,
+    /// The expert's plan: where it puts things, from this TOML file (keys left out keep the base
+    /// plan's, listed in scenarios/experts/base.toml). The shipped plan ties the double throw and
+    /// cinches it by both ends.
+    #[arg(long, value_name = "FILE", default_value = "scenarios/experts/instrument-tie.toml")]
+    expert: PathBuf,
     /// Draw the scene into PNG files OUT/snapshot-T.png at these times, s from the start
     /// (comma-separated; times past the skill's end fall in the holding test, on the same clock), and
     /// write the thread's centreline beside each (OUT/centreline-T.csv, x_m,y_m,z_m from the needle end) and which of its
@@ -114,8 +115,8 @@ struct RunLine {
 #[derive(Serialize)]
 struct Report {
     scene: String,
-    /// The expert's geometry file, if one was given.
-    expert: Option<String>,
+    /// The expert's geometry file.
+    expert: String,
     human_variation: bool,
     runs: usize,
     successes: usize,
@@ -176,10 +177,7 @@ pub fn run(args: DemoArgs, out: &mut Output) -> anyhow::Result<ExitCode> {
         stop_after_s: args.until,
         knot_trace_every_s: args.knot_trace,
     };
-    let geometry = match &args.expert {
-        Some(path) => load_tie_geometry(path)?,
-        None => TieGeometry::default(),
-    };
+    let geometry = load_tie_geometry(&args.expert)?;
     let mut results = Vec::new();
     for seed in first..end {
         let dir = if several { args.out.join(format!("seed-{seed}")) } else { args.out.clone() };
@@ -243,7 +241,7 @@ pub fn run(args: DemoArgs, out: &mut Output) -> anyhow::Result<ExitCode> {
     let successes = results.iter().filter(|r| r.success).count();
     let report = Report {
         scene: scene_name,
-        expert: args.expert.as_ref().map(|p| p.display().to_string()),
+        expert: args.expert.display().to_string(),
         human_variation: !args.no_variation,
         runs: results.len(),
         successes,

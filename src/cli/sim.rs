@@ -1,5 +1,7 @@
 //! `knotlab sim`: runs the scene's scripted stress sequence headless and prints what the thread did;
-//! optionally draws the scene at given times.
+//! optionally draws the scene at given times. The sequence measures the capsule chain (its joints'
+//! stretch, segments tunnelling through each other and the shafts): a scene whose suture is the rope
+//! is refused.
 
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -11,6 +13,7 @@ use knotlab_hw::rig::Rig;
 use knotlab_sim::scene::load_scene;
 use knotlab_sim::snapshot::{View, render_png};
 use knotlab_sim::stress::run_stress;
+use knotlab_sim::thread::ThreadModel;
 use knotlab_sim::world::SimWorld;
 
 use super::numbers::{Numbers, parse_list};
@@ -18,8 +21,9 @@ use super::output::{Output, outln};
 
 #[derive(Debug, Args)]
 pub struct SimArgs {
-    /// The scene file.
-    #[arg(long, default_value = "scenarios/default.toml")]
+    /// The scene file (its suture the capsule chain: the nominal scene's rope has no joints to
+    /// stretch).
+    #[arg(long, default_value = "scenarios/chain.toml")]
     scene: PathBuf,
     /// Simulated seconds of the stress sequence (its moves scale with it).
     #[arg(long, default_value_t = 6.0)]
@@ -52,6 +56,13 @@ pub fn run(args: SimArgs, out: &mut Output) -> anyhow::Result<ExitCode> {
         anyhow::bail!("--seconds: must be within 0..3600, got {}", args.seconds);
     }
     let scene = load_scene(&args.scene)?;
+    if scene.thread.model == ThreadModel::Rope {
+        anyhow::bail!(
+            "{}: thread.model: the stress sequence measures the capsule chain (\"chain\"), not the rope \
+             (try scenarios/chain.toml)",
+            args.scene.display()
+        );
+    }
     let rig = Rig::shipped().context("the shipped rig")?;
     let mut world = SimWorld::new(scene, rig).with_context(|| args.scene.display().to_string())?;
     world.reseed(args.seed);

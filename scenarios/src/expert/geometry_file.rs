@@ -1,8 +1,9 @@
 //! The scripted expert's tie geometry from a TOML file (`knotlab demo --expert FILE`), so that a
 //! researcher can move the winding point or the pulls without touching code. Only the keys given
-//! change the shipped plan ([`TieGeometry::default`]); an unknown key, a wrong type or a value out of
-//! range is refused, naming the file, the key (and line) and why. `scenarios/experts/instrument-tie.toml`
-//! lists every key with its shipped value.
+//! change the base plan ([`TieGeometry::default`]); an unknown key, a wrong type or a value out of
+//! range is refused, naming the file, the key (and line) and why. `scenarios/experts/base.toml` lists
+//! every key with its base value; `scenarios/experts/instrument-tie.toml` is the shipped plan, the one
+//! `knotlab demo` runs unless told otherwise.
 
 use std::path::Path;
 
@@ -310,9 +311,9 @@ mod tests {
     use super::*;
 
     #[test]
-    fn the_shipped_file_is_the_shipped_plan() {
-        let g = parse_tie_geometry(include_str!("../../experts/instrument-tie.toml"), "instrument-tie.toml")
-            .expect("the shipped file parses");
+    fn the_base_file_is_the_base_plan() {
+        let g = parse_tie_geometry(include_str!("../../experts/base.toml"), "base.toml")
+            .expect("the base file parses");
         assert_eq!(g, TieGeometry::default());
     }
 

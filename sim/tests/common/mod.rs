@@ -11,10 +11,10 @@ use knotlab_sim::tissue::Tissue;
 use knotlab_sim::world::SimWorld;
 use rapier3d::prelude::*;
 
-/// The world of `scenarios/default.toml` on the shipped rig.
-pub fn default_world() -> SimWorld {
+/// The world of `scenarios/chain.toml` (the nominal scene with the capsule chain) on the shipped rig.
+pub fn chain_world() -> SimWorld {
     let scene =
-        parse_scene(include_str!("../../../scenarios/default.toml"), "default.toml").expect("shipped scene");
+        parse_scene(include_str!("../../../scenarios/chain.toml"), "chain.toml").expect("shipped scene");
     SimWorld::new(scene, Rig::shipped().expect("shipped rig")).expect("the shipped scene builds")
 }
 
@@ -95,8 +95,8 @@ pub struct StitchBench {
 /// [`StitchBench`] with the exit's end `exit_end_m` (up, out) from its hole and the entry's end
 /// `entry_end_m` from its own, m.
 pub fn rope_stitch_bench(exit_end_m: [f64; 2], entry_end_m: [f64; 2]) -> StitchBench {
-    let scene =
-        parse_scene(include_str!("../../../scenarios/rope.toml"), "rope.toml").expect("the rope scene");
+    let scene = parse_scene(include_str!("../../../scenarios/default.toml"), "default.toml")
+        .expect("the shipped scene");
     let mut physics = Physics::new(&scene.solver);
     let tissue = Tissue::build(&mut physics, &scene.tissue, &scene.stitch);
     let frame = tissue.world_from_tissue;
