@@ -192,3 +192,43 @@ fn on_the_rope_the_left_takes_the_tail_it_looked_at() {
     );
     assert!(event_time_s(take).is_some_and(|t| t > 12.0), "{take}");
 }
+
+#[test]
+fn the_right_follows_the_left_down_onto_the_tail() {
+    // The turns lie round both instruments' jaws: the right left standing as the left went down onto
+    // the tail drew them taut (seeds 0 and 19 of the shipped plan: 100-530 N on both gauges, equal and
+    // opposite; session 49). It follows the descent by the fetch's share, as it followed the fetch.
+    let world = SimWorld::new(rope_scene(), Rig::shipped().expect("the rig")).expect("the rope scene builds");
+    let variation = knotlab_scenarios::expert::Variation::none();
+    let looks = expert("looks-at-the-tail.toml");
+    let fetch = looks.left_fetches.clone().expect("a fetch");
+    let shifts = |right_follows: f64| {
+        let geometry =
+            TieGeometry { left_fetches: Some(LeftFetch { right_follows, ..fetch.clone() }), ..looks.clone() };
+        let skill = plan_tail_take(&world, &geometry, &variation).expect("the take");
+        let (left, right) =
+            (skill.track(ArmName::Left).expect("the left"), skill.track(ArmName::Right).expect("the right"));
+        // Down on the tail once its jaws start to close; each where it first comes to rest from then
+        // on (the right's move, slowed to its joints' speed, may end later).
+        let open = left.jaw_at(0.0).expect("the left's jaws");
+        let closes_s = left.jaw.iter().find(|k| k.jaw_rad < open - 1e-6).expect("the left closes").time_s;
+        let rests = |track: &knotlab_hw::skill::Track| {
+            let poses = &track.poses;
+            let rest = (0..poses.len() - 1)
+                .find(|&i| {
+                    poses[i].time_s >= closes_s - 1e-9
+                        && poses[i].world_position_m == poses[i + 1].world_position_m
+                })
+                .map_or(poses[poses.len() - 1].world_position_m, |i| poses[i].world_position_m);
+            nalgebra::Vector3::from(rest) - track.target_at(0.0).expect("a target").world_position_m
+        };
+        (rests(left), rests(right))
+    };
+    let (left_down, right_down) = shifts(fetch.right_follows);
+    println!("the left {:.1} mm, the right {:.1} mm", left_down.norm() * 1e3, right_down.norm() * 1e3);
+    assert_eq!(fetch.right_follows, 1.0, "the recipe's right follows all the way");
+    assert!(left_down.norm() > 0.003, "the left goes onto the tail: {left_down:?}");
+    assert!((right_down - left_down).norm() < 5e-4, "the right {right_down:?}, the left {left_down:?}");
+    let (_, right_still) = shifts(0.0);
+    assert!(right_still.norm() < 1e-4, "told not to follow, the right stays: {right_still:?}");
+}

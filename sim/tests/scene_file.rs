@@ -3,6 +3,8 @@
 use knotlab_sim::scene::{SceneError, load_scene, parse_scene};
 
 const DEFAULT: &str = include_str!("../../scenarios/default.toml");
+/// The chain's scene: it sets neither `thread.model` nor `friction_on_itself`, which the tests below add.
+const CHAIN: &str = include_str!("../../scenarios/chain.toml");
 
 fn err(text: &str) -> String {
     match parse_scene(text, "bad.toml") {
@@ -29,7 +31,7 @@ fn an_unknown_key_is_named_with_its_path_and_line() {
 
 #[test]
 fn an_unknown_thread_model_is_named_with_its_path_line_and_the_models() {
-    let text = DEFAULT.replace("segments = 80", "segments = 80\nmodel = \"ropes\"");
+    let text = CHAIN.replace("segments = 80", "segments = 80\nmodel = \"ropes\"");
     let e = err(&text);
     let line = text.lines().position(|l| l.starts_with("model = ")).unwrap() + 1;
     assert!(e.starts_with(&format!("bad.toml:{line}: thread.model:")), "{e}");
@@ -54,7 +56,7 @@ fn a_missing_key_is_named() {
 
 #[test]
 fn out_of_range_values_are_all_named() {
-    let text = DEFAULT
+    let text = CHAIN
         .replace("dt_s = 0.001", "dt_s = 0.5")
         .replace("segments = 80", "segments = 2\nfriction_on_itself = -0.5\naxial_stiffness_n = 0.0")
         .replace("holding_load_n = 0.3", "holding_load_n = -0.3")

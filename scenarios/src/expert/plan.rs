@@ -590,8 +590,9 @@ fn plan_throw(world: &SimWorld, geometry: &TieGeometry, variation: &Variation, s
             }
             ways.push(tail_m - jaws_to * stop_short_m);
             let beside = geometry.fetch().and_then(|f| f.right_beside_m).map(dir);
+            let follows = geometry.fetch().map_or(0.0, |f| f.right_follows);
             for to_m in ways {
-                let (to, from_s) = (Path::To(to_m), left.time_s());
+                let (to, from_s, left_from) = (Path::To(to_m), left.time_s(), left.position_m());
                 match left.held_frame().filter(|_| framed) {
                     // The jaws roll on the way, their hinge along the tail where it lies, so that it
                     // runs between them: aimed at the line from the entry to the assist, the hinge lay
@@ -610,10 +611,20 @@ fn plan_throw(world: &SimWorld, geometry: &TieGeometry, variation: &Variation, s
                     }
                     None => left.go(to, d(0.8)),
                 }
-                // The right keeps beside the left's jaws (the turn's thread), if told.
+                // The right keeps beside the left's jaws (the turn's thread), if told; or follows
+                // their descent by the fetch's share, as it followed them to the tail. The turns lie
+                // round both instruments' jaws: left standing (or stopped 8 mm over the tissue), the
+                // right drew them taut as the left went down (seeds 0 and 19: both gauges 100-530 N,
+                // equal and opposite; on seed 19 the assist's grip on the tail tore; session 49).
                 if let Some(offset_m) = beside {
                     right.wait_until(from_s);
                     right.go(Path::To(to_m + offset_m), left.time_s() - from_s);
+                } else if follows > 0.0 {
+                    right.wait_until(from_s);
+                    right.go(
+                        Path::To(right.position_m() + (to_m - left_from) * follows),
+                        left.time_s() - from_s,
+                    );
                 }
             }
         }
