@@ -74,3 +74,17 @@ fn bad_arguments_are_named() {
     assert!(stderr.contains("the left arm cannot put its tool through this trocar"), "{stderr}");
     assert_eq!(stderr.matches("trocars.left").count(), 1, "said once: {stderr}");
 }
+
+#[test]
+fn the_canonical_demonstration_replayed_at_its_own_stitch_ties_the_knot() {
+    // Issue 6: the recording captures what matters. Played back open-loop at the nominal scene (every
+    // recorded tip frame and jaw angle, 0.2 s apart), it leaves the knot the evaluator accepts, as the
+    // expert's run that recorded it did. Played back by the jaws' direction alone, the right's jaws
+    // rolled otherwise than recorded and the needle was torn out of them (session 49).
+    let (code, r) = json(&["run", "--method", "replay", "--seed", "0", "--json"]);
+    assert_eq!(code, 0, "{r}");
+    assert_eq!(r["success"], true, "{r}");
+    assert_eq!(r["knot"], "surgeons", "{r}");
+    assert!(r["wound_gap_after_release_m"].as_f64().is_some_and(|g| g < 0.0015), "{r}");
+    assert_eq!(r["preview"]["passed"], true, "{r}");
+}

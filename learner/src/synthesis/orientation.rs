@@ -3,8 +3,10 @@
 //! singularity (a tenth of a degree of tremor there asks for a half turn of the roll joint), and the arm
 //! lags centimetres behind. A nearly straight wrist is commanded straight, and one bent further than
 //! the wrist can bend (a skill turned with a moved stitch can ask for that) is bent as far as it can.
+//! The replay alone ([`recorded_orientation`]) commands the recorded frame whole where the wrist is
+//! bent within its reach: the roll of jaws with thread wound round them winds or unwinds it.
 
-use nalgebra::Vector3;
+use nalgebra::{UnitQuaternion, Vector3};
 
 use knotlab_hw::skill::Orientation;
 
@@ -40,6 +42,27 @@ pub fn jaw_orientation(
     }
 }
 
+/// The orientation of a replayed key: the recorded tip frame `world_from_tip` whole where the wrist is
+/// bent between straight ([`STRAIGHT_WRIST_RAD`]) and its reach ([`MAX_WRIST_BEND_RAD`]), otherwise
+/// as [`jaw_orientation`] has it. Played back by their direction only, the right's jaws, which the
+/// long end's turns go round, rolled otherwise than recorded and the needle was torn out of them
+/// (15.7 N) as the left came down onto the tail (the canonical demonstration at its own stitch,
+/// session 49).
+pub fn recorded_orientation(
+    world_from_tip: &UnitQuaternion<f64>,
+    tip_m: &Vector3<f64>,
+    trocar_m: &Vector3<f64>,
+) -> Orientation {
+    let jaw = world_from_tip * Vector3::z();
+    match (tip_m - trocar_m).try_normalize(1e-9) {
+        Some(shaft) if (STRAIGHT_WRIST_RAD..=MAX_WRIST_BEND_RAD).contains(&jaw.angle(&shaft)) => {
+            let q = world_from_tip.quaternion();
+            Orientation::Frame { quaternion_xyzw: [q.i, q.j, q.k, q.w] }
+        }
+        _ => jaw_orientation(&jaw, tip_m, trocar_m),
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -64,5 +87,31 @@ mod tests {
         let d = Vector3::from(direction);
         assert!((d.angle(&-Vector3::z()) - MAX_WRIST_BEND_RAD).abs() < 1e-12, "{d:?}");
         assert!(d.y.abs() < 1e-12 && d.x > 0.0, "{d:?}");
+    }
+
+    #[test]
+    fn a_replayed_key_keeps_the_recorded_frame_where_the_wrist_is_bent_within_reach() {
+        let trocar = Vector3::new(0.0, 0.0, 1.0);
+        let tip = Vector3::new(0.0, 0.0, 0.9);
+        // The jaws (the frame's z) turned 0.5 rad from the shaft's -z, and rolled about themselves.
+        let frame_turned = |bend_rad: f64| {
+            UnitQuaternion::from_axis_angle(&Vector3::y_axis(), std::f64::consts::PI - bend_rad)
+                * UnitQuaternion::from_axis_angle(&Vector3::z_axis(), 0.7)
+        };
+        let bent = frame_turned(0.5);
+        let Orientation::Frame { quaternion_xyzw: [x, y, z, w] } = recorded_orientation(&bent, &tip, &trocar)
+        else {
+            panic!("a bent wrist keeps its frame");
+        };
+        let q = UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(w, x, y, z));
+        assert!(q.angle_to(&bent) < 1e-12, "{q:?} against {bent:?}");
+        // Nearly straight: along the shaft, the roll left to the solver.
+        assert_eq!(recorded_orientation(&frame_turned(0.01), &tip, &trocar), Orientation::AlongShaft);
+        // Bent past its reach: as a jaw direction, bent as far as it can.
+        let over = frame_turned(1.5);
+        assert_eq!(
+            recorded_orientation(&over, &tip, &trocar),
+            jaw_orientation(&(over * Vector3::z()), &tip, &trocar)
+        );
     }
 }

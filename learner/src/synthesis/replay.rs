@@ -1,15 +1,17 @@
 //! The replay baseline: the demonstration itself, every recorded tip pose and jaw angle, rigidly moved to
-//! the new stitch frame and played back open-loop on the demonstration's clock. It knows nothing of
-//! primitives, obstacles or forces: what it does at the demonstration's own site shows whether the
-//! recording captured what matters; what it does elsewhere is the baseline other methods must beat.
+//! the new stitch frame and played back open-loop on the demonstration's clock (the tip's whole frame
+//! where the wrist is bent within its reach: [`super::orientation::recorded_orientation`]). It knows
+//! nothing of primitives, obstacles or forces: what it does at the demonstration's own site shows
+//! whether the recording captured what matters; what it does elsewhere is the baseline other methods
+//! must beat.
 
-use nalgebra::{Isometry3, UnitQuaternion, Vector3};
+use nalgebra::{Isometry3, UnitQuaternion};
 
 use knotlab_hw::skill::{JawKey, PoseKey, Skill, Track};
 
 use crate::demonstration::Demonstration;
 
-use super::orientation::jaw_orientation;
+use super::orientation::recorded_orientation;
 use super::{SynthesisError, Trocars};
 
 /// How the demonstration is played back.
@@ -32,8 +34,9 @@ impl Default for ReplaySettings {
 }
 
 /// The demonstration moved by `new_world_from_demo_world`, as a skill starting at 0 s (the first
-/// sample's time). The jaws are commanded by their direction only ([`super::orientation`]), the shafts
-/// through `trocars`.
+/// sample's time). The tips are commanded by their recorded frame, or their jaws' direction where the
+/// wrist is nearly straight or bent past its reach ([`super::orientation::recorded_orientation`]), the
+/// shafts through `trocars`.
 pub fn replay(
     demo: &Demonstration,
     new_world_from_demo_world: &Isometry3<f64>,
@@ -77,7 +80,7 @@ pub fn replay(
             poses.push(PoseKey {
                 time_s,
                 world_position_m: position.coords.into(),
-                orientation: jaw_orientation(&(rotation * Vector3::z()), &position.coords, &trocar),
+                orientation: recorded_orientation(&rotation, &position.coords, &trocar),
             });
         }
         tracks.push(Track { arm: record.instrument, poses, jaw, events: Vec::new() });
