@@ -23,7 +23,9 @@ use super::second_throw::SecondThrow;
 use super::tail::{tail_ahead_of_jaws, tail_between_knot_and_left, tail_from_its_end, tail_length_to};
 use super::turn_thread::along_within_long_end;
 
-/// Where the expert puts things, in the stitch frame (m), and how hard it pulls.
+/// Where the expert puts things, in the stitch frame (m), and how hard it pulls. Its default is the base
+/// plan (listed in `scenarios/experts/base.toml`), whose values an expert file's missing keys take; the
+/// shipped plan is `scenarios/experts/instrument-tie.toml`.
 #[derive(Clone, Debug, PartialEq, serde::Deserialize, serde::Serialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct TieGeometry {
@@ -41,7 +43,7 @@ pub struct TieGeometry {
     pub left_fetches: Option<LeftFetch>,
     /// The assist presents the tail to the left's jaws where they wound, as in the paper's task,
     /// instead of the left fetching it: `left_fetches` is then not used (a file cannot unset it, the
-    /// shipped plan fetches). Meant for a first throw that forms flat, the jaws level along the wound
+    /// base plan fetches). Meant for a first throw that forms flat, the jaws level along the wound
     /// (a fetch with the jaws turned down draws the tail straight through the coils). Tried in
     /// session 41 with the second throw's winding on a 47 mm tail: two turns reached the jaws and
     /// the left took the tail, but its free end lay back along the jaws inside the coils
@@ -581,7 +583,7 @@ fn plan_throw(world: &SimWorld, geometry: &TieGeometry, variation: &Variation, s
             let square = geometry.fetch().is_some_and(|f| f.hinge_along_tail);
             // Taking the tail square to it, a tail found well off the jaws' line (the part under
             // them lying low) is gone over first and come onto along the jaws, not sideways through
-            // it (session 45); without `hinge_along_tail`, the shipped straight descent.
+            // it (session 45); without `hinge_along_tail`, the straight descent.
             let off_line_m = (tail_m - from - jaws_to * (tail_m - from).dot(&jaws_to)).norm();
             let approach_m = geometry.fetch().map_or(0.0, |f| f.approach_m);
             let mut ways = vec![];

@@ -412,9 +412,11 @@ pub enum ExpertError {
     Record(#[from] RecordError),
 }
 
-/// The scripted expert performs the task once in `scene` (named `scene_name` in the metadata): with
-/// human-like variation drawn from `seed` (or none), the sensor noise seeded by `seed` too.
-/// `observer`, if any, sees every control cycle.
+/// The scripted expert performs the task once in `scene` (named `scene_name` in the metadata), by the
+/// base plan ([`super::TieGeometry::default`]; the shipped plan is a file,
+/// `scenarios/experts/instrument-tie.toml`, for [`demonstrate_with`]): with human-like variation drawn
+/// from `seed` (or none), the sensor noise seeded by `seed` too. `observer`, if any, sees every control
+/// cycle.
 pub fn demonstrate(
     scene: knotlab_sim::scene::SceneConfig,
     scene_name: &str,
@@ -426,7 +428,7 @@ pub fn demonstrate(
     demonstrate_with(scene, scene_name, seed, human, &super::TieGeometry::default(), options, observer)
 }
 
-/// [`demonstrate`] with the expert placing things by `geometry` instead of the shipped plan's.
+/// [`demonstrate`] with the expert placing things by `geometry` instead of the base plan's.
 pub fn demonstrate_with(
     scene: knotlab_sim::scene::SceneConfig,
     scene_name: &str,
