@@ -1,9 +1,9 @@
 //! The expert looks where the tail lies before the left closes on it (`[left_fetches] looks`,
 //! `scenarios/experts/looks-at-the-tail.toml`; issue 6, session 44): the first throw's plan stops with
 //! the left's jaws over the tail, and the descent is planned from the tail as it lies then. On the
-//! rope scene a slack tail sagged 4-8 mm off the straight line the shipped plan aims at, and on seed
-//! 1 the left closed on its own coils instead. The jaws close on the tail where it is clear of the
-//! tissue.
+//! rope scene a slack tail sagged 4-8 mm off the straight line the base plan aims at, and on seed 1
+//! the left closed on its own coils instead. The jaws close on the tail where it is clear of the
+//! tissue, and the right follows them down onto it (session 49).
 
 mod common;
 
@@ -22,9 +22,14 @@ fn rope_scene() -> knotlab_sim::scene::SceneConfig {
     parse_scene(include_str!("../default.toml"), "default.toml").expect("the shipped scene")
 }
 
+/// The nominal scene's world in its start condition, on the shipped rig.
+fn rope_world() -> SimWorld {
+    SimWorld::new(rope_scene(), Rig::shipped().expect("the rig")).expect("the rope scene builds")
+}
+
 #[test]
 fn the_point_ahead_of_the_jaws_is_on_the_tail_where_their_line_meets_it() {
-    let world = SimWorld::new(rope_scene(), Rig::shipped().expect("the rig")).expect("the rope scene builds");
+    let world = rope_world();
     let line = world.thread_centreline();
     let inside = world.thread_inside().expect("through the stitch");
     let held = world.arm(ArmName::Assist).held_at().expect("the assist holds the tail");
@@ -58,7 +63,7 @@ fn the_point_ahead_of_the_jaws_is_on_the_tail_where_their_line_meets_it() {
 
 #[test]
 fn looking_splits_the_first_throw_at_the_tail() {
-    let world = SimWorld::new(rope_scene(), Rig::shipped().expect("the rig")).expect("the rope scene builds");
+    let world = rope_world();
     let variation = knotlab_scenarios::expert::Variation::none();
     let looks = expert("looks-at-the-tail.toml");
     assert_eq!(
@@ -78,7 +83,7 @@ fn looking_splits_the_first_throw_at_the_tail() {
 
 #[test]
 fn looking_splits_the_second_throw_at_the_tail_where_the_left_fetches_it() {
-    let world = SimWorld::new(rope_scene(), Rig::shipped().expect("the rig")).expect("the rope scene builds");
+    let world = rope_world();
     let variation = knotlab_scenarios::expert::Variation::none();
     let looks = expert("looks-at-the-tail.toml");
     let fetch = looks.left_fetches.clone().expect("the first throw fetches");
@@ -115,7 +120,7 @@ fn looking_splits_the_second_throw_at_the_tail_where_the_left_fetches_it() {
 fn the_take_comes_onto_the_tail_along_the_jaws_its_hinge_along_the_tail() {
     use knotlab_hw::skill::Orientation;
     use knotlab_sim::world::JAW_CENTRE_OFFSET_M;
-    let world = SimWorld::new(rope_scene(), Rig::shipped().expect("the rig")).expect("the rope scene builds");
+    let world = rope_world();
     let variation = knotlab_scenarios::expert::Variation::none();
     let looks = expert("looks-at-the-tail.toml");
     let fetch = looks.left_fetches.clone().expect("a fetch");
@@ -198,7 +203,7 @@ fn the_right_follows_the_left_down_onto_the_tail() {
     // The turns lie round both instruments' jaws: the right left standing as the left went down onto
     // the tail drew them taut (seeds 0 and 19 of the shipped plan: 100-530 N on both gauges, equal and
     // opposite; session 49). It follows the descent by the fetch's share, as it followed the fetch.
-    let world = SimWorld::new(rope_scene(), Rig::shipped().expect("the rig")).expect("the rope scene builds");
+    let world = rope_world();
     let variation = knotlab_scenarios::expert::Variation::none();
     let looks = expert("looks-at-the-tail.toml");
     let fetch = looks.left_fetches.clone().expect("a fetch");
