@@ -56,6 +56,18 @@ fn learn_prints_the_decomposition_and_writes_the_knowledge_base() {
     let (code, report) = json(&["learn", "--demo", &demo, "--pattern", PATTERN, "--out", &kb, "--json"]);
     assert_eq!(code, 0, "{report}");
     assert_eq!(field(&report, "accepted"), true);
+    // Every detected feature is listed, each instrument's in time order, as many as the counts say.
+    let detected = field(&report, "detected").as_array().unwrap();
+    let counted: u64 =
+        field(&report, "features").as_array().unwrap().iter().map(|c| c[1].as_u64().unwrap()).sum();
+    assert_eq!(detected.len() as u64, counted);
+    for w in detected.windows(2) {
+        if w[0]["instrument"] == w[1]["instrument"] {
+            assert!(w[0]["time_s"].as_f64().unwrap() <= w[1]["time_s"].as_f64().unwrap(), "{w:?}");
+        }
+    }
+    let loops = detected.iter().filter(|f| f["instrument"] == "right" && f["kind"] == "loop").count();
+    assert_eq!(loops, 2, "the right's two wraps");
     let instruments = field(&report, "instruments").as_array().unwrap();
     let names: Vec<(String, Vec<(String, String)>)> = instruments
         .iter()

@@ -9,7 +9,7 @@ use std::path::Path;
 use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};
 
 use knotlab_hw::rig::ArmName;
-use knotlab_hw::skill::{ForceAction, Skill, Track};
+use knotlab_hw::skill::{ForceAction, Orientation, Skill, Track};
 use knotlab_learner::demonstration::Demonstration;
 use knotlab_learner::fluid::ObstacleMask;
 use knotlab_learner::pattern::load_pattern;
@@ -265,4 +265,41 @@ fn replay_plays_the_demonstration_back_moved() {
         }
     }
     assert!(replay(&demo, &motion, &trocars(&here), &ReplaySettings { key_period_s: f64::NAN }).is_err());
+}
+
+/// Session 50: the fluid and DMP skills commanded the jaws' direction alone, and at the canonical
+/// demonstration's own stitch the right's jaws rolled otherwise than recorded and the needle was torn
+/// out of them (17.4 and 26.5 N). A key moved from the demonstration keeps its frame.
+#[test]
+fn keys_moved_from_the_demonstration_keep_its_frame_where_the_wrist_is_bent() {
+    let (kb, demo) = learned(36);
+    let world_from_stitch = Isometry3::new(Vector3::new(0.01, -0.02, 0.0), Vector3::new(0.0, 0.0, 0.4));
+    let made = make(&kb, &demo, Method::Fluid, world_from_stitch);
+    let moved = relocation(&nominal(&kb), &world_from_stitch);
+    let trocars = trocars(&world_from_stitch);
+    let (mut frames, mut checked) = (0, 0);
+    for record in &demo.instruments {
+        let t = track(&made.skill, record.instrument);
+        let trocar = trocars.of(record.instrument).unwrap();
+        for key in &t.poses {
+            let Orientation::Frame { quaternion_xyzw: [x, y, z, w] } = key.orientation else { continue };
+            frames += 1;
+            // A key on the demonstration's clock (before the first force-controlled primitive,
+            // the schedule keeps it) at one of its samples: that sample's frame, moved.
+            let Some(s) = record.samples.iter().find(|s| (s.time_s - key.time_s).abs() < 1e-9) else {
+                continue;
+            };
+            let tip = moved.transform_point(&s.position_m.into()).coords;
+            if (Vector3::from(key.world_position_m) - tip).norm() > 1e-9 {
+                continue; // a primitive's own key, not the demonstration's
+            }
+            let recorded = moved.rotation * s.world_from_tip();
+            let commanded = UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(w, x, y, z));
+            assert!(commanded.angle_to(&recorded) < 1e-9, "{} at {} s", record.instrument, key.time_s);
+            let bend = (recorded * Vector3::z()).angle(&(tip - trocar));
+            assert!((0.05..=1.25).contains(&bend), "a frame only where the wrist is bent within reach");
+            checked += 1;
+        }
+    }
+    assert!(checked >= 20, "{checked} keys at the demonstration's samples of {frames} frames");
 }

@@ -35,7 +35,7 @@ pub struct LearnArgs {
     /// Where to write the knowledge base (JSON); nothing is written for a rejected demonstration.
     #[arg(long)]
     out: PathBuf,
-    /// Print JSON instead of text.
+    /// Print JSON instead of text (with every detected feature: instrument, kind, time, magnitude, grasp)
     #[arg(long)]
     json: bool,
     #[command(flatten)]
@@ -59,6 +59,18 @@ struct InstrumentLines {
     primitives: Vec<PrimitiveLine>,
     /// Detected features the pattern did not use, before its last element (spurious ones).
     skipped_features: usize,
+}
+
+/// One detected feature, for whoever writes a pattern.
+#[derive(Serialize)]
+struct FeatureLine {
+    instrument: &'static str,
+    kind: &'static str,
+    time_s: f64,
+    /// In the kind's unit (m, m/s^2, 1/m, N or rad).
+    magnitude: f64,
+    /// What the jaws hold once settled after it.
+    grasp: &'static str,
 }
 
 #[derive(Serialize)]
@@ -86,6 +98,8 @@ struct Report {
     duration_s: f64,
     /// Features detected, per kind.
     features: Vec<(&'static str, usize)>,
+    /// Every feature detected, per instrument in time order (JSON only).
+    detected: Vec<FeatureLine>,
     #[serde(skip_serializing_if = "Option::is_none")]
     out: Option<String>,
     #[serde(skip_serializing_if = "Vec::is_empty")]
@@ -182,6 +196,18 @@ fn base_report(
             .iter()
             .map(|k| (k.as_str(), features.count(*k)))
             .filter(|(_, n)| *n > 0)
+            .collect(),
+        detected: features
+            .instruments
+            .iter()
+            .flat_map(|a| &a.features)
+            .map(|f| FeatureLine {
+                instrument: f.instrument.as_str(),
+                kind: f.kind.as_str(),
+                time_s: f.time_s,
+                magnitude: f.magnitude,
+                grasp: f.grasp_after.as_str(),
+            })
             .collect(),
         out: None,
         instruments: Vec::new(),

@@ -11,11 +11,12 @@ use super::KnowledgeBase;
 pub const KB_FORMAT: &str = "knotlab-knowledge-base";
 
 /// The knowledge base format version this knotlab writes. Version 2 added the instruments' `jaw` and
-/// the `dependencies`.
-pub const KB_FORMAT_VERSION: u32 = 2;
+/// the `dependencies`, version 3 the path keys' whole frame (`quaternion_xyzw`).
+pub const KB_FORMAT_VERSION: u32 = 3;
 
-/// The versions this knotlab reads (a version 1 file has no jaw points and no dependencies).
-pub const KB_READABLE_VERSIONS: [u32; 2] = [1, 2];
+/// The versions this knotlab reads (a version 1 file has no jaw points and no dependencies; the path
+/// keys of versions 1 and 2 have no frame, and skills made from them orient the jaws by direction).
+pub const KB_READABLE_VERSIONS: [u32; 3] = [1, 2, 3];
 
 /// Why a knowledge base could not be written or read.
 #[derive(Debug, Error)]

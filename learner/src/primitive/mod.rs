@@ -315,6 +315,10 @@ pub struct PathKey {
     pub position_m: [f64; 3],
     /// Where the jaws point, stitch frame (unit).
     pub jaw_direction: [f64; 3],
+    /// The tip's whole frame, `stitch_from_tip` as a unit quaternion `x, y, z, w` (its z is
+    /// `jaw_direction`). (Format version 3; absent before, when keys orient the jaws by direction.)
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub quaternion_xyzw: Option<[f64; 4]>,
 }
 
 /// A point of an instrument's jaw over time.

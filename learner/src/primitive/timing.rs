@@ -25,8 +25,15 @@ pub fn path_keys(record: &InstrumentRecord, stitch_from_world: &Isometry3<f64>) 
         }
         next = s.time_s + PATH_PERIOD_S;
         let p = stitch_from_world.transform_point(&s.position_m.into()).coords;
-        let d: Vector3<f64> = stitch_from_world.rotation * (s.world_from_tip() * Vector3::z());
-        keys.push(PathKey { time_s: s.time_s, position_m: p.into(), jaw_direction: d.into() });
+        let stitch_from_tip = stitch_from_world.rotation * s.world_from_tip();
+        let d: Vector3<f64> = stitch_from_tip * Vector3::z();
+        let q = stitch_from_tip.quaternion();
+        keys.push(PathKey {
+            time_s: s.time_s,
+            position_m: p.into(),
+            jaw_direction: d.into(),
+            quaternion_xyzw: Some([q.i, q.j, q.k, q.w]),
+        });
     }
     keys
 }

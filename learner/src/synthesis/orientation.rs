@@ -1,14 +1,52 @@
-//! How a synthesized key orients the tip. Only the jaws' direction is commanded, never the roll about
-//! it: a recorded frame commanded whole makes the wrist chase its roll through the straight-wrist
-//! singularity (a tenth of a degree of tremor there asks for a half turn of the roll joint), and the arm
-//! lags centimetres behind. A nearly straight wrist is commanded straight, and one bent further than
-//! the wrist can bend (a skill turned with a moved stitch can ask for that) is bent as far as it can.
-//! The replay alone ([`recorded_orientation`]) commands the recorded frame whole where the wrist is
-//! bent within its reach: the roll of jaws with thread wound round them winds or unwinds it.
+//! How a synthesized key orients the tip. A key that knows the demonstrated frame ([`Aim::Frame`])
+//! commands it whole where the wrist is bent within its reach ([`recorded_orientation`]): the roll of
+//! jaws with thread wound round them winds or unwinds it. Elsewhere only the jaws' direction is
+//! commanded, never the roll about it: near the straight-wrist singularity a tenth of a degree of
+//! tremor asks for a half turn of the roll joint, and the arm lags centimetres behind. A nearly
+//! straight wrist is commanded straight, and one bent further than the wrist can bend (a skill turned
+//! with a moved stitch can ask for that) is bent as far as it can.
 
 use nalgebra::{UnitQuaternion, Vector3};
 
 use knotlab_hw::skill::Orientation;
+
+/// What a synthesized key asks of the tip's orientation.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Aim {
+    /// The jaws point along this direction, world frame (the roll is the solver's).
+    Jaws(Vector3<f64>),
+    /// The demonstrated frame, `world_from_tip` (its z along the jaws).
+    Frame(UnitQuaternion<f64>),
+}
+
+impl Aim {
+    /// Where the jaws point (unit, or zero for a zero direction).
+    pub fn jaws(&self) -> Vector3<f64> {
+        match self {
+            Aim::Jaws(d) => d.try_normalize(1e-12).unwrap_or_else(Vector3::zeros),
+            Aim::Frame(q) => q * Vector3::z(),
+        }
+    }
+
+    /// `f` of the way from this aim to `to` (0: this, 1: `to`): two frames turn along the shortest arc
+    /// between them, anything else turns the jaws' direction.
+    pub fn towards(&self, to: &Aim, f: f64) -> Aim {
+        match (self, to) {
+            (Aim::Frame(a), Aim::Frame(b)) => {
+                Aim::Frame(a.try_slerp(b, f, 1e-9).unwrap_or(if f < 0.5 { *a } else { *b }))
+            }
+            _ => Aim::Jaws(self.jaws().lerp(&to.jaws(), f)),
+        }
+    }
+
+    /// The key's orientation with the tip at `tip_m` and the shaft through `trocar_m`.
+    pub fn orientation(&self, tip_m: &Vector3<f64>, trocar_m: &Vector3<f64>) -> Orientation {
+        match self {
+            Aim::Jaws(d) => jaw_orientation(d, tip_m, trocar_m),
+            Aim::Frame(q) => recorded_orientation(q, tip_m, trocar_m),
+        }
+    }
+}
 
 /// A wrist bent less than this is commanded straight, rad.
 pub const STRAIGHT_WRIST_RAD: f64 = 0.05;
@@ -42,12 +80,12 @@ pub fn jaw_orientation(
     }
 }
 
-/// The orientation of a replayed key: the recorded tip frame `world_from_tip` whole where the wrist is
-/// bent between straight ([`STRAIGHT_WRIST_RAD`]) and its reach ([`MAX_WRIST_BEND_RAD`]), otherwise
-/// as [`jaw_orientation`] has it. Played back by their direction only, the right's jaws, which the
-/// long end's turns go round, rolled otherwise than recorded and the needle was torn out of them
-/// (15.7 N) as the left came down onto the tail (the canonical demonstration at its own stitch,
-/// session 49).
+/// The orientation of a key with a demonstrated frame: the tip frame `world_from_tip` whole where the
+/// wrist is bent between straight ([`STRAIGHT_WRIST_RAD`]) and its reach ([`MAX_WRIST_BEND_RAD`]),
+/// otherwise as [`jaw_orientation`] has it. Played back by their direction only, the right's jaws,
+/// which the long end's turns go round, rolled otherwise than recorded and the needle was torn out of
+/// them (15.7 N) as the left came down onto the tail (the canonical demonstration replayed at its own
+/// stitch, session 49; the fluid and DMP skills the same, 17.4 and 26.5 N, session 50).
 pub fn recorded_orientation(
     world_from_tip: &UnitQuaternion<f64>,
     tip_m: &Vector3<f64>,

@@ -13,14 +13,18 @@
 //! Between primitives the instrument does what it did in the demonstration (the knowledge base's path
 //! of each instrument, moved to the new stitch), on the [`Schedule`]'s clock; a primitive that starts
 //! elsewhere is reached by a straight minimum-jerk move (at [`PrimitiveSettings::gap_speed_mps`]). The
-//! jaws move as the demonstration's did.
+//! jaws move as the demonstration's did. The tip keeps the demonstrated frame ([`Aim::Frame`]): a
+//! moved path key its own, a 2D path's point the frame the demonstration had as far along its path, a
+//! synchronized point its sample's, a straight line turning from the frame it starts with to its end
+//! pose's.
 
-use nalgebra::{Isometry3, Vector2, Vector3};
+use nalgebra::{Isometry3, UnitQuaternion, Vector2, Vector3};
 
 use knotlab_hw::rig::ArmName;
 use knotlab_hw::skill::{ForceAction, ForceEvent, JawKey, Skill};
 
 use super::dmp::Dmp;
+use super::orientation::Aim;
 use super::schedule::Schedule;
 use super::site::pose_isometry;
 use super::track::TrackKeys;
@@ -102,10 +106,22 @@ fn invalid(field: impl Into<String>, reason: impl Into<String>) -> SynthesisErro
     SynthesisError::Invalid { field: field.into(), reason: reason.into() }
 }
 
-/// Where a knowledge-base pose lands in the world, and where its jaws point.
-fn placed(world_from_stitch: &Isometry3<f64>, pose: &Pose) -> (Vector3<f64>, Vector3<f64>) {
+/// Where a knowledge-base pose lands in the world, and its frame.
+fn placed(world_from_stitch: &Isometry3<f64>, pose: &Pose) -> (Vector3<f64>, Aim) {
     let world_from_tip = world_from_stitch * pose_isometry(pose);
-    (world_from_tip.translation.vector, world_from_tip.rotation * Vector3::z())
+    (world_from_tip.translation.vector, Aim::Frame(world_from_tip.rotation))
+}
+
+/// How a demonstrated path key aims the tip at the new stitch: its frame, or (a knowledge base before
+/// format version 3) its jaws' direction.
+fn key_aim(world_from_stitch: &Isometry3<f64>, key: &PathKey) -> Aim {
+    match key.quaternion_xyzw {
+        Some([x, y, z, w]) => Aim::Frame(
+            world_from_stitch.rotation
+                * UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(w, x, y, z)),
+        ),
+        None => Aim::Jaws(world_from_stitch.rotation * Vector3::from(key.jaw_direction)),
+    }
 }
 
 /// Fractions of time at the profile's points, from 0 to 1, moving at its speeds (floored at 5 % of the
@@ -127,36 +143,89 @@ fn profile_times(profile: &[ProfilePoint]) -> Vec<f64> {
     }
 }
 
-/// Keys along the straight line `from -> to` from `t0` over `duration_s`, progressing by the profile.
+/// The demonstrated turn of the tip over `start_s..=end_s`: `(fraction of the path's length covered,
+/// fraction of the turn made)` at each path key, the turn's fraction measured between the frames at
+/// the two ends (and never going back). Empty where the keys have no frames (a knowledge base before
+/// format version 3) or the tip turned less than a degree.
+fn demonstrated_turn(path: &[PathKey], start_s: f64, end_s: f64) -> Vec<(f64, f64)> {
+    let keys: Vec<(Vector3<f64>, UnitQuaternion<f64>)> = path
+        .iter()
+        .filter(|k| k.time_s >= start_s - 1e-9 && k.time_s <= end_s + 1e-9)
+        .filter_map(|k| {
+            let [x, y, z, w] = k.quaternion_xyzw?;
+            Some((
+                Vector3::from(k.position_m),
+                UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(w, x, y, z)),
+            ))
+        })
+        .collect();
+    let (Some(first), Some(last)) = (keys.first(), keys.last()) else {
+        return Vec::new();
+    };
+    if keys.len() < 2 || first.1.angle_to(&last.1) < 1f64.to_radians() {
+        return Vec::new();
+    }
+    let length: f64 = keys.windows(2).map(|w| (w[1].0 - w[0].0).norm()).sum();
+    let (mut covered, mut turned) = (0.0, 0.0f64);
+    let mut out = Vec::with_capacity(keys.len());
+    for (k, (p, q)) in keys.iter().enumerate() {
+        if k > 0 {
+            covered += (p - keys[k - 1].0).norm();
+        }
+        let (from_start, to_end) = (first.1.angle_to(q), q.angle_to(&last.1));
+        turned = turned.max(from_start / (from_start + to_end).max(1e-12));
+        let u = if length > 0.0 { covered / length } else { k as f64 / (keys.len() - 1) as f64 };
+        out.push((u, turned));
+    }
+    out
+}
+
+/// The turn's fraction at `u` of the path's length (linear between the points of
+/// [`demonstrated_turn`]; `u` itself where there are none).
+fn turn_at(turn: &[(f64, f64)], u: f64) -> f64 {
+    let k = turn.partition_point(|(v, _)| *v < u);
+    match (k.checked_sub(1).and_then(|i| turn.get(i)), turn.get(k)) {
+        (_, None) if turn.is_empty() => u,
+        (Some(a), Some(b)) if b.0 > a.0 => a.1 + (b.1 - a.1) * (u - a.0) / (b.0 - a.0),
+        (_, Some(b)) => b.1,
+        (Some(a), None) => a.1,
+        (None, None) => u,
+    }
+}
+
+/// Keys along the straight line `from -> to` from `t0` over `duration_s`, progressing by the profile
+/// and turning the tip as the demonstration did along its path (`turn`, see [`demonstrated_turn`]).
+#[allow(clippy::too_many_arguments)]
 fn line(
     track: &mut TrackKeys,
     profile: &[ProfilePoint],
+    turn: &[(f64, f64)],
     t0: f64,
     duration_s: f64,
     to: Vector3<f64>,
-    to_dir: Vector3<f64>,
+    to_aim: Aim,
 ) {
-    let (from, from_dir) = (track.position_m, track.jaw_direction);
+    let (from, from_aim) = (track.position_m, track.aim);
     let total_s = profile.last().map_or(0.0, |p| p.s_m);
     if profile.len() < 2 || total_s <= 0.0 {
-        track.move_to(t0 + duration_s, to, to_dir, 20);
+        track.move_to(t0 + duration_s, to, to_aim, 20);
         return;
     }
     for (p, tau) in profile.iter().zip(profile_times(profile)) {
         let u = (p.s_m / total_s).clamp(0.0, 1.0);
-        track.key(t0 + tau * duration_s, from.lerp(&to, u), from_dir.lerp(&to_dir, u));
+        track.key(t0 + tau * duration_s, from.lerp(&to, u), from_aim.towards(&to_aim, turn_at(turn, u)));
     }
 }
 
-fn gap_move(track: &mut TrackKeys, until_s: f64, to: Vector3<f64>, to_dir: Vector3<f64>, speed_mps: f64) {
+fn gap_move(track: &mut TrackKeys, until_s: f64, to: Vector3<f64>, to_aim: Aim, speed_mps: f64) {
     let distance = (to - track.position_m).norm();
     let available = until_s - track.time_s;
     if available <= 0.0 {
-        track.key(track.time_s, to, to_dir);
+        track.key(track.time_s, to, to_aim);
         return;
     }
     let wanted = (distance / speed_mps).max(0.3);
-    track.move_to(track.time_s + wanted.min(available), to, to_dir, 10);
+    track.move_to(track.time_s + wanted.min(available), to, to_aim, 10);
     track.hold_until(until_s);
 }
 
@@ -175,12 +244,14 @@ fn return_s(demo_duration_s: f64, settings: &PrimitiveSettings) -> f64 {
 fn linear_keys(
     track: &mut TrackKeys,
     p: &LinearPrimitive,
+    path: &[PathKey],
     slot: (f64, f64),
     world_from_stitch: &Isometry3<f64>,
 ) {
-    let (to, to_dir) = placed(world_from_stitch, &p.end_pose);
+    let (to, to_aim) = placed(world_from_stitch, &p.end_pose);
     track.hold_until(slot.0);
-    line(track, &p.speed_profile, slot.0, slot.1 - slot.0, to, to_dir);
+    let turn = demonstrated_turn(path, p.start_s, p.end_s);
+    line(track, &p.speed_profile, &turn, slot.0, slot.1 - slot.0, to, to_aim);
 }
 
 /// Keys from the demonstrated path between the demonstration's times `from_s` and `to_s` (open
@@ -198,8 +269,7 @@ fn transfer(
             continue;
         }
         let p = world_from_stitch.transform_point(&Vector3::from(key.position_m).into()).coords;
-        let d = world_from_stitch.rotation * Vector3::from(key.jaw_direction);
-        track.key(t, p, d);
+        track.key(t, p, key_aim(world_from_stitch, key));
     }
 }
 
@@ -211,19 +281,19 @@ fn force_keys(
     world_from_stitch: &Isometry3<f64>,
     settings: &PrimitiveSettings,
 ) {
-    let (start, start_dir) = placed(world_from_stitch, &p.start_pose);
-    let (end, end_dir) = placed(world_from_stitch, &p.end_pose);
+    let (start, start_aim) = placed(world_from_stitch, &p.start_pose);
+    let (end, end_aim) = placed(world_from_stitch, &p.end_pose);
     let line_end = world_from_stitch.transform_point(&Vector3::from(p.line_end_m).into()).coords;
-    gap_move(track, slot.0, start, start_dir, settings.gap_speed_mps);
+    gap_move(track, slot.0, start, start_aim, settings.gap_speed_mps);
     let d = p.end_s - p.start_s;
     // The demonstrated movement up to the jaws' opening, moved; the line from its start to where it came
     // to rest gives the direction it goes on in.
     let shift = slot.0 - p.start_s;
     transfer(track, path, (p.start_s, p.end_s), |t| t + shift, world_from_stitch);
-    track.key(slot.0 + d, end, end_dir);
+    track.key(slot.0 + d, end, end_aim);
     let far = start + (line_end - start) * settings.force_elongation;
-    track.move_to(slot.0 + settings.force_elongation * d, far, end_dir, 20);
-    track.move_to(slot.1, line_end, end_dir, 20);
+    track.move_to(slot.0 + settings.force_elongation * d, far, end_aim, 20);
+    track.move_to(slot.1, line_end, end_aim, 20);
     let (from_rad, to_rad) = (p.jaw.from_rad, p.jaw.to_rad);
     track.jaw.push(JawKey { time_s: slot.0, jaw_rad: from_rad });
     track.jaw.push(JawKey { time_s: slot.1 - 0.01, jaw_rad: from_rad });
@@ -246,6 +316,8 @@ struct NewPath {
     plane: PlaneFrame,
     times_s: Vec<f64>,
     points_m: Vec<Vector3<f64>>,
+    /// How each point aims the tip.
+    aims: Vec<Aim>,
 }
 
 impl NewPath {
@@ -323,7 +395,10 @@ fn two_d_path(
     };
     let native_end = native.last().copied().unwrap_or(0.0).max(1e-9);
     let times_s: Vec<f64> = native.iter().map(|t| slot.0 + t / native_end * duration).collect();
-    let regenerated = NewPath { name: p.name.clone(), plane, times_s, points_m };
+    let (_, from_aim) = placed(new_world_from_stitch, &p.start_pose);
+    let (_, to_aim) = placed(new_world_from_stitch, &p.end_pose);
+    let aims = native.iter().map(|t| from_aim.towards(&to_aim, t / native_end)).collect();
+    let regenerated = NewPath { name: p.name.clone(), plane, times_s, points_m, aims };
     // The demonstration's own pace along the path: how far along it the hand was at each moment (the
     // speeds the solver stirs with are floored where the hand was at rest, which shifts the timing).
     let progress = demonstrated_progress(demo_path, p);
@@ -331,17 +406,16 @@ fn two_d_path(
         return Ok((regenerated, inst));
     }
     let scale = duration / (p.end_s - p.start_s).max(1e-9);
-    let (times_s, points_m) = progress
-        .iter()
-        .map(|(t, phase)| (slot.0 + (t - p.start_s) * scale, regenerated.time_at_phase(*phase).1))
-        .unzip();
-    Ok((NewPath { name: p.name.clone(), plane, times_s, points_m }, inst))
+    let times_s = progress.iter().map(|(key, _)| slot.0 + (key.time_s - p.start_s) * scale).collect();
+    let points_m = progress.iter().map(|(_, phase)| regenerated.time_at_phase(*phase).1).collect();
+    let aims = progress.iter().map(|(key, _)| key_aim(new_world_from_stitch, key)).collect();
+    Ok((NewPath { name: p.name.clone(), plane, times_s, points_m, aims }, inst))
 }
 
-/// `(time, fraction of the path's length covered)` over the primitive's span: each demonstrated path key
-/// projected onto the primitive's tremor-free path (searching forward from the previous one, so loops
-/// that pass near themselves are told apart).
-fn demonstrated_progress(path: &[PathKey], p: &TwoDPrimitive) -> Vec<(f64, f64)> {
+/// `(demonstrated key, fraction of the path's length covered)` over the primitive's span: each
+/// demonstrated path key projected onto the primitive's tremor-free path (searching forward from the
+/// previous one, so loops that pass near themselves are told apart).
+fn demonstrated_progress(path: &[PathKey], p: &TwoDPrimitive) -> Vec<(PathKey, f64)> {
     let n = p.path_m.len();
     if n < 2 {
         return Vec::new();
@@ -369,7 +443,7 @@ fn demonstrated_progress(path: &[PathKey], p: &TwoDPrimitive) -> Vec<(f64, f64)>
             })
             .unwrap_or(at);
         at = best;
-        out.push((key.time_s, s[best] / total));
+        out.push((*key, s[best] / total));
     }
     if let Some(last) = out.last_mut() {
         last.1 = 1.0;
@@ -380,24 +454,16 @@ fn demonstrated_progress(path: &[PathKey], p: &TwoDPrimitive) -> Vec<(f64, f64)>
     out
 }
 
-fn path_keys(
-    track: &mut TrackKeys,
-    path: &NewPath,
-    from_dir: Vector3<f64>,
-    to_dir: Vector3<f64>,
-    period_s: f64,
-    gap_speed_mps: f64,
-) {
-    let (t0, t1) = (path.times_s[0], path.times_s[path.times_s.len() - 1]);
-    gap_move(track, t0, path.points_m[0], from_dir, gap_speed_mps);
+fn path_keys(track: &mut TrackKeys, path: &NewPath, period_s: f64, gap_speed_mps: f64) {
+    let t0 = path.times_s[0];
+    gap_move(track, t0, path.points_m[0], path.aims[0], gap_speed_mps);
     let mut next = t0;
-    for (k, (t, q)) in path.times_s.iter().zip(&path.points_m).enumerate() {
+    for (k, ((t, q), aim)) in path.times_s.iter().zip(&path.points_m).zip(&path.aims).enumerate() {
         if *t + 1e-9 < next && k + 1 != path.times_s.len() {
             continue;
         }
         next = t + period_s;
-        let f = if t1 > t0 { (t - t0) / (t1 - t0) } else { 1.0 };
-        track.key(*t, *q, from_dir.lerp(&to_dir, f));
+        track.key(*t, *q, *aim);
     }
 }
 
@@ -414,17 +480,19 @@ fn sync_keys(
         let (t, r) = reference.time_at_phase(sample.phase);
         let offset =
             axes[0] * sample.offset_m[0] + axes[1] * sample.offset_m[1] + axes[2] * sample.offset_m[2];
-        let dir = world_from_stitch.rotation
-            * pose_isometry(&Pose { position_m: [0.0; 3], quaternion_xyzw: sample.quaternion_xyzw }).rotation
-            * Vector3::z();
-        points.push((t, r + offset, dir));
+        let aim = Aim::Frame(
+            world_from_stitch.rotation
+                * pose_isometry(&Pose { position_m: [0.0; 3], quaternion_xyzw: sample.quaternion_xyzw })
+                    .rotation,
+        );
+        points.push((t, r + offset, aim));
     }
-    let Some(&(t0, first, first_dir)) = points.first() else {
+    let Some(&(t0, first, first_aim)) = points.first() else {
         return Err(invalid(format!("{}.mapping", p.name), "empty"));
     };
-    gap_move(track, t0, first, first_dir, gap_speed_mps);
-    for (t, q, dir) in points {
-        track.key(t, q, dir);
+    gap_move(track, t0, first, first_aim, gap_speed_mps);
+    for (t, q, aim) in points {
+        track.key(t, q, aim);
     }
     Ok(())
 }
@@ -456,7 +524,7 @@ pub fn synthesize(
             arm,
             site.trocars.of(arm)?,
             start.world_from_tip.translation.vector,
-            start.world_from_tip.rotation * Vector3::z(),
+            Aim::Frame(start.world_from_tip.rotation),
         );
         // The jaws as the demonstration moved them, outside force-controlled primitives (which open
         // them by their event).
@@ -505,7 +573,7 @@ pub fn synthesize(
         );
         cursor[t] = cursor[t].max(slot.demo_s.1);
         match p {
-            Primitive::Linear(l) => linear_keys(track, l, slot.new_s, &world_from_stitch),
+            Primitive::Linear(l) => linear_keys(track, l, path, slot.new_s, &world_from_stitch),
             Primitive::Force(f) => force_keys(track, f, path, slot.new_s, &world_from_stitch, settings),
             Primitive::TwoD(t) => {
                 let (path, inst) = two_d_path(
@@ -520,9 +588,7 @@ pub fn synthesize(
                     path,
                     obstacles,
                 )?;
-                let (_, from_dir) = placed(&world_from_stitch, &t.start_pose);
-                let (_, to_dir) = placed(&world_from_stitch, &t.end_pose);
-                path_keys(track, &path, from_dir, to_dir, settings.key_period_s, settings.gap_speed_mps);
+                path_keys(track, &path, settings.key_period_s, settings.gap_speed_mps);
                 if let Some(inst) = inst {
                     fluid.push((t.name.clone(), inst));
                 }
@@ -552,4 +618,64 @@ pub fn synthesize(
     };
     skill.check().map_err(|e| invalid("skill", e.to_string()))?;
     Ok(Synthesis { skill, schedule, fluid })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Keys 10 cm along x, the tip turned about y by `turn(u)` of 90 degrees at `u` of the way.
+    fn keys(turn: impl Fn(f64) -> f64) -> Vec<PathKey> {
+        (0..=10)
+            .map(|k| {
+                let u = k as f64 / 10.0;
+                let q = UnitQuaternion::from_axis_angle(
+                    &Vector3::y_axis(),
+                    turn(u) * std::f64::consts::FRAC_PI_2,
+                );
+                let c = q.quaternion();
+                PathKey {
+                    time_s: u,
+                    position_m: [0.1 * u, 0.0, 0.0],
+                    jaw_direction: (q * Vector3::z()).into(),
+                    quaternion_xyzw: Some([c.i, c.j, c.k, c.w]),
+                }
+            })
+            .collect()
+    }
+
+    #[test]
+    fn a_line_turns_the_tip_as_the_demonstration_did_along_its_path() {
+        // The demonstration turned late: a fifth of the turn over the first half of the way.
+        let late = |u: f64| if u <= 0.5 { 0.4 * u } else { 0.2 + 1.6 * (u - 0.5) };
+        let turn = demonstrated_turn(&keys(late), 0.0, 1.0);
+        assert_eq!(turn.len(), 11);
+        for (u, f) in &turn {
+            assert!((f - late(*u)).abs() < 1e-9, "{u}: {f} against {}", late(*u));
+        }
+        assert!((turn_at(&turn, 0.25) - 0.1).abs() < 1e-9);
+        // A line made with it: halfway along, a fifth of the turn (a turn by length would be half).
+        let trocar = Vector3::new(0.0, 0.0, 1.0);
+        let from = UnitQuaternion::from_axis_angle(&Vector3::x_axis(), 2.8);
+        let to = from * UnitQuaternion::from_axis_angle(&Vector3::y_axis(), 1.0);
+        let mut track = TrackKeys::new(ArmName::Left, trocar, Vector3::zeros(), Aim::Frame(from));
+        let profile: Vec<ProfilePoint> =
+            (0..=4).map(|k| ProfilePoint { s_m: 0.025 * k as f64, speed_mps: 0.1 }).collect();
+        line(&mut track, &profile, &turn, 1.0, 1.0, Vector3::new(0.1, 0.0, 0.0), Aim::Frame(to));
+        let built = track.build();
+        let half =
+            built.poses.iter().find(|k| (k.world_position_m[0] - 0.05).abs() < 1e-9).expect("a key halfway");
+        let expected = from.try_slerp(&to, 0.2, 1e-9).unwrap();
+        let knotlab_hw::skill::Orientation::Frame { quaternion_xyzw: [x, y, z, w] } = half.orientation else {
+            panic!("a frame: {:?}", half.orientation)
+        };
+        let q = UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(w, x, y, z));
+        assert!(q.angle_to(&expected) < 1e-9, "{q:?}");
+        // Keys without frames (a knowledge base before version 3), or hardly a turn: turned by length.
+        let mut old = keys(late);
+        old.iter_mut().for_each(|k| k.quaternion_xyzw = None);
+        assert!(demonstrated_turn(&old, 0.0, 1.0).is_empty());
+        assert!(demonstrated_turn(&keys(|u| 0.005 * u), 0.0, 1.0).is_empty());
+        assert_eq!(turn_at(&[], 0.3), 0.3);
+    }
 }

@@ -1,5 +1,6 @@
-//! Building one instrument's track of a synthesized skill: pose keys in increasing time (the jaws'
-//! direction only, see [`super::orientation`]), holds, straight minimum-jerk moves.
+//! Building one instrument's track of a synthesized skill: pose keys in increasing time (each aimed by a
+//! demonstrated frame or the jaws' direction, see [`super::orientation`]), holds, straight
+//! minimum-jerk moves.
 
 use nalgebra::Vector3;
 
@@ -7,7 +8,7 @@ use knotlab_hw::rig::ArmName;
 use knotlab_hw::skill::profile::min_jerk;
 use knotlab_hw::skill::{ForceEvent, JawKey, PoseKey, Track};
 
-use super::orientation::jaw_orientation;
+use super::orientation::Aim;
 
 /// Keys closer in time than this are one key, s.
 const SAME_TIME_S: f64 = 1e-6;
@@ -21,8 +22,8 @@ pub struct TrackKeys {
     poses: Vec<PoseKey>,
     /// Where the tip is at the last key, m.
     pub position_m: Vector3<f64>,
-    /// Where its jaws point at the last key (unit).
-    pub jaw_direction: Vector3<f64>,
+    /// How the last key aims the tip.
+    pub aim: Aim,
     /// Time of the last key, s.
     pub time_s: f64,
     /// Jaw keys (sorted when the track is built).
@@ -33,29 +34,24 @@ pub struct TrackKeys {
 
 impl TrackKeys {
     /// A track whose first key, at 0 s, is the tip where it is.
-    pub fn new(
-        arm: ArmName,
-        trocar_m: Vector3<f64>,
-        position_m: Vector3<f64>,
-        jaw_direction: Vector3<f64>,
-    ) -> Self {
+    pub fn new(arm: ArmName, trocar_m: Vector3<f64>, position_m: Vector3<f64>, aim: Aim) -> Self {
         let mut track = Self {
             arm,
             trocar_m,
             poses: Vec::new(),
             position_m,
-            jaw_direction,
+            aim,
             time_s: 0.0,
             jaw: Vec::new(),
             events: Vec::new(),
         };
-        track.key(0.0, position_m, jaw_direction);
+        track.key(0.0, position_m, aim);
         track
     }
 
     /// A key at `time_s` (a key at the same time as the last replaces it; an earlier one is dropped).
-    pub fn key(&mut self, time_s: f64, position_m: Vector3<f64>, jaw_direction: Vector3<f64>) {
-        let orientation = jaw_orientation(&jaw_direction, &position_m, &self.trocar_m);
+    pub fn key(&mut self, time_s: f64, position_m: Vector3<f64>, aim: Aim) {
+        let orientation = aim.orientation(&position_m, &self.trocar_m);
         let key = PoseKey { time_s, world_position_m: position_m.into(), orientation };
         match self.poses.last() {
             Some(last) if time_s < last.time_s - SAME_TIME_S => return,
@@ -66,8 +62,8 @@ impl TrackKeys {
             _ => self.poses.push(key),
         }
         self.position_m = position_m;
-        if jaw_direction.norm() > 1e-12 {
-            self.jaw_direction = jaw_direction.normalize();
+        if aim.jaws().norm() > 1e-12 {
+            self.aim = aim;
         }
         self.time_s = self.time_s.max(time_s);
     }
@@ -75,23 +71,22 @@ impl TrackKeys {
     /// Stays where it is until `time_s`.
     pub fn hold_until(&mut self, time_s: f64) {
         if time_s > self.time_s + SAME_TIME_S {
-            self.key(time_s, self.position_m, self.jaw_direction);
+            self.key(time_s, self.position_m, self.aim);
         }
     }
 
     /// A straight minimum-jerk move from where it is, ending at `end_s` (starting at the last key).
-    pub fn move_to(&mut self, end_s: f64, to_m: Vector3<f64>, to_direction: Vector3<f64>, keys: usize) {
-        let (t0, from, from_dir) = (self.time_s, self.position_m, self.jaw_direction);
+    pub fn move_to(&mut self, end_s: f64, to_m: Vector3<f64>, to_aim: Aim, keys: usize) {
+        let (t0, from, from_aim) = (self.time_s, self.position_m, self.aim);
         if end_s <= t0 + SAME_TIME_S {
-            self.key(t0, to_m, to_direction);
+            self.key(t0, to_m, to_aim);
             return;
         }
         let n = keys.max(2);
         for k in 1..=n {
             let f = k as f64 / n as f64;
             let s = min_jerk(f);
-            let dir = from_dir.lerp(&to_direction.normalize(), s);
-            self.key(t0 + (end_s - t0) * f, from.lerp(&to_m, s), dir);
+            self.key(t0 + (end_s - t0) * f, from.lerp(&to_m, s), from_aim.towards(&to_aim, s));
         }
     }
 
