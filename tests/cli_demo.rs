@@ -327,7 +327,7 @@ fn the_learner_accepts_the_canonical_demonstration_by_default() {
             i["primitives"].as_array().unwrap().iter().map(|p| p["name"].as_str().unwrap().to_owned())
         })
         .collect();
-    for name in ["L1", "L2", "L3", "L4", "R2", "R3", "A1"] {
+    for name in ["L1", "L2", "L3", "L4", "L5", "L6", "R2", "R3", "R4", "R5", "A1"] {
         assert!(names.iter().any(|n| n == name), "no {name} in {names:?}");
     }
     let _ = std::fs::remove_dir_all(&dir);

@@ -96,10 +96,15 @@ fn learn_prints_the_decomposition_and_writes_the_knowledge_base() {
                     pair("L1", "linear"),
                     pair("L2", "synchronized"),
                     pair("L3", "linear"),
-                    pair("L4", "force")
+                    pair("L4", "linear"),
+                    pair("L5", "linear"),
+                    pair("L6", "linear")
                 ]
             ),
-            ("right".to_owned(), vec![pair("R2", "2d"), pair("R3", "force")]),
+            (
+                "right".to_owned(),
+                vec![pair("R2", "2d"), pair("R3", "linear"), pair("R4", "linear"), pair("R5", "force")]
+            ),
             ("assist".to_owned(), vec![pair("A1", "linear")]),
         ]
     );
@@ -111,7 +116,7 @@ fn learn_prints_the_decomposition_and_writes_the_knowledge_base() {
     }
     // The knowledge base on disk holds the same primitives.
     let kb = load_knowledge_base(std::path::Path::new(&kb)).unwrap();
-    assert_eq!(kb.instruments.iter().map(|i| i.primitives.len()).sum::<usize>(), 7);
+    assert_eq!(kb.instruments.iter().map(|i| i.primitives.len()).sum::<usize>(), 11);
     assert_eq!(kb.frame, "stitch");
 
     // The text form says the same.

@@ -82,12 +82,12 @@ fn rejections(pattern: &TaskPattern, seeds: u64) -> Result<(), Box<dyn std::erro
             make: |seed| SyntheticSettings { grasp_tail: false, ..SyntheticSettings::canonical(seed, 100.0) },
         },
         Row {
-            name: "cut before the pulls",
+            name: "cut before the pull",
             make: |seed| {
                 let full = SyntheticSettings::canonical(seed, 100.0);
                 let (_, truth) = canonical_demonstration(&full);
-                let pulls = truth.primitives.iter().filter(|p| p.name == "L4" || p.name == "R3");
-                let cut = pulls.map(|p| p.start_s).fold(f64::INFINITY, f64::min) - 0.05;
+                let pull = truth.primitives.iter().filter(|p| p.name == "R5");
+                let cut = pull.map(|p| p.start_s).fold(f64::INFINITY, f64::min) - 0.05;
                 SyntheticSettings { cut_at_s: Some(cut), ..full }
             },
         },

@@ -44,12 +44,19 @@ fn the_shipped_pattern_is_the_canonical_task() {
             ("L1".to_owned(), PrimitiveType::Linear),
             ("L2".to_owned(), PrimitiveType::Synchronized),
             ("L3".to_owned(), PrimitiveType::Linear),
-            ("L4".to_owned(), PrimitiveType::Force)
+            ("L4".to_owned(), PrimitiveType::Linear),
+            ("L5".to_owned(), PrimitiveType::Linear),
+            ("L6".to_owned(), PrimitiveType::Linear)
         ]
     );
     assert_eq!(
         names(ArmName::Right),
-        vec![("R2".to_owned(), PrimitiveType::TwoD), ("R3".to_owned(), PrimitiveType::Force)]
+        vec![
+            ("R2".to_owned(), PrimitiveType::TwoD),
+            ("R3".to_owned(), PrimitiveType::Linear),
+            ("R4".to_owned(), PrimitiveType::Linear),
+            ("R5".to_owned(), PrimitiveType::Force)
+        ]
     );
     assert_eq!(names(ArmName::Assist), vec![("A1".to_owned(), PrimitiveType::Linear)]);
     let loops =
@@ -76,7 +83,7 @@ fn malformed_patterns_are_named_by_line_and_field() {
             "min_magnitude = 0.12",
             "min_magnitude = -0.12",
             "min_magnitude = -0.12",
-            "left.feature[7].min_magnitude",
+            "right.feature[9].min_magnitude",
             ">= 0",
         ),
         (
@@ -111,7 +118,7 @@ fn malformed_patterns_are_named_by_line_and_field() {
             "grasp = \"holding\"",
             "grasp = \"held\"",
             "grasp = \"held\"",
-            "left.feature[5].grasp",
+            "left.feature[7].grasp",
             "not one of open, holding, closed_empty",
         ),
         (

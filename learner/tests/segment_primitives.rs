@@ -119,17 +119,17 @@ fn each_primitive_holds_what_the_expert_did() {
         assert!((step - r2.step_m).abs() < 1e-4, "equal arc-length steps: {step}");
     }
 
-    // Force: the left pulls along +(0.2, 1, 0.6) of the stitch frame; the force on it points back.
-    let Primitive::Force(l4) = get("L4") else { panic!("L4 is force") };
-    assert!((0.85..1.2).contains(&l4.max_force_n), "L4 max force {}", l4.max_force_n);
-    let pull = Vector3::new(0.2, 1.0, 0.6).normalize();
-    assert!(v(l4.force_direction).dot(&-pull) > 0.95, "force direction {:?}", l4.force_direction);
-    assert_eq!(l4.jaw.action, JawActionKind::Open);
-    assert!(l4.jaw.to_rad > 0.5, "the jaws open: {:?}", l4.jaw);
-    let line_end = v(l4.line_end_m) - v(l4.start_pose.position_m);
+    // Force: the right pulls along +(-0.2, -1, 0.3) of the stitch frame; the force on it points back.
+    let Primitive::Force(r5) = get("R5") else { panic!("R5 is force") };
+    assert!((0.85..1.2).contains(&r5.max_force_n), "R5 max force {}", r5.max_force_n);
+    let pull = Vector3::new(-0.2, -1.0, 0.3).normalize();
+    assert!(v(r5.force_direction).dot(&-pull) > 0.95, "force direction {:?}", r5.force_direction);
+    assert_eq!(r5.jaw.action, JawActionKind::Open);
+    assert!(r5.jaw.to_rad > 0.5, "the jaws open: {:?}", r5.jaw);
+    let line_end = v(r5.line_end_m) - v(r5.start_pose.position_m);
     assert!(line_end.normalize().dot(&pull) > 0.99 && (line_end.norm() - 0.03).abs() < 0.002, "{line_end:?}");
-    let true_l4 = truth.primitives.iter().find(|t| t.name == "L4").unwrap();
-    assert!((l4.end_s - true_l4.end_s).abs() < 0.05);
+    let true_r5 = truth.primitives.iter().find(|t| t.name == "R5").unwrap();
+    assert!((r5.end_s - true_r5.end_s).abs() < 0.05);
 
     // Synchronized: the mapping runs through the reference's whole path; the left stays near the loop.
     let Primitive::Synchronized(l2) = get("L2") else { panic!("L2 is synchronized") };
@@ -222,5 +222,5 @@ fn the_knowledge_base_file_round_trips_and_refuses_bad_files() {
     assert!(e.to_string().starts_with("kb.json:"), "{message}");
     let reported: usize = message.split(':').nth(1).unwrap().parse().unwrap();
     assert!(reported >= line && reported <= bad.lines().count(), "{message}");
-    assert!(message.contains(": instruments[0].primitives[3].max_force_n: invalid type"), "{message}");
+    assert!(message.contains(": instruments[1].primitives[3].max_force_n: invalid type"), "{message}");
 }

@@ -84,7 +84,8 @@ fn a_force_controlled_primitive_goes_on_to_125_percent_and_comes_back_opening_at
     let (kb, demo) = learned(31);
     let made = make(&kb, &demo, Method::Dmp, nominal(&kb));
     let settings = PrimitiveSettings::default();
-    for (name, arm) in [("L4", ArmName::Left), ("R3", ArmName::Right)] {
+    {
+        let (name, arm) = ("R5", ArmName::Right);
         let Some(Primitive::Force(p)) = kb.primitive(name) else { panic!("{name} is force-controlled") };
         let slot = made.schedule.slot(name).expect("scheduled");
         let t = track(&made.skill, arm);
@@ -137,7 +138,7 @@ fn no_primitive_starts_before_those_it_waits_for_and_a_longer_one_delays_them() 
     })
     .unwrap();
     let plain = Schedule::plan(&kb, |p: &Primitive| p.span_s().1 - p.span_s().0).unwrap();
-    for name in ["R2", "L2", "L3", "A1", "R3", "L4"] {
+    for name in ["R2", "L2", "L3", "L4", "A1", "L5", "R3", "L6", "R4", "R5"] {
         let delay = slower.slot(name).unwrap().new_s.0 - plain.slot(name).unwrap().new_s.0;
         assert!((delay - 3.0).abs() < 1e-9, "{name} delayed by {delay} s");
     }

@@ -7,11 +7,12 @@
 //! The script follows `scenarios/patterns/knot_tying.toml` (the stitch frame: x along the wound, y
 //! towards the tail's flap, z up):
 //! - left: `L1` linear from its parked pose to the winding point; `L2` synchronized, a small motion
-//!   following the right's winding; the jaws open during the following pause; `L3` linear to the tail;
-//!   the jaws close on it; `L4` force-controlled pull away from the right until about 1 N, when the jaws
-//!   open (the end of `L4`), the move running on to its end.
-//! - right (holds the needle): waits during `L1`; `R2` 2D: two loops around the left jaws; `R3`
-//!   force-controlled pull the other way, the jaws opening at about 1 N.
+//!   following the right's winding; the jaws open during the following pause; `L3` linear over the
+//!   tail, `L4` down onto it; the jaws close on it; `L5` linear up (drawing the tail through the loops,
+//!   a small drag), `L6` linear back over the tail's flap; the jaws open once the right has let go.
+//! - right (holds the needle): waits during `L1`; `R2` 2D: two loops around the left jaws; `R3` and
+//!   `R4` linear, up and back with the left; `R5` force-controlled pull the other way until about
+//!   1 N, when the jaws open (the end of `R5`), the move running on to its end.
 //! - assist (holds the tail): its jaws open after the left's close; `A1` linear retreat.
 
 pub mod motion;
@@ -216,14 +217,19 @@ pub fn canonical_demonstration(settings: &SyntheticSettings) -> (Demonstration, 
     })));
     t = r2.1 + pause(rng);
 
-    // L3: the left opens its jaws, then moves to the tail.
+    // L3: the left opens its jaws, then moves over the tail; L4: down onto it.
     let open_end = t + 0.15;
     left.jaw_moves.push(JawMove { t0: t, t1: open_end, to_rad: open_rad(rng) });
     let l3_start = open_end + rng.random_range(0.1..0.2);
     let l3 = (l3_start, l3_start + duration(rng, 0.9));
-    left.moves.push(Move { t0: l3.0, t1: l3.1, path: Polyline::line(winding_point, grasp_point), ramp: 0.5 });
+    let over_tail = grasp_point + Vector3::new(0.0, 0.0, rng.random_range(0.01..0.015));
+    left.moves.push(Move { t0: l3.0, t1: l3.1, path: Polyline::line(winding_point, over_tail), ramp: 0.5 });
     record(ArmName::Left, "L3", PrimitiveType::Linear, l3.0, l3.1);
     t = l3.1 + pause(rng);
+    let l4 = (t, t + duration(rng, 0.5));
+    left.moves.push(Move { t0: l4.0, t1: l4.1, path: Polyline::line(over_tail, grasp_point), ramp: 0.5 });
+    record(ArmName::Left, "L4", PrimitiveType::Linear, l4.0, l4.1);
+    t = l4.1 + pause(rng);
 
     // The left grasps the tail (or does not); the assist lets go and retreats (A1).
     let close_end = t + 0.15;
@@ -245,37 +251,61 @@ pub fn canonical_demonstration(settings: &SyntheticSettings) -> (Demonstration, 
     });
     record(ArmName::Assist, "A1", PrimitiveType::Linear, a1.0, a1.1);
 
-    // L4 and R3: both pull until about 1 N, then open their jaws.
-    let l4_start = assist_open_end + rng.random_range(0.15..0.35);
-    let r3_start = l4_start + rng.random_range(-0.1..0.1);
-    let pull = |rng: &mut ChaCha8Rng,
-                track: &mut Track,
-                start: f64,
-                direction: Vector3<f64>,
-                grasped: bool| {
+    // L5 and R3: up together, the left drawing the tail through the loops; L6 and R4: back together,
+    // over the tail's flap.
+    let l5_start = assist_open_end + rng.random_range(0.15..0.35);
+    let together =
+        |rng: &mut ChaCha8Rng, left: &mut Track, right: &mut Track, start: f64, way: Vector3<f64>| {
+            let l = (start, start + duration(rng, 0.8));
+            let r_start = start + rng.random_range(-0.05..0.05);
+            let r = (r_start, r_start + (l.1 - l.0) * rng.random_range(0.95..1.05));
+            let from = left.end_position();
+            left.moves.push(Move { t0: l.0, t1: l.1, path: Polyline::line(from, from + way), ramp: 0.5 });
+            left.drags.push(Drag {
+                t0: l.0,
+                t1: l.1,
+                peak_n: rng.random_range(0.2..0.5),
+                direction: -way.normalize(),
+            });
+            let from = right.end_position();
+            right.moves.push(Move { t0: r.0, t1: r.1, path: Polyline::line(from, from + way), ramp: 0.5 });
+            (l, r)
+        };
+    let (l5, r3) = together(rng, &mut left, &mut right, l5_start, Vector3::new(0.0, 0.0, 0.025));
+    record(ArmName::Left, "L5", PrimitiveType::Linear, l5.0, l5.1);
+    record(ArmName::Right, "R3", PrimitiveType::Linear, r3.0, r3.1);
+    let l6_start = l5.1.max(r3.1) + pause(rng);
+    let (l6, r4) = together(rng, &mut left, &mut right, l6_start, Vector3::new(0.0, 0.018, 0.005));
+    record(ArmName::Left, "L6", PrimitiveType::Linear, l6.0, l6.1);
+    record(ArmName::Right, "R4", PrimitiveType::Linear, r4.0, r4.1);
+
+    // R5: the right pulls the long end until about 1 N, then opens its jaws; the left lets go after.
+    let r5_start = l6.1.max(r4.1) + pause(rng);
+    let pull = |rng: &mut ChaCha8Rng, track: &mut Track, start: f64, direction: Vector3<f64>| {
         let d = direction.normalize();
         let from = track.end_position();
         let end = start + duration(rng, 1.2);
         track.moves.push(Move { t0: start, t1: end, path: Polyline::line(from, from + 0.03 * d), ramp: 0.5 });
         let span = end - start;
         let release = start + rng.random_range(0.65..0.85) * span;
-        if grasped {
-            track.pulses.push(ForcePulse {
-                t_tight_s: start + rng.random_range(0.3..0.45) * span,
-                t_release_s: release,
-                peak_n: rng.random_range(0.95..1.1),
-                direction: -d,
-            });
-            track.jaw_moves.push(JawMove { t0: release, t1: release + 0.12, to_rad: open_rad(rng) });
-            track.holding.push((release + 0.03, false));
-        }
+        track.pulses.push(ForcePulse {
+            t_tight_s: start + rng.random_range(0.3..0.45) * span,
+            t_release_s: release,
+            peak_n: rng.random_range(0.95..1.1),
+            direction: -d,
+        });
+        track.jaw_moves.push(JawMove { t0: release, t1: release + 0.12, to_rad: open_rad(rng) });
+        track.holding.push((release + 0.03, false));
         (start, release, end)
     };
-    let l4 = pull(rng, &mut left, l4_start, Vector3::new(0.2, 1.0, 0.6), settings.grasp_tail);
-    let r3 = pull(rng, &mut right, r3_start, Vector3::new(-0.2, -1.0, 0.5), true);
-    record(ArmName::Left, "L4", PrimitiveType::Force, l4.0, l4.1);
-    record(ArmName::Right, "R3", PrimitiveType::Force, r3.0, r3.1);
-    let end = l4.2.max(r3.2).max(a1.1) + rng.random_range(0.4..0.8);
+    let r5 = pull(rng, &mut right, r5_start, Vector3::new(-0.2, -1.0, 0.3));
+    record(ArmName::Right, "R5", PrimitiveType::Force, r5.0, r5.1);
+    let l_release = r5.1 + rng.random_range(0.3..0.8);
+    if settings.grasp_tail {
+        left.jaw_moves.push(JawMove { t0: l_release, t1: l_release + 0.12, to_rad: open_rad(rng) });
+        left.holding.push((l_release + 0.03, false));
+    }
+    let end = r5.2.max(l_release + 0.12).max(a1.1) + rng.random_range(0.4..0.8);
 
     // Sampling.
     let end = settings.cut_at_s.map_or(end, |c| c.min(end));

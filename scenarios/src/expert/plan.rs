@@ -5,9 +5,10 @@
 //! ties at any stitch. The sequence is the canonical task of `scenarios/patterns/knot_tying.toml`:
 //! L1 to the winding point (the right takes up the long end meanwhile), the left's jaws close; R2 winds
 //! the long end twice around them; the assist presents the tail in front of the left's jaws, which
-//! open; L3 to the tail, close; the assist lets go and retreats (A1); L4 and R3 run the knot down onto
-//! the wound (the tail up and out, the right's jaws low over the other flap), then pull the ends apart
-//! until the set force, and let go.
+//! open; L3 to the tail (over it and, when the left looks, L4 down onto it), close; the assist lets go
+//! and retreats (A1); the left draws the tail up and back over its flap (L5, L6) with the right going
+//! along (R3, R4), running the knot down onto the wound; then the ends are pulled apart until the set
+//! force (R5 the right's pull) and let go.
 
 use knotlab_hw::rig::ArmName;
 use knotlab_hw::skill::{ForceAction, ForceEvent, Skill};
@@ -1015,9 +1016,10 @@ fn finish_throw(
     assist.wait_until(grasped_s + d(0.2) + pause[5]);
     assist.go(Path::To(at(geometry.assist_retreat_m)), d(1.2));
 
-    // L4 and R3. First the left draws the tail back out of its coils, along its jaws, while the right
-    // follows a little so that the coils stay loose and slide off the jaws onto the tail; then both run
-    // the knot down onto the wound and pull the ends apart until the set force, and let go.
+    // The pulls (L5, L6 and R3-R5 of the shipped pattern). First the left draws the tail back out of
+    // its coils, along its jaws, while the right follows a little so that the coils stay loose and
+    // slide off the jaws onto the tail; then both run the knot down onto the wound and pull the ends
+    // apart until the set force, and let go.
     let mut draw_s = assist.time_s().max(grasped_s + d(0.4));
     if !geometry.right_before_draw_m.is_empty() {
         right.wait_until(draw_s);
