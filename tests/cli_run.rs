@@ -88,3 +88,20 @@ fn the_canonical_demonstration_replayed_at_its_own_stitch_ties_the_knot() {
     assert!(r["wound_gap_after_release_m"].as_f64().is_some_and(|g| g < 0.0015), "{r}");
     assert_eq!(r["preview"]["passed"], true, "{r}");
 }
+
+#[test]
+fn the_skill_learned_from_the_canonical_demonstration_ties_the_knot_at_its_own_stitch() {
+    // Issue 10: learned by the shipped pattern and carried to the stitch by the paper's method (the
+    // winding regenerated through the fluid, the pull force-controlled), the skill ties the knot the
+    // evaluator accepts. Before session 50 it did not: the jaws were commanded by direction alone (the
+    // needle torn out of the right's jaws, 17.4 N), and the pulls were one force-controlled primitive
+    // that opened the jaws at the draw's friction (no knot).
+    let (code, r) = json(&["run", "--method", "fluid", "--seed", "0", "--json"]);
+    assert_eq!(code, 0, "{r}");
+    assert_eq!(r["success"], true, "{r}");
+    assert_eq!(r["knot"], "surgeons", "{r}");
+    assert!(r["wound_gap_after_release_m"].as_f64().is_some_and(|g| g < 0.0015), "{r}");
+    assert_eq!(r["preview"]["passed"], true, "{r}");
+    let events = r["events"].as_array().unwrap();
+    assert!(!events.iter().any(|e| e.as_str().unwrap().starts_with("Slipped")), "no grip torn: {r}");
+}
