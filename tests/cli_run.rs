@@ -81,12 +81,7 @@ fn the_canonical_demonstration_replayed_at_its_own_stitch_ties_the_knot() {
     // recorded tip frame and jaw angle, 0.2 s apart), it leaves the knot the evaluator accepts, as the
     // expert's run that recorded it did. Played back by the jaws' direction alone, the right's jaws
     // rolled otherwise than recorded and the needle was torn out of them (session 49).
-    let (code, r) = json(&["run", "--method", "replay", "--seed", "0", "--json"]);
-    assert_eq!(code, 0, "{r}");
-    assert_eq!(r["success"], true, "{r}");
-    assert_eq!(r["knot"], "surgeons", "{r}");
-    assert!(r["wound_gap_after_release_m"].as_f64().is_some_and(|g| g < 0.0015), "{r}");
-    assert_eq!(r["preview"]["passed"], true, "{r}");
+    ties_at_its_own_stitch("replay");
 }
 
 #[test]
@@ -96,12 +91,19 @@ fn the_skill_learned_from_the_canonical_demonstration_ties_the_knot_at_its_own_s
     // evaluator accepts. Before session 50 it did not: the jaws were commanded by direction alone (the
     // needle torn out of the right's jaws, 17.4 N), and the pulls were one force-controlled primitive
     // that opened the jaws at the draw's friction (no knot).
-    let (code, r) = json(&["run", "--method", "fluid", "--seed", "0", "--json"]);
+    let r = ties_at_its_own_stitch("fluid");
+    let events = r["events"].as_array().unwrap();
+    assert!(!events.iter().any(|e| e.as_str().unwrap().starts_with("Slipped")), "no grip torn: {r}");
+}
+
+/// Seed 0 of `method` at the nominal stitch: the evaluator accepts the knot (a surgeon's knot, the
+/// wound under 1.5 mm after the holding load) and the preview passed. The run's JSON.
+fn ties_at_its_own_stitch(method: &str) -> serde_json::Value {
+    let (code, r) = json(&["run", "--method", method, "--seed", "0", "--json"]);
     assert_eq!(code, 0, "{r}");
     assert_eq!(r["success"], true, "{r}");
     assert_eq!(r["knot"], "surgeons", "{r}");
     assert!(r["wound_gap_after_release_m"].as_f64().is_some_and(|g| g < 0.0015), "{r}");
     assert_eq!(r["preview"]["passed"], true, "{r}");
-    let events = r["events"].as_array().unwrap();
-    assert!(!events.iter().any(|e| e.as_str().unwrap().starts_with("Slipped")), "no grip torn: {r}");
+    r
 }

@@ -198,6 +198,26 @@ fn the_knowledge_base_file_round_trips_and_refuses_bad_files() {
     let e =
         parse_knowledge_base(&text.replacen(&version, "\"format_version\": 9", 1), "kb.json").unwrap_err();
     assert!(e.to_string().starts_with("kb.json:0: format_version:"), "{e}");
+    // A path key's frame that is no rotation is named, not commanded.
+    let mut value = serde_json::to_value(&kb).unwrap();
+    value["instruments"][1]["path"][4]["quaternion_xyzw"] = serde_json::json!([0.0, 0.0, 0.0, 0.0]);
+    let e = parse_knowledge_base(&serde_json::to_string_pretty(&value).unwrap(), "kb.json").unwrap_err();
+    assert!(
+        e.to_string().starts_with(
+            "kb.json:0: instruments[1].path[4].quaternion_xyzw: [0.0, 0.0, 0.0, 0.0] is not a unit quaternion"
+        ),
+        "{e}"
+    );
+    // A version 2 file (path keys without frames) still reads.
+    let mut v2 = kb.clone();
+    v2.format_version = 2;
+    v2.instruments.iter_mut().flat_map(|i| &mut i.path).for_each(|k| k.quaternion_xyzw = None);
+    let text2 = serde_json::to_string_pretty(&v2).unwrap();
+    assert!(text2.matches("quaternion_xyzw").count() < text.matches("quaternion_xyzw").count(), "no frames");
+    assert!(
+        parse_knowledge_base(&text2, "v2.json").unwrap() == v2,
+        "a version 2 file reads as it was written"
+    );
     // A version 1 file (no jaw points, paths or dependencies) still reads.
     let mut old = kb.clone();
     old.format_version = 1;

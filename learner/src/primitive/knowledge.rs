@@ -92,7 +92,7 @@ pub fn parse_knowledge_base(text: &str, file: &str) -> Result<KnowledgeBase, Kno
         }
     }
     let mut deserializer = serde_json::Deserializer::from_str(text);
-    serde_path_to_error::deserialize(&mut deserializer).map_err(|e| {
+    let kb: KnowledgeBase = serde_path_to_error::deserialize(&mut deserializer).map_err(|e| {
         let mut field = e.path().to_string();
         let inner = e.into_inner();
         // A primitive is tagged by its type, which hides the field inside it: find it again.
@@ -100,7 +100,22 @@ pub fn parse_knowledge_base(text: &str, file: &str) -> Result<KnowledgeBase, Kno
             field = format!("{field}.{inside}");
         }
         invalid(inner.line(), &field, inner.to_string())
-    })
+    })?;
+    // The path keys' frames are commanded as they are: each must be a unit quaternion.
+    for (i, ip) in kb.instruments.iter().enumerate() {
+        for (k, key) in ip.path.iter().enumerate() {
+            let Some(q) = key.quaternion_xyzw else { continue };
+            let n = q.iter().map(|x| x * x).sum::<f64>().sqrt();
+            if (n - 1.0).abs() > 1e-6 || n.is_nan() {
+                return Err(invalid(
+                    0,
+                    &format!("instruments[{i}].path[{k}].quaternion_xyzw"),
+                    format!("{q:?} is not a unit quaternion (norm {n})"),
+                ));
+            }
+        }
+    }
+    Ok(kb)
 }
 
 /// For an error at `instruments[i].primitives[j]`, the path of the offending field inside that

@@ -16,7 +16,7 @@
 //! jaws move as the demonstration's did. The tip keeps the demonstrated frame ([`Aim::Frame`]): a
 //! moved path key its own, a 2D path's point the frame the demonstration had as far along its path, a
 //! synchronized point its sample's, a straight line turning from the frame it starts with to its end
-//! pose's.
+//! pose's as the demonstration turned along its path.
 
 use nalgebra::{Isometry3, UnitQuaternion, Vector2, Vector3};
 
@@ -195,7 +195,6 @@ fn turn_at(turn: &[(f64, f64)], u: f64) -> f64 {
 
 /// Keys along the straight line `from -> to` from `t0` over `duration_s`, progressing by the profile
 /// and turning the tip as the demonstration did along its path (`turn`, see [`demonstrated_turn`]).
-#[allow(clippy::too_many_arguments)]
 fn line(
     track: &mut TrackKeys,
     profile: &[ProfilePoint],
