@@ -74,7 +74,8 @@ pub struct RopeParams {
     pub contact_passes: usize,
     /// Velocity damping, 1/s.
     pub damping_per_s: f64,
-    /// Pairs of segments closer than this beyond touching are watched for contact through a step, m.
+    /// Pairs of segments closer than this beyond touching are watched for contact, m; they are
+    /// sought anew once a particle has moved half this since they were last sought.
     pub contact_margin_m: f64,
     /// Bending stiffness EI, N m² (0: a string). Each joint between two segments resists its
     /// turn as a compliant XPBD constraint on the difference of the segments' directions. With its
@@ -126,8 +127,17 @@ pub struct Ropes {
     pub strands: Vec<Range<usize>>,
     /// Segments (particle pairs) and their rest lengths, m.
     segments: Vec<([usize; 2], f64)>,
-    /// Segment pairs near enough to touch within a step (found at its start).
+    /// Segment pairs near enough to touch (found anew at a step's start once a particle has moved
+    /// half the contact margin since they were last found).
     candidates: Vec<(usize, usize)>,
+    /// Which candidates may touch ([`contact::Watch`]).
+    watch: contact::Watch,
+    /// The positions at the start of the substep (kept to spare allocating them anew).
+    x_prev: Vec<Vector3<f64>>,
+    /// The direct stretch solver's working space.
+    stretch_scratch: stretch::Scratch,
+    /// Each segment's rest length, m (as `segments`).
+    rest_m: Vec<f64>,
     /// Contacts that touched in the last substep.
     pub contacts_last: usize,
 }
@@ -144,6 +154,10 @@ impl Ropes {
             strands: Vec::new(),
             segments: Vec::new(),
             candidates: Vec::new(),
+            watch: contact::Watch::default(),
+            x_prev: Vec::new(),
+            stretch_scratch: stretch::Scratch::default(),
+            rest_m: Vec::new(),
             contacts_last: 0,
         }
     }
@@ -176,6 +190,7 @@ impl Ropes {
         for i in start..range.end.saturating_sub(1) {
             let rest = (self.x[i + 1] - self.x[i]).norm();
             self.segments.push(([i, i + 1], rest));
+            self.rest_m.push(rest);
         }
         self.strands.push(range.clone());
         range
@@ -208,10 +223,15 @@ impl Ropes {
 
     /// Advances by `dt_s` in `surroundings`, applying `force_n` throughout.
     pub fn step_in(&mut self, dt_s: f64, surroundings: &mut dyn Surroundings) {
-        self.find_candidates();
+        let mut watch = std::mem::take(&mut self.watch);
+        if !watch.still_covers(self) {
+            self.find_candidates();
+            watch.found(self);
+        }
+        let mut x_prev = std::mem::take(&mut self.x_prev);
         let h = dt_s / self.params.substeps as f64;
         for _ in 0..self.params.substeps {
-            let x_prev = self.x.clone();
+            x_prev.clone_from(&self.x);
             for i in 0..self.x.len() {
                 if self.w[i] > 0.0 {
                     self.v[i] += self.force_n[i] * (self.w[i] * h);
@@ -224,8 +244,8 @@ impl Ropes {
             if self.params.bending_stiffness_n_m2 > 0.0 {
                 self.solve_bending(h);
             }
-            for _ in 0..self.params.contact_passes.max(1) {
-                self.contacts_last = contact::solve_contacts(self, &x_prev);
+            for pass in 0..self.params.contact_passes.max(1) {
+                self.contacts_last = contact::solve_contacts(self, &mut watch, &x_prev, pass == 0);
             }
             surroundings.after(self, &x_prev, h);
             let damp = 1.0 / (1.0 + h * self.params.damping_per_s);
@@ -233,6 +253,8 @@ impl Ropes {
                 *v = (x - x_prev) / h * damp;
             }
         }
+        self.watch = watch;
+        self.x_prev = x_prev;
     }
 
     /// One XPBD pass over the joints: at joint `b` between segments `a b` and `b c` (rest lengths
@@ -241,15 +263,18 @@ impl Ropes {
     /// `|C|/l̄` over `l̄`. The constraint is linear in the positions, so one pass from `λ = 0` is a
     /// substep's implicit spring.
     fn solve_bending(&mut self, h_s: f64) {
-        for range in self.strands.clone() {
+        let ei = self.params.bending_stiffness_n_m2;
+        for (s, range) in self.strands.iter().enumerate() {
+            // Strand s's segments follow those of the strands before it, one fewer than their
+            // particles each: the segment from particle a is a - s.
             for b in range.start + 1..range.end.saturating_sub(1) {
                 let (a, c) = (b - 1, b + 1);
-                let l1 = self.segments[a - self.segment_offset(range.start)].1;
-                let l2 = self.segments[b - self.segment_offset(range.start)].1;
+                let l1 = self.rest_m[a - s];
+                let l2 = self.rest_m[b - s];
                 if l1 <= 0.0 || l2 <= 0.0 {
                     continue;
                 }
-                let stiffness = self.params.bending_stiffness_n_m2 / (0.5 * (l1 + l2));
+                let stiffness = ei / (0.5 * (l1 + l2));
                 let compliance = 1.0 / (stiffness * h_s * h_s);
                 let g = [1.0 / l1, -(1.0 / l1 + 1.0 / l2), 1.0 / l2];
                 let p = [a, b, c];
@@ -261,12 +286,6 @@ impl Ropes {
                 }
             }
         }
-    }
-
-    /// How many strands precede the one starting at particle `start`: its segments' indices are
-    /// its particles' less this.
-    fn segment_offset(&self, start: usize) -> usize {
-        self.strands.iter().take_while(|r| r.start < start).count()
     }
 
     fn solve_stretch(&mut self, h_s: f64) {
@@ -281,13 +300,12 @@ impl Ropes {
                 // particles each.
                 let first_segment = range.start - s;
                 let count = range.len().saturating_sub(1);
-                let rest: Vec<f64> =
-                    self.segments[first_segment..first_segment + count].iter().map(|(_, r)| *r).collect();
                 singular |= !stretch::project_strand(
                     &mut self.x[range.clone()],
                     &self.w[range.clone()],
-                    &rest,
+                    &self.rest_m[first_segment..first_segment + count],
                     compliance_per_m,
+                    &mut self.stretch_scratch,
                 );
             }
             if !singular {

@@ -15,6 +15,9 @@ use rapier3d::prelude::*;
 
 use super::{Ropes, Surroundings};
 
+/// Particles boxed together when the colliders' candidates are sought.
+const PARTICLES_PER_BOX: usize = 16;
+
 /// A particle held at a point fixed in a body.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Attachment {
@@ -201,8 +204,17 @@ impl RigidContacts {
         self.clear_impulses();
         let substeps = ropes.params.substeps.max(1);
         let candidates = self.candidates(ropes, dt_s, bodies, colliders);
-        let mut among =
-            Among { contacts: self, bodies, colliders, dt_s, substeps, substep: 0, more, candidates };
+        let mut among = Among {
+            contacts: self,
+            bodies,
+            colliders,
+            dt_s,
+            substeps,
+            substep: 0,
+            more,
+            candidates,
+            poses: Vec::new(),
+        };
         ropes.step_in(dt_s, &mut among);
     }
 
@@ -225,6 +237,18 @@ impl RigidContacts {
                 *h = true;
             }
         }
+        // The box round each run of particles, so that a collider's box is tested against the
+        // particles only where it meets theirs.
+        let runs: Vec<(Range<usize>, Aabb)> = (0..ropes.x.len())
+            .step_by(PARTICLES_PER_BOX)
+            .map(|start| {
+                let run = start..(start + PARTICLES_PER_BOX).min(ropes.x.len());
+                let points = &ropes.x[run.clone()];
+                let (lo, hi) =
+                    points.iter().fold((points[0], points[0]), |(lo, hi), p| (lo.inf(p), hi.sup(p)));
+                (run, Aabb::new(v(&lo), v(&hi)))
+            })
+            .collect();
         self.colliders
             .iter()
             .map(|(handle, _)| {
@@ -233,7 +257,9 @@ impl RigidContacts {
                 let local = collider.position_wrt_parent().copied().unwrap_or_default();
                 let (start, end) = (body.position() * local, pose_after(body, dt_s) * local);
                 let aabb = collider.shape().compute_swept_aabb(&start, &end).loosened(reach);
-                (0..ropes.x.len())
+                runs.iter()
+                    .filter(|(_, run_box)| aabb.intersects(run_box))
+                    .flat_map(|(run, _)| run.clone())
                     .filter(|p| !held[*p] && aabb.contains_local_point(v(&ropes.x[*p])))
                     .collect()
             })
@@ -252,13 +278,39 @@ struct Among<'a> {
     more: &'a mut dyn Surroundings,
     /// The particles that may touch each collider this step ([`RigidContacts::candidates`]).
     candidates: Vec<Vec<usize>>,
+    /// The poses of the bodies asked for so far this step.
+    poses: Vec<BodyPoses>,
+}
+
+/// A body's poses through the step: where it starts and ends, and the last two asked for between
+/// (each substep asks for its end, which is the next one's start).
+struct BodyPoses {
+    body: RigidBodyHandle,
+    start: Pose,
+    end: Pose,
+    /// Fractions of the step and the poses there, the latest first.
+    at: [(f64, Pose); 2],
 }
 
 impl Among<'_> {
     /// The pose of `body` a fraction `f` of the way through the step.
-    fn body_pose(&self, body: RigidBodyHandle, f: f64) -> Option<Pose> {
-        let body = self.bodies.get(body)?;
-        Some(body.position().lerp(&pose_after(body, self.dt_s), f))
+    fn body_pose(&mut self, body: RigidBodyHandle, f: f64) -> Option<Pose> {
+        let k = match self.poses.iter().position(|p| p.body == body) {
+            Some(k) => k,
+            None => {
+                let b = self.bodies.get(body)?;
+                let (start, end) = (*b.position(), pose_after(b, self.dt_s));
+                self.poses.push(BodyPoses { body, start, end, at: [(f64::NAN, start); 2] });
+                self.poses.len() - 1
+            }
+        };
+        let poses = &mut self.poses[k];
+        if let Some((_, pose)) = poses.at.iter().find(|(g, _)| g.to_bits() == f.to_bits()) {
+            return Some(*pose);
+        }
+        let pose = poses.start.lerp(&poses.end, f);
+        poses.at = [(f, pose), poses.at[0]];
+        Some(pose)
     }
 
     /// Each grip's attachment points give way along the rope where holding them would pull it
@@ -333,7 +385,7 @@ impl Surroundings for Among<'_> {
         let r = ropes.params.radius_m;
         let friction = self.contacts.friction;
         let mut touching = 0;
-        let colliders = self.contacts.colliders.clone();
+        let colliders = std::mem::take(&mut self.contacts.colliders);
         for (k, (handle, exempt)) in colliders.iter().enumerate() {
             let Some(collider) = self.colliders.get(*handle) else { continue };
             let Some(body) = collider.parent() else { continue };
@@ -389,9 +441,11 @@ impl Surroundings for Among<'_> {
             }
             self.candidates[k] = candidates;
         }
+        self.contacts.colliders = colliders;
         self.contacts.contacts_last = touching;
         self.give_way_in_grips(ropes, h_s, f1);
-        for (k, a) in self.contacts.attachments.clone().into_iter().enumerate() {
+        for k in 0..self.contacts.attachments.len() {
+            let a = self.contacts.attachments[k];
             let Some(pose) = self.body_pose(a.body, f1) else { continue };
             let target = na(pose.transform_point(v(&a.local_m)));
             let dx = target - ropes.x[a.particle];

@@ -6,6 +6,16 @@
 
 use nalgebra::Vector3;
 
+/// Working space for [`project_strand`], kept between calls to spare allocating it.
+#[derive(Clone, Debug, Default)]
+pub struct Scratch {
+    dir: Vec<Vector3<f64>>,
+    rhs: Vec<f64>,
+    diag: Vec<f64>,
+    off: Vec<f64>,
+    c_prime: Vec<f64>,
+}
+
 /// Projects the strand `x` (its particles, in order; `w` their inverse masses, `rest_m` the rest
 /// length of each segment) once towards every segment at its rest length, moving the particles
 /// as little as their masses allow; with `compliance_per_m` > 0 each segment is a compliant XPBD
@@ -13,13 +23,20 @@ use nalgebra::Vector3;
 /// to a pull as a spring would.
 /// Returns false, moving nothing, where the system is singular (a denominator vanished or a
 /// multiplier came out non-finite); the caller then falls back to Gauss-Seidel.
-pub fn project_strand(x: &mut [Vector3<f64>], w: &[f64], rest_m: &[f64], compliance_per_m: f64) -> bool {
+pub fn project_strand(
+    x: &mut [Vector3<f64>],
+    w: &[f64],
+    rest_m: &[f64],
+    compliance_per_m: f64,
+    scratch: &mut Scratch,
+) -> bool {
     let n = rest_m.len();
     if n == 0 {
         return true;
     }
-    let mut dir = Vec::with_capacity(n);
-    let mut rhs = Vec::with_capacity(n);
+    let Scratch { dir, rhs, diag, off, c_prime } = scratch;
+    dir.clear();
+    rhs.clear();
     for k in 0..n {
         let d = x[k + 1] - x[k];
         let len = d.norm();
@@ -27,8 +44,10 @@ pub fn project_strand(x: &mut [Vector3<f64>], w: &[f64], rest_m: &[f64], complia
         rhs.push(-(len - rest_m[k]));
     }
     // diag[k] = w_k + w_k+1; off[k] (between k and k + 1) = -w_k+1 (dir_k . dir_k+1).
-    let mut diag: Vec<f64> = (0..n).map(|k| w[k] + w[k + 1] + rest_m[k] * compliance_per_m).collect();
-    let off: Vec<f64> = (0..n.saturating_sub(1)).map(|k| -w[k + 1] * dir[k].dot(&dir[k + 1])).collect();
+    diag.clear();
+    diag.extend((0..n).map(|k| w[k] + w[k + 1] + rest_m[k] * compliance_per_m));
+    off.clear();
+    off.extend((0..n.saturating_sub(1)).map(|k| -w[k + 1] * dir[k].dot(&dir[k + 1])));
     for k in 0..n {
         if diag[k] == 0.0 {
             // Both ends pinned: nothing can move; its multiplier is zero.
@@ -36,19 +55,19 @@ pub fn project_strand(x: &mut [Vector3<f64>], w: &[f64], rest_m: &[f64], complia
             rhs[k] = 0.0;
         }
     }
-    // Forward elimination.
-    let mut c_prime = vec![0.0; n];
-    let mut d_prime = vec![0.0; n];
+    // Forward elimination (the right-hand side becomes d', in place).
+    c_prime.clear();
+    c_prime.resize(n, 0.0);
     c_prime[0] = if n > 1 { off[0] / diag[0] } else { 0.0 };
-    d_prime[0] = rhs[0] / diag[0];
+    rhs[0] /= diag[0];
     for k in 1..n {
         let lower = off[k - 1];
         let denom = diag[k] - lower * c_prime[k - 1];
         c_prime[k] = if k + 1 < n { off[k] / denom } else { 0.0 };
-        d_prime[k] = (rhs[k] - lower * d_prime[k - 1]) / denom;
+        rhs[k] = (rhs[k] - lower * rhs[k - 1]) / denom;
     }
     // Back substitution: the multipliers.
-    let mut lambda = d_prime;
+    let lambda = rhs;
     for k in (0..n.saturating_sub(1)).rev() {
         lambda[k] -= c_prime[k] * lambda[k + 1];
     }
@@ -83,7 +102,7 @@ mod tests {
         let rest = [1.0; 4];
         // Newton's method: the error falls 0.11, 0.021, 6e-4, 4e-7, 2e-13.
         for _ in 0..5 {
-            assert!(project_strand(&mut x, &w, &rest, 0.0));
+            assert!(project_strand(&mut x, &w, &rest, 0.0, &mut Scratch::default()));
         }
         assert_eq!(x[0], Vector3::zeros());
         for k in 0..4 {
