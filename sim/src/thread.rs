@@ -67,6 +67,10 @@ pub struct ThreadParams {
     /// the rope is inextensible. The chain's joints ignore it.
     #[serde(default)]
     pub axial_stiffness_n: Option<f64>,
+    /// The rope's substeps per step ([`crate::rope::RopeParams::substeps`]); left out, the rope's
+    /// default (20). The chain ignores it.
+    #[serde(default)]
+    pub rope_substeps: Option<usize>,
 }
 
 /// How the suture is simulated.
@@ -97,6 +101,7 @@ impl Default for ThreadParams {
             friction: 0.3,
             friction_on_itself: None,
             axial_stiffness_n: None,
+            rope_substeps: None,
             linear_damping_per_s: 1.0,
             twist_free: true,
             model: ThreadModel::Chain,

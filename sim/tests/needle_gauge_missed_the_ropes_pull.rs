@@ -6,47 +6,82 @@
 //! its set force. Now the gauge of jaws holding the needle adds what the rope did to the needle.
 
 use knotlab_hw::rig::{ArmName, Rig};
+use knotlab_sim::grasp::GraspEvent;
 use knotlab_sim::scene::parse_scene;
 use knotlab_sim::world::{JAW_CENTRE_OFFSET_M, SimWorld};
 use nalgebra::{Point3, Vector3};
 
-#[test]
-fn the_right_reads_the_long_ends_pull_on_the_needle_it_holds() {
+/// The right draws a 0.1 m thread's long end away from the wound at 20 mm/s for 2 s while the
+/// assist holds the tail, the rope in `rope_substeps` substeps a step (`None`: the shipped scene's):
+/// every step's time and the right's and the assist's filtered gauges, N, and the time the assist's
+/// grip first slipped, if it did.
+fn drawn_taut(rope_substeps: Option<usize>) -> (Vec<(f64, f64, f64)>, Option<f64>) {
     let mut scene =
         parse_scene(include_str!("../../scenarios/default.toml"), "default.toml").expect("the shipped scene");
     // A short long end, so that a short draw makes it taut (the tail's 31 mm as in the scene).
     scene.thread.length_m = 0.1;
+    if rope_substeps.is_some() {
+        scene.thread.rope_substeps = rope_substeps;
+    }
     let mut w = SimWorld::new(scene, Rig::shipped().expect("the rig")).expect("the rope scene builds");
     let across = w.tissue.world_from_tissue.rotation * Vector3::y();
     let tip = w.world_from_tip(ArmName::Right);
     let start = (tip * Point3::new(0.0, 0.0, -JAW_CENTRE_OFFSET_M)).coords;
     let dt_s = w.config.solver.dt_s;
-    let (mut right_n, mut assist_n): (f64, f64) = (0.0, 0.0);
-    let mut at_largest = (0.0, 0.0);
-    // The right draws the long end away from the wound at 20 mm/s for 2 s; the assist holds the tail.
+    let mut gauges = Vec::new();
     for k in 1..=(2.0 / dt_s) as usize {
         let to = start - across * (0.02 * k as f64 * dt_s);
         let joints = w.joints_for_jaw_centre(ArmName::Right, &to).expect("within reach");
         w.command(ArmName::Right, joints);
         w.step().expect("healthy");
-        let (r, a) =
-            (w.arm(ArmName::Right).filtered_force_n.norm(), w.arm(ArmName::Assist).filtered_force_n.norm());
-        if a > assist_n {
-            at_largest = (r, a);
-        }
-        right_n = right_n.max(r);
-        assist_n = assist_n.max(a);
+        gauges.push((
+            w.time_s,
+            w.arm(ArmName::Right).filtered_force_n.norm(),
+            w.arm(ArmName::Assist).filtered_force_n.norm(),
+        ));
     }
-    println!(
-        "largest gauges: right {right_n:.2} N, assist {assist_n:.2} N; at the assist's largest {:.2} N and {:.2} N; {:?}",
-        at_largest.0, at_largest.1, w.events
-    );
-    // The thread drawn taut: the assist feels it through the stitch, the right at least as much (the
-    // stitch's friction lies between them).
+    let slipped = w.events.iter().find_map(|e| match e {
+        GraspEvent::Slipped { arm: ArmName::Assist, time_s, .. } => Some(*time_s),
+        _ => None,
+    });
+    (gauges, slipped)
+}
+
+#[test]
+fn the_right_reads_the_long_ends_pull_on_the_needle_it_holds() {
+    // At the rope's own 20 substeps the draw is smooth: at the moment the assist reads most, the
+    // right reads about as much (the stitch's friction lies between them).
+    let (gauges, _) = drawn_taut(Some(20));
+    let &(_, right_then_n, assist_n) =
+        gauges.iter().max_by(|a, b| a.2.total_cmp(&b.2)).expect("the draw was stepped");
     assert!(assist_n > 0.5, "the long end never drew on the tail: {assist_n} N");
-    let (right_then_n, assist_then_n) = at_largest;
     assert!(
-        right_then_n > 0.8 * assist_then_n && right_then_n < assist_then_n + 1.5,
-        "the right read {right_then_n:.2} N to the assist's {assist_then_n:.2} N"
+        right_then_n > 0.8 * assist_n && right_then_n < assist_n + 1.5,
+        "the right read {right_then_n:.2} N to the assist's {assist_n:.2} N"
+    );
+}
+
+#[test]
+fn at_the_shipped_scenes_substeps_the_right_reads_the_pull_too() {
+    // At the shipped scene's coarser substeps the assist's grip gives way in a jolt (2.7 N at one
+    // step, the right reading 2.0 N then; session 51), so the two are compared through the taut draw
+    // before it: the medians of both gauges while the assist reads over 0.5 N.
+    let (gauges, slipped) = drawn_taut(None);
+    let taut: Vec<&(f64, f64, f64)> =
+        gauges.iter().filter(|(t, _, a)| *a > 0.5 && slipped.is_none_or(|s| *t < s)).collect();
+    assert!(taut.len() > 100, "the thread was taut for {} steps only", taut.len());
+    let median = |pick: fn(&(f64, f64, f64)) -> f64| {
+        let mut values: Vec<f64> = taut.iter().map(|g| pick(g)).collect();
+        values.sort_by(f64::total_cmp);
+        values[values.len() / 2]
+    };
+    let (right_n, assist_n) = (median(|g| g.1), median(|g| g.2));
+    println!(
+        "taut for {} steps: the right's median {right_n:.2} N, the assist's {assist_n:.2} N",
+        taut.len()
+    );
+    assert!(
+        right_n > 0.8 * assist_n && right_n < assist_n + 1.5,
+        "the right read {right_n:.2} N to the assist's {assist_n:.2} N"
     );
 }

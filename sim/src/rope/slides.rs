@@ -42,6 +42,17 @@ pub struct SlideStitch {
     /// The stitch points [exit, exit deep, entry deep, entry]: which flap, where in its rest frame
     /// (world frame at rest), and where the rope passes (a particle's index plus a fraction).
     points: [(usize, Vector3<f64>, f64); 4],
+    /// The flaps' joints, disabled while the slides move the flaps.
+    joints: [ImpulseJointHandle; 2],
+}
+
+/// Enables or disables the joints.
+fn enable_joints(physics: &mut crate::physics::Physics, joints: &[ImpulseJointHandle], enabled: bool) {
+    for joint in joints {
+        if let Some(j) = physics.impulse_joints.get_mut(*joint, true) {
+            j.data.set_enabled(enabled);
+        }
+    }
 }
 
 impl SlideStitch {
@@ -61,6 +72,9 @@ impl SlideStitch {
             Slide { body, rest, outward, u_m: 0.0, v_m_s: 0.0 }
         };
         let slides = [slide(Flap::B, physics), slide(Flap::A, physics)];
+        // The slides take the place of the flaps' joints (which Rapier would otherwise go on
+        // solving between the flaps and the tissue's base, neither dynamic, every step).
+        enable_joints(physics, &tissue.joints, false);
         let last = ropes.x.len() - 1;
         let point = |flap: Flap, at: Vector3<f64>| {
             let nearest = (0..ropes.x.len())
@@ -69,7 +83,14 @@ impl SlideStitch {
             (flap.index(), at, nearest_on_rope(ropes, &at, nearest, last))
         };
         let points = tissue.stitch_points_m(physics).map(|(flap, at)| point(flap, at));
-        Self { tissue: *params, slides, load_n: [0.0; 2], slide_friction_n: 0.0, points }
+        Self {
+            tissue: *params,
+            slides,
+            load_n: [0.0; 2],
+            slide_friction_n: 0.0,
+            points,
+            joints: tissue.joints,
+        }
     }
 
     /// Where the rope passes the exit (B) or the entry (A): a particle's index plus a fraction.
@@ -95,13 +116,15 @@ impl SlideStitch {
         }
     }
 
-    /// Takes the thread out: the flaps become Rapier's dynamic bodies again, at rest where they are.
+    /// Takes the thread out: the flaps become Rapier's dynamic bodies again, at rest where they are,
+    /// on their joints.
     pub fn release(self, physics: &mut crate::physics::Physics) {
         for slide in &self.slides {
             let body = &mut physics.bodies[slide.body];
             body.set_body_type(RigidBodyType::Dynamic, true);
             body.set_linvel(Vector::ZERO, true);
         }
+        enable_joints(physics, &self.joints, true);
     }
 }
 

@@ -53,7 +53,7 @@ const TOUCH_SLOP_M: f64 = 1e-4;
 /// The rope's material from the scene's thread: its radius and friction on itself (kinetic 0.8 of
 /// the static), its bending stiffness the chain's per joint times a segment's length (the nominal
 /// scene's 2e-5 N m/rad over 3.125 mm: 6.25e-8 N m²), its damping the chain's, two contact passes a
-/// substep.
+/// substep, its substeps the scene's `thread.rope_substeps` (20 if left out).
 pub fn rope_params(thread: &ThreadParams) -> RopeParams {
     let friction = thread.friction_on_itself.unwrap_or(thread.friction);
     RopeParams {
@@ -63,6 +63,7 @@ pub fn rope_params(thread: &ThreadParams) -> RopeParams {
         bending_stiffness_n_m2: thread.bend_stiffness_n_m_per_rad * thread.segment_length_m(),
         damping_per_s: thread.linear_damping_per_s,
         contact_passes: 2,
+        substeps: thread.rope_substeps.unwrap_or(RopeParams::default().substeps),
         axial_stiffness_n: thread.axial_stiffness_n.unwrap_or(f64::INFINITY),
         ..RopeParams::default()
     }

@@ -396,6 +396,9 @@ impl SceneConfig {
         if let Some(ea) = t.axial_stiffness_n {
             c.range("thread.axial_stiffness_n", ea, 1.0, 1e6);
         }
+        if let Some(n) = t.rope_substeps {
+            c.count("thread.rope_substeps", n, 1, 1000);
+        }
         c.range("thread.linear_damping_per_s", t.linear_damping_per_s, 0.0, 100.0);
         if t.radius_m * 2.0 >= t.length_m / t.segments.max(1) as f64 {
             c.0.push((
