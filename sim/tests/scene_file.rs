@@ -58,7 +58,10 @@ fn a_missing_key_is_named() {
 fn out_of_range_values_are_all_named() {
     let text = CHAIN
         .replace("dt_s = 0.001", "dt_s = 0.5")
-        .replace("segments = 80", "segments = 2\nfriction_on_itself = -0.5\naxial_stiffness_n = 0.0\nrope_substeps = 0")
+        .replace(
+            "segments = 80",
+            "segments = 2\nfriction_on_itself = -0.5\naxial_stiffness_n = 0.0\nrope_substeps = 0",
+        )
         .replace("holding_load_n = 0.3", "holding_load_n = -0.3")
         .replace("force_filter_s = 0.02", "force_filter_s = -0.02");
     let text =
