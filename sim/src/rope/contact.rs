@@ -2,11 +2,11 @@
 //! on positions, with Coulomb friction on the substep's relative tangential displacement (Macklin
 //! et al. 2014: below `static_friction` times the push, the slip is undone entirely).
 //!
-//! Of the step's candidate pairs (found at its start, [`super::broad_phase`]) only a few touch; the
-//! rest are passed over without their closest points once it is certain they cannot touch
-//! ([`Watch`]): the gap between two segments shrinks by at most twice the farthest any particle
-//! has moved since the gap was measured. The contacts solved, and so every bit of the result, are
-//! those of solving every candidate.
+//! Of the candidate pairs ([`super::broad_phase`], sought again once a particle has moved half the
+//! contact margin) only a few touch; the rest are passed over without their closest points while it
+//! is certain they cannot touch ([`Watch`]): a pair's gap shrinks by no more than its segments' moves
+//! since it was measured. The contacts solved, and so every bit of the result, are those of solving
+//! every candidate.
 
 use knotlab_hw::geometry::segment_closest_parameters;
 use nalgebra::Vector3;
@@ -81,7 +81,7 @@ impl Watch {
         self.x_ref.clone_from(&ropes.x);
         let none = ropes.segments.len();
         self.particle_segments = vec![[none; 2]; ropes.x.len()];
-        for (k, ([a, b], _)) in ropes.segments.iter().enumerate() {
+        for (k, [a, b]) in ropes.segments.iter().enumerate() {
             self.particle_segments[*a][1] = k;
             self.particle_segments[*b][0] = k;
         }
@@ -95,7 +95,7 @@ impl Watch {
     /// moves.
     fn measure_moves(&mut self, ropes: &Ropes) {
         let mut farthest = 0.0f64;
-        for (k, ([a, b], _)) in ropes.segments.iter().enumerate() {
+        for (k, [a, b]) in ropes.segments.iter().enumerate() {
             let moved_sq = (ropes.x[*a] - self.x_ref[*a])
                 .norm_squared()
                 .max((ropes.x[*b] - self.x_ref[*b]).norm_squared());
@@ -158,8 +158,8 @@ pub(super) fn solve_contacts(
             continue;
         }
         watch.pairs_measured += 1;
-        let ([a, b], _) = ropes.segments[i];
-        let ([c, d], _) = ropes.segments[j];
+        let [a, b] = ropes.segments[i];
+        let [c, d] = ropes.segments[j];
         let (s, t, delta) = closest(ropes, a, b, c, d);
         let dist = delta.norm();
         watch.gap_m[k] = dist - two_r;

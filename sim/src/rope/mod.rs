@@ -125,8 +125,8 @@ pub struct Ropes {
     pub force_n: Vec<Vector3<f64>>,
     /// Each strand's particles.
     pub strands: Vec<Range<usize>>,
-    /// Segments (particle pairs) and their rest lengths, m.
-    segments: Vec<([usize; 2], f64)>,
+    /// Segments (particle pairs).
+    segments: Vec<[usize; 2]>,
     /// Segment pairs near enough to touch (found anew at a step's start once a particle has moved
     /// half the contact margin since they were last found).
     candidates: Vec<(usize, usize)>,
@@ -136,7 +136,8 @@ pub struct Ropes {
     x_prev: Vec<Vector3<f64>>,
     /// The direct stretch solver's working space.
     stretch_scratch: stretch::Scratch,
-    /// Each segment's rest length, m (as `segments`).
+    /// Each segment's rest length, m (as `segments`: the segments of strand `s` from particle `a` on
+    /// are `a - s` on).
     rest_m: Vec<f64>,
     /// Contacts that touched in the last substep.
     pub contacts_last: usize,
@@ -189,7 +190,7 @@ impl Ropes {
         let range = start..self.x.len();
         for i in start..range.end.saturating_sub(1) {
             let rest = (self.x[i + 1] - self.x[i]).norm();
-            self.segments.push(([i, i + 1], rest));
+            self.segments.push([i, i + 1]);
             self.rest_m.push(rest);
         }
         self.strands.push(range.clone());
@@ -313,7 +314,7 @@ impl Ropes {
             }
         }
         for k in 0..self.segments.len() {
-            let ([a, b], rest) = self.segments[k];
+            let ([a, b], rest) = (self.segments[k], self.rest_m[k]);
             let (wa, wb) = (self.w[a], self.w[b]);
             let wsum = wa + wb;
             if wsum == 0.0 {
@@ -336,9 +337,9 @@ impl Ropes {
     /// boxes within two radii and the margin of each other.
     fn find_candidates(&mut self) {
         let reach = self.params.radius_m + 0.5 * self.params.contact_margin_m;
-        let segments: Vec<[usize; 2]> = self.segments.iter().map(|(s, _)| *s).collect();
         let strand_of: Vec<usize> = (0..self.x.len()).map(|p| self.strand_of(p)).collect();
-        self.candidates = broad_phase::candidate_pairs(&self.x, &segments, reach, |i, j| {
+        let segments = &self.segments;
+        self.candidates = broad_phase::candidate_pairs(&self.x, segments, reach, |i, j| {
             let ([a, b], [c, _]) = (segments[i], segments[j]);
             strand_of[a] == strand_of[c] && c <= b + 1
         });
@@ -353,6 +354,7 @@ impl Ropes {
     pub fn max_stretch(&self) -> f64 {
         self.segments
             .iter()
+            .zip(&self.rest_m)
             .map(|([a, b], rest)| ((self.x[*b] - self.x[*a]).norm() - rest) / rest)
             .fold(0.0, f64::max)
     }
