@@ -147,6 +147,9 @@ pub struct SimWorld {
     pub thread_watch: ThreadWatch,
     /// Body of each URDF link with collision geometry (indexed like the rig's tree links).
     pub link_bodies: Vec<Option<RigidBodyHandle>>,
+    /// The moving links that are fixed bodies, posed after each step (with the rope: the arms'
+    /// links before the flange), with their indices in the rig's tree.
+    posed_links: Vec<(usize, RigidBodyHandle)>,
     /// Simulated time, s.
     pub time_s: f64,
     /// Grasp events so far.
@@ -283,8 +286,16 @@ impl SimWorld {
         }
         let poses = rig.tree.root_from_links(&positions);
         let mut link_bodies = vec![None; rig.tree.links.len()];
+        let mut posed_links = Vec::new();
         let mut jaw_colliders: Vec<(String, ColliderHandle)> = Vec::new();
         let mut robot_colliders: Vec<ColliderHandle> = Vec::new();
+        let rope = config.thread.model == ThreadModel::Rope;
+        let flanges: Vec<usize> = arms.iter().map(|a| rig.arm(a.name).flange_link).collect();
+        let on_instrument = |i: usize| {
+            flanges.iter().any(|&flange| {
+                i == flange || rig.tree.path_to(i).iter().any(|&j| rig.tree.joints[j].child == flange)
+            })
+        };
         for (i, link) in rig.tree.links.iter().enumerate() {
             if link.collisions.is_empty() {
                 continue;
@@ -293,14 +304,25 @@ impl SimWorld {
             // The jaws collide with the thread (it can be wound around them), except with what they
             // hold or close on: the contact filter leaves that to the grasp constraint.
             let jaw = ["_jaw_1", "_jaw_2", "_clevis", "_wrist"].iter().any(|s| link.name.ends_with(s));
-            let (builder, group, filter) = if moving {
+            // With the rope, whose contacts with the links are its own (`crate::rope::rigid`), Rapier
+            // has nothing to do with a moving link but carry the needle in jaws: the links' colliders
+            // stay out of its broad phase, and the arms' own links (before the flange, which hold
+            // nothing) are fixed bodies posed after each step, out of its solver.
+            let posed = rope && moving && !on_instrument(i);
+            let (builder, group, filter) = if moving && !posed {
                 (RigidBodyBuilder::kinematic_position_based(), ROBOT_GROUP, THREAD_GROUP)
+            } else if moving {
+                (RigidBodyBuilder::fixed(), ROBOT_GROUP, THREAD_GROUP)
             } else {
                 (RigidBodyBuilder::fixed(), ENVIRONMENT_GROUP, Group::NONE)
             };
             let body = physics.bodies.insert(builder.pose(to_pose(&poses[i])).build());
+            if posed {
+                posed_links.push((i, body));
+            }
             for c in &link.collisions {
                 let collider = shape_collider(&c.shape)
+                    .enabled(!(rope && moving))
                     .position(to_pose(&c.link_from_shape))
                     .friction(0.8)
                     .active_hooks(if jaw { ActiveHooks::FILTER_CONTACT_PAIRS } else { ActiveHooks::empty() })
@@ -372,6 +394,7 @@ impl SimWorld {
             stitch_events: Vec::new(),
             thread_watch,
             link_bodies,
+            posed_links,
             time_s: 0.0,
             events: Vec::new(),
             config,
@@ -743,6 +766,11 @@ impl SimWorld {
             None if flaps.contains(&h) => "tissue flap".to_owned(),
             None => "rig link".to_owned(),
         })?;
+        for (i, h) in &self.posed_links {
+            let link = &mut self.physics.bodies[*h];
+            let next = continuous_pose(to_pose(&poses[*i]), link.position());
+            link.set_position(next, false);
+        }
         self.time_s += dt;
         self.thread_watch.update(&self.physics, &self.thread, self.config.thread.radius_m, self.time_s);
         let events = self.stitch.follow(&mut self.physics, &self.thread, &self.tissue, self.time_s);

@@ -139,8 +139,55 @@ pub struct Ropes {
     /// Each segment's rest length, m (as `segments`: the segments of strand `s` from particle `a` on
     /// are `a - s` on).
     rest_m: Vec<f64>,
+    /// The bending constraints' constants.
+    bends: Bends,
     /// Contacts that touched in the last substep.
     pub contacts_last: usize,
+}
+
+/// The bending constraints' constants ([`Ropes::solve_bending`]), worked out once for a rope, its
+/// bending stiffness and its substep.
+#[derive(Clone, Debug, Default)]
+struct Bends {
+    /// The bending stiffness's and the substep's bits and the number of segments they were worked
+    /// out for.
+    key: (u64, u64, usize),
+    joints: Vec<Bend>,
+}
+
+/// One joint between two segments `a b` and `b c`: their rest lengths, the turn's gradients and the
+/// compliance over the substep.
+#[derive(Clone, Copy, Debug)]
+struct Bend {
+    p: [usize; 3],
+    l1: f64,
+    l2: f64,
+    g: [f64; 3],
+    compliance: f64,
+}
+
+impl Bends {
+    fn new(ropes: &Ropes, h_s: f64, key: (u64, u64, usize)) -> Self {
+        let ei = ropes.params.bending_stiffness_n_m2;
+        let mut joints = Vec::new();
+        for (s, range) in ropes.strands.iter().enumerate() {
+            // Strand s's segments follow those of the strands before it, one fewer than their
+            // particles each: the segment from particle a is a - s.
+            for b in range.start + 1..range.end.saturating_sub(1) {
+                let (a, c) = (b - 1, b + 1);
+                let l1 = ropes.rest_m[a - s];
+                let l2 = ropes.rest_m[b - s];
+                if l1 <= 0.0 || l2 <= 0.0 {
+                    continue;
+                }
+                let stiffness = ei / (0.5 * (l1 + l2));
+                let compliance = 1.0 / (stiffness * h_s * h_s);
+                let g = [1.0 / l1, -(1.0 / l1 + 1.0 / l2), 1.0 / l2];
+                joints.push(Bend { p: [a, b, c], l1, l2, g, compliance });
+            }
+        }
+        Self { key, joints }
+    }
 }
 
 impl Ropes {
@@ -159,6 +206,7 @@ impl Ropes {
             x_prev: Vec::new(),
             stretch_scratch: stretch::Scratch::default(),
             rest_m: Vec::new(),
+            bends: Bends::default(),
             contacts_last: 0,
         }
     }
@@ -264,27 +312,18 @@ impl Ropes {
     /// `|C|/l̄` over `l̄`. The constraint is linear in the positions, so one pass from `λ = 0` is a
     /// substep's implicit spring.
     fn solve_bending(&mut self, h_s: f64) {
-        let ei = self.params.bending_stiffness_n_m2;
-        for (s, range) in self.strands.iter().enumerate() {
-            // Strand s's segments follow those of the strands before it, one fewer than their
-            // particles each: the segment from particle a is a - s.
-            for b in range.start + 1..range.end.saturating_sub(1) {
-                let (a, c) = (b - 1, b + 1);
-                let l1 = self.rest_m[a - s];
-                let l2 = self.rest_m[b - s];
-                if l1 <= 0.0 || l2 <= 0.0 {
-                    continue;
-                }
-                let stiffness = ei / (0.5 * (l1 + l2));
-                let compliance = 1.0 / (stiffness * h_s * h_s);
-                let g = [1.0 / l1, -(1.0 / l1 + 1.0 / l2), 1.0 / l2];
-                let p = [a, b, c];
-                let turn = (self.x[c] - self.x[b]) / l2 - (self.x[b] - self.x[a]) / l1;
-                let weight: f64 = (0..3).map(|k| self.w[p[k]] * g[k] * g[k]).sum();
-                let dlambda = -turn / (weight + compliance);
-                for k in 0..3 {
-                    self.x[p[k]] += dlambda * (self.w[p[k]] * g[k]);
-                }
+        let key = (self.params.bending_stiffness_n_m2.to_bits(), h_s.to_bits(), self.rest_m.len());
+        if self.bends.key != key {
+            self.bends = Bends::new(self, h_s, key);
+        }
+        for bend in &self.bends.joints {
+            let [a, b, c] = bend.p;
+            let g = bend.g;
+            let turn = (self.x[c] - self.x[b]) / bend.l2 - (self.x[b] - self.x[a]) / bend.l1;
+            let weight: f64 = (0..3).map(|k| self.w[bend.p[k]] * g[k] * g[k]).sum();
+            let dlambda = -turn / (weight + bend.compliance);
+            for (p, g) in bend.p.into_iter().zip(g) {
+                self.x[p] += dlambda * (self.w[p] * g);
             }
         }
     }

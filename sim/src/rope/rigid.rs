@@ -387,6 +387,9 @@ impl Surroundings for Among<'_> {
         let mut touching = 0;
         let colliders = std::mem::take(&mut self.contacts.colliders);
         for (k, (handle, exempt)) in colliders.iter().enumerate() {
+            if self.candidates[k].is_empty() {
+                continue;
+            }
             let Some(collider) = self.colliders.get(*handle) else { continue };
             let Some(body) = collider.parent() else { continue };
             let local = collider.position_wrt_parent().copied().unwrap_or_default();
