@@ -71,6 +71,10 @@ pub struct ThreadParams {
     /// default (20). The chain ignores it.
     #[serde(default)]
     pub rope_substeps: Option<usize>,
+    /// How many of its radii apart the rope's particles lie
+    /// ([`crate::rope::suture::SPACING_RADII`] if left out). The chain ignores it.
+    #[serde(default)]
+    pub rope_spacing_radii: Option<f64>,
 }
 
 /// How the suture is simulated.
@@ -80,7 +84,7 @@ pub enum ThreadModel {
     /// `segments` capsules joined by Rapier's joints ([`Thread`]).
     #[default]
     Chain,
-    /// The XPBD rope ([`crate::rope::suture`]): particles 1.5 radii apart, the chain's bending
+    /// The XPBD rope ([`crate::rope::suture`]): particles 1.5 radii apart (`rope_spacing_radii`), the chain's bending
     /// stiffness per joint times its segment's length as the rope's EI, friction solved on positions.
     Rope,
 }
@@ -102,6 +106,7 @@ impl Default for ThreadParams {
             friction_on_itself: None,
             axial_stiffness_n: None,
             rope_substeps: None,
+            rope_spacing_radii: None,
             linear_damping_per_s: 1.0,
             twist_free: true,
             model: ThreadModel::Chain,

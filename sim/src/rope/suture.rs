@@ -20,7 +20,8 @@ use crate::scene::{NeedleParams, TissueParams};
 use crate::thread::{THREAD_GROUP, ThreadParams};
 use crate::tissue::{FLAP_GROUP, Flap, PAD_GROUP, Tissue};
 
-/// The rope's particles lie this many radii apart.
+/// The rope's particles lie this many radii apart unless the scene says otherwise
+/// (`thread.rope_spacing_radii`).
 pub const SPACING_RADII: f64 = 1.5;
 
 /// The suture as a rope in the scene.
@@ -85,7 +86,7 @@ impl SceneRope {
         touched: &[ColliderHandle],
     ) -> (Self, Needle) {
         let params = rope_params(thread);
-        let spacing_m = SPACING_RADII * thread.radius_m;
+        let spacing_m = thread.rope_spacing_radii.unwrap_or(SPACING_RADII) * thread.radius_m;
         let count = ((thread.length_m / spacing_m).floor() as usize + 1).max(2);
         let mut ropes = Ropes::new(params);
         let strand = ropes.add_strand(&crate::layout::chord_points(layout, spacing_m, count));

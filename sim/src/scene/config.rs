@@ -399,6 +399,9 @@ impl SceneConfig {
         if let Some(n) = t.rope_substeps {
             c.count("thread.rope_substeps", n, 1, 1000);
         }
+        if let Some(k) = t.rope_spacing_radii {
+            c.range("thread.rope_spacing_radii", k, 0.5, 4.0);
+        }
         c.range("thread.linear_damping_per_s", t.linear_damping_per_s, 0.0, 100.0);
         if t.radius_m * 2.0 >= t.length_m / t.segments.max(1) as f64 {
             c.0.push((
