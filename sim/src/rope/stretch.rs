@@ -10,9 +10,7 @@ use nalgebra::Vector3;
 #[derive(Clone, Debug, Default)]
 pub struct Scratch {
     dir: Vec<Vector3<f64>>,
-    rhs: Vec<f64>,
-    diag: Vec<f64>,
-    off: Vec<f64>,
+    lambda: Vec<f64>,
     c_prime: Vec<f64>,
 }
 
@@ -23,6 +21,11 @@ pub struct Scratch {
 /// to a pull as a spring would.
 /// Returns false, moving nothing, where the system is singular (a denominator vanished or a
 /// multiplier came out non-finite); the caller then falls back to Gauss-Seidel.
+///
+/// The system, row `k` the segment `k`: `diag_k = w_k + w_k+1` (plus its compliance), the
+/// off-diagonal between `k` and `k + 1` `-w_k+1 (dir_k . dir_k+1)`, the right-hand side the
+/// segment's stretch. Each row is assembled and eliminated as soon as its successor's direction is
+/// known, in one sweep; then one sweep back gives the multipliers.
 pub fn project_strand(
     x: &mut [Vector3<f64>],
     w: &[f64],
@@ -34,44 +37,43 @@ pub fn project_strand(
     if n == 0 {
         return true;
     }
-    let Scratch { dir, rhs, diag, off, c_prime } = scratch;
+    let Scratch { dir, lambda, c_prime } = scratch;
     dir.clear();
-    rhs.clear();
+    lambda.clear();
+    c_prime.clear();
+    // Row k's diagonal and right-hand side, a row with both ends pinned (nothing can move, its
+    // multiplier zero) made the identity.
+    let row = |k: usize, len: f64| {
+        let diag = w[k] + w[k + 1] + rest_m[k] * compliance_per_m;
+        if diag == 0.0 { (1.0, 0.0) } else { (diag, -(len - rest_m[k])) }
+    };
+    // The row waiting for its successor's direction: its diagonal, right-hand side and the
+    // off-diagonal to its predecessor (0 for the first).
+    let mut pending = (0.0, 0.0, 0.0);
     for k in 0..n {
         let d = x[k + 1] - x[k];
         let len = d.norm();
         dir.push(if len > 1e-15 { d / len } else { Vector3::x() });
-        rhs.push(-(len - rest_m[k]));
-    }
-    // diag[k] = w_k + w_k+1; off[k] (between k and k + 1) = -w_k+1 (dir_k . dir_k+1).
-    diag.clear();
-    diag.extend((0..n).map(|k| w[k] + w[k + 1] + rest_m[k] * compliance_per_m));
-    off.clear();
-    off.extend((0..n.saturating_sub(1)).map(|k| -w[k + 1] * dir[k].dot(&dir[k + 1])));
-    for k in 0..n {
-        if diag[k] == 0.0 {
-            // Both ends pinned: nothing can move; its multiplier is zero.
-            diag[k] = 1.0;
-            rhs[k] = 0.0;
+        let (diag, rhs) = row(k, len);
+        if k == 0 {
+            pending = (diag, rhs, 0.0);
+            continue;
         }
+        // Row k - 1 is complete: eliminate it (forward elimination, Thomas's algorithm).
+        let off = -w[k] * dir[k - 1].dot(&dir[k]);
+        let (prev_diag, prev_rhs, lower) = pending;
+        eliminate(c_prime, lambda, prev_diag, prev_rhs, lower, Some(off));
+        pending = (diag, rhs, off);
     }
-    // Forward elimination (the right-hand side becomes d', in place).
-    c_prime.clear();
-    c_prime.resize(n, 0.0);
-    c_prime[0] = if n > 1 { off[0] / diag[0] } else { 0.0 };
-    rhs[0] /= diag[0];
-    for k in 1..n {
-        let lower = off[k - 1];
-        let denom = diag[k] - lower * c_prime[k - 1];
-        c_prime[k] = if k + 1 < n { off[k] / denom } else { 0.0 };
-        rhs[k] = (rhs[k] - lower * rhs[k - 1]) / denom;
-    }
+    let (last_diag, last_rhs, lower) = pending;
+    eliminate(c_prime, lambda, last_diag, last_rhs, lower, None);
     // Back substitution: the multipliers.
-    let lambda = rhs;
-    for k in (0..n.saturating_sub(1)).rev() {
+    let mut finite = lambda[n - 1].is_finite();
+    for k in (0..n - 1).rev() {
         lambda[k] -= c_prime[k] * lambda[k + 1];
+        finite &= lambda[k].is_finite();
     }
-    if !lambda.iter().all(|l| l.is_finite()) {
+    if !finite {
         return false;
     }
     // dx_i = w_i (grad_i C_(i-1) lambda_(i-1) + grad_i C_i lambda_i), grad_i C_i = -dir_i,
@@ -87,6 +89,25 @@ pub fn project_strand(
         x[i] += push * w[i];
     }
     true
+}
+
+/// One row of the forward elimination: the row `diag`, `rhs`, its off-diagonal to the row before,
+/// `lower` (the first row has none; it is not used there), and to the row after, `upper` (`None`
+/// for the last row). Pushes the row's `c'` and `d'`.
+fn eliminate(
+    c_prime: &mut Vec<f64>,
+    d_prime: &mut Vec<f64>,
+    diag: f64,
+    rhs: f64,
+    lower: f64,
+    upper: Option<f64>,
+) {
+    let (denom, rhs) = match (c_prime.last(), d_prime.last()) {
+        (Some(&c_before), Some(&d_before)) => (diag - lower * c_before, rhs - lower * d_before),
+        _ => (diag, rhs),
+    };
+    c_prime.push(upper.map_or(0.0, |upper| upper / denom));
+    d_prime.push(rhs / denom);
 }
 
 #[cfg(test)]
