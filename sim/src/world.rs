@@ -288,7 +288,9 @@ impl SimWorld {
         let mut link_bodies = vec![None; rig.tree.links.len()];
         let mut posed_links = Vec::new();
         let mut jaw_colliders: Vec<(String, ColliderHandle)> = Vec::new();
-        let mut robot_colliders: Vec<ColliderHandle> = Vec::new();
+        // What the rope touches of the robots: the instruments (the arms' own links stay outside the
+        // body, above the trocars).
+        let mut instrument_colliders: Vec<ColliderHandle> = Vec::new();
         let rope = config.thread.model == ThreadModel::Rope;
         let flanges: Vec<usize> = arms.iter().map(|a| rig.arm(a.name).flange_link).collect();
         let on_instrument = |i: usize| {
@@ -332,8 +334,8 @@ impl SimWorld {
                 if jaw && moving {
                     jaw_colliders.push((link.name.clone(), handle));
                 }
-                if moving {
-                    robot_colliders.push(handle);
+                if moving && on_instrument(i) {
+                    instrument_colliders.push(handle);
                 }
             }
             link_bodies[i] = Some(body);
@@ -370,7 +372,7 @@ impl SimWorld {
                     &mut physics,
                     &tissue,
                     &config.tissue,
-                    &robot_colliders,
+                    &instrument_colliders,
                 );
                 if let Some(stitch) = &mut rope.stitch {
                     stitch.slide_friction_n = config.stitch.slide_friction_n;
