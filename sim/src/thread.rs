@@ -71,8 +71,8 @@ pub struct ThreadParams {
     /// default (20). The chain ignores it.
     #[serde(default)]
     pub rope_substeps: Option<usize>,
-    /// How many of its radii apart the rope's particles lie
-    /// ([`crate::rope::suture::SPACING_RADII`] if left out). The chain ignores it.
+    /// How many of its radii apart the rope's particles lie, about: as near it as whole segments fit
+    /// the length ([`crate::rope::suture::SPACING_RADII`] if left out). The chain ignores it.
     #[serde(default)]
     pub rope_spacing_radii: Option<f64>,
 }
@@ -84,8 +84,9 @@ pub enum ThreadModel {
     /// `segments` capsules joined by Rapier's joints ([`Thread`]).
     #[default]
     Chain,
-    /// The XPBD rope ([`crate::rope::suture`]): particles 1.5 radii apart (`rope_spacing_radii`), the chain's bending
-    /// stiffness per joint times its segment's length as the rope's EI, friction solved on positions.
+    /// The XPBD rope ([`crate::rope::suture`]): particles about 1.5 radii apart (unless
+    /// `rope_spacing_radii` says otherwise), the chain's bending stiffness per joint times its
+    /// segment's length as the rope's EI, friction solved on positions.
     Rope,
 }
 

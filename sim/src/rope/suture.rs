@@ -20,8 +20,8 @@ use crate::scene::{NeedleParams, TissueParams};
 use crate::thread::{THREAD_GROUP, ThreadParams};
 use crate::tissue::{FLAP_GROUP, Flap, PAD_GROUP, Tissue};
 
-/// The rope's particles lie this many radii apart unless the scene says otherwise
-/// (`thread.rope_spacing_radii`).
+/// The rope's particles lie about this many radii apart unless the scene says otherwise
+/// (`thread.rope_spacing_radii`): as near it as whole segments fit the thread's length.
 pub const SPACING_RADII: f64 = 1.5;
 
 /// The suture as a rope in the scene.
@@ -86,8 +86,12 @@ impl SceneRope {
         touched: &[ColliderHandle],
     ) -> (Self, Needle) {
         let params = rope_params(thread);
-        let spacing_m = thread.rope_spacing_radii.unwrap_or(SPACING_RADII) * thread.radius_m;
-        let count = ((thread.length_m / spacing_m).floor() as usize + 1).max(2);
+        // The thread's whole length in segments as near the spacing asked for as fit it (at 1.2 mm,
+        // cut to whole segments, 0.2 m lost 0.8 mm).
+        let asked_m = thread.rope_spacing_radii.unwrap_or(SPACING_RADII) * thread.radius_m;
+        let segments = ((thread.length_m / asked_m).round() as usize).max(1);
+        let spacing_m = thread.length_m / segments as f64;
+        let count = segments + 1;
         let mut ropes = Ropes::new(params);
         let strand = ropes.add_strand(&crate::layout::chord_points(layout, spacing_m, count));
         // The suture's own weight (the rope's mass is inflated for its solver).
