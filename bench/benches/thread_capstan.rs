@@ -32,7 +32,7 @@ const HIGH_N: f64 = 0.3;
 const RATIOS: [f64; 5] = [1.2, 1.5, 2.0, 3.0, 5.0];
 
 fn main() {
-    let scene = knotlab_bench::shipped_scene();
+    let scene = knotlab_bench::chain_scene();
     let (solver, thread) = (scene.solver, scene.thread);
     println!(
         "strand wound twice round another, snugged at 1 N, then {HIGH_N} N on one end and {HIGH_N} N / ratio on the other for 2 s: how far it slid; one core"

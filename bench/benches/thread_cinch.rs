@@ -2,7 +2,7 @@
 //! another, the failure that undid the scripted expert's throws when it pulled them tight (issue 6).
 //! A strand is wound twice round another (both ends held), as in a surgeon's throw, and its two ends
 //! are pulled apart with a tension rising from 0 to 10 N over 5 s (`knotlab_sim::cinch`). Printed per
-//! setting (the shipped scene's, then one change at a time): the tension at the first pass the
+//! setting (the chain scene's, scenarios/chain.toml, then one change at a time): the tension at the first pass the
 //! tunnelling monitor saw, and at which the winding had lost half a turn (or "held"), the passes
 //! counted, the deepest overlap of two segments' axes before the first pass as a fraction of the
 //! touching distance, the winding at the start and the end (a pass takes a turn off), and
@@ -22,13 +22,13 @@ use knotlab_sim::physics::SolverParams;
 use knotlab_sim::thread::ThreadParams;
 
 fn main() {
-    let scene = knotlab_bench::shipped_scene();
+    let scene = knotlab_bench::chain_scene();
     let (solver, thread) = (scene.solver, scene.thread);
     let pull = CinchParams { top_tension_n: 10.0, ramp_s: 5.0, ccd: false };
     let with = |solver: SolverParams| (solver, thread, pull);
     let half_segments = ThreadParams { segments: 2 * thread.segments, ..thread };
     let settings: Vec<(&str, (SolverParams, ThreadParams, CinchParams))> = vec![
-        ("shipped scene", with(solver)),
+        ("chain scene", with(solver)),
         ("correction 0.1 m/s", with(SolverParams { max_corrective_speed_m_s: 0.1, ..solver })),
         ("correction 0.3 m/s", with(SolverParams { max_corrective_speed_m_s: 0.3, ..solver })),
         ("correction 3 m/s", with(SolverParams { max_corrective_speed_m_s: 3.0, ..solver })),

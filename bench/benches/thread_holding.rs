@@ -32,7 +32,7 @@ struct Row<'a> {
 }
 
 fn main() {
-    let scene = knotlab_bench::shipped_scene();
+    let scene = knotlab_bench::chain_scene();
     let (solver, thread) = (scene.solver, scene.thread);
     println!(
         "strand B wound twice round A, snugged at 1 N for 0.5 s; then the loop pulls B's other end for 2 s with A's loop end held, the free ends let go or kept: how far the loaded end moved (in the last second); one core"

@@ -37,7 +37,7 @@ struct Row<'a> {
 }
 
 fn main() {
-    let scene = knotlab_bench::shipped_scene();
+    let scene = knotlab_bench::chain_scene();
     let (solver, thread) = (scene.solver, scene.thread);
     println!(
         "a loose square knot snugged by its four ends at 1 N for 2 s; then one standing part held, the other pulled for 2 s, the free ends held or let go: how far the loaded end moved (in the last second); one core"

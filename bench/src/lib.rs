@@ -10,6 +10,13 @@ pub fn shipped_scene() -> knotlab_sim::scene::SceneConfig {
     scene_or_exit(include_str!("../../scenarios/default.toml"), "scenarios/default.toml")
 }
 
+/// The capsule chain's scene (`scenarios/chain.toml`, compiled in: the nominal scene with Rapier's
+/// chain as the suture, and Rapier's solver at the 8 substeps of 4 sweeps its joints need) for the
+/// chain's benchmarks; exits with the scene's error if it does not parse.
+pub fn chain_scene() -> knotlab_sim::scene::SceneConfig {
+    scene_or_exit(include_str!("../../scenarios/chain.toml"), "scenarios/chain.toml")
+}
+
 /// `scenarios/short-suture-friction-0.5.toml` (the two-throw expert's scene, the laid knots'), or
 /// exit with its error.
 pub fn short_suture_scene() -> knotlab_sim::scene::SceneConfig {

@@ -1,7 +1,9 @@
 //! `scenarios/chain.toml` is the nominal scene with the suture as Rapier's capsule chain (the nominal
 //! suture until session 48): one friction for all (0.15), 0.25 m long, held in the tissue by 0.05 N a
-//! flap, no rope substeps (the chain has none), nothing else changed, so that the chain's tests run
-//! in the nominal operating scene and runs on the two compare on the suture alone.
+//! flap, no rope substeps or spacing (the chain has neither), Rapier's solver at the 8 substeps of 4
+//! sweeps its joints need (the rope leaves Rapier only the needle and the flaps: 2 of 1), nothing else
+//! changed, so that the chain's tests run in the nominal operating scene and runs on the two compare
+//! on the suture alone.
 
 use knotlab_sim::scene::parse_scene;
 use knotlab_sim::thread::ThreadModel;
@@ -13,15 +15,22 @@ fn the_chain_scene_differs_from_the_nominal_one_only_in_the_suture() {
     assert_eq!(nominal.thread.model, ThreadModel::Rope);
     assert_eq!(nominal.thread.friction_on_itself, Some(0.5));
     assert_eq!((nominal.thread.length_m, nominal.stitch.slide_friction_n), (0.2, 0.6));
-    assert_eq!(nominal.thread.rope_substeps, Some(4));
+    assert_eq!(nominal.thread.rope_substeps, Some(3));
+    assert_eq!(nominal.thread.rope_spacing_radii, Some(3.0));
+    assert_eq!((nominal.solver.solver_iterations, nominal.solver.pgs_iterations_per_substep), (2, 1));
     assert_eq!(chain.thread.model, ThreadModel::Chain);
     assert_eq!(chain.thread.friction_on_itself, None);
     assert_eq!((chain.thread.length_m, chain.stitch.slide_friction_n), (0.25, 0.05));
     assert_eq!(chain.thread.rope_substeps, None);
+    assert_eq!(chain.thread.rope_spacing_radii, None);
+    assert_eq!((chain.solver.solver_iterations, chain.solver.pgs_iterations_per_substep), (8, 4));
     chain.thread.model = ThreadModel::Rope;
     chain.thread.friction_on_itself = nominal.thread.friction_on_itself;
     chain.thread.length_m = nominal.thread.length_m;
     chain.thread.rope_substeps = nominal.thread.rope_substeps;
+    chain.thread.rope_spacing_radii = nominal.thread.rope_spacing_radii;
+    chain.solver.solver_iterations = nominal.solver.solver_iterations;
+    chain.solver.pgs_iterations_per_substep = nominal.solver.pgs_iterations_per_substep;
     chain.stitch.slide_friction_n = nominal.stitch.slide_friction_n;
     assert_eq!(chain, nominal, "every other setting as in default.toml");
 }
