@@ -438,6 +438,23 @@ mod tests {
         );
     }
 
+    #[test]
+    fn the_bending_constants_follow_the_stiffness_and_the_substep() {
+        let mut ropes = Ropes::new(RopeParams::default());
+        ropes.add_strand_along(&[Vector3::zeros(), Vector3::new(0.003, 0.001, 0.0)], 0.0003);
+        ropes.step(0.001);
+        let first = ropes.bends.joints[0].compliance;
+        assert!(first > 0.0 && first.is_finite(), "compliance {first}");
+        // Twice as stiff: half the compliance; then substeps twice as long: a quarter of that.
+        ropes.params.bending_stiffness_n_m2 *= 2.0;
+        ropes.step(0.001);
+        let stiffer = ropes.bends.joints[0].compliance;
+        assert!((stiffer - first / 2.0).abs() < 1e-12 * first, "{stiffer} against {first}");
+        ropes.step(0.002);
+        let longer = ropes.bends.joints[0].compliance;
+        assert!((longer - first / 8.0).abs() < 1e-12 * first, "{longer} against {first}");
+    }
+
     /// A 30 mm strand along x, its first particle pinned and its last pulled along x with 1 N for
     /// 0.5 s: how much longer than laid it is, m.
     fn stretched_under_1_n(axial_stiffness_n: f64) -> f64 {

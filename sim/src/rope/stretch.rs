@@ -131,4 +131,36 @@ mod tests {
             assert!((len - 1.0).abs() < 1e-12, "segment {k} is {len} long");
         }
     }
+
+    #[test]
+    fn one_segment_is_put_back_at_once_and_a_pinned_one_stays() {
+        // One segment (the first row is also the last): its two ends share the correction.
+        let mut x = vec![Vector3::zeros(), Vector3::new(1.5, 0.0, 0.0)];
+        assert!(project_strand(&mut x, &[1.0, 1.0], &[1.0], 0.0, &mut Scratch::default()));
+        assert!((x[0].x - 0.25).abs() < 1e-12 && (x[1].x - 1.25).abs() < 1e-12, "{x:?}");
+        // The first segment's both ends pinned (its row the identity), the rest free.
+        let mut x: Vec<Vector3<f64>> = (0..4).map(|i| Vector3::new(1.2 * i as f64, 0.0, 0.0)).collect();
+        let pinned = [x[0], x[1]];
+        let mut scratch = Scratch::default();
+        for _ in 0..3 {
+            assert!(project_strand(&mut x, &[0.0, 0.0, 1.0, 1.0], &[1.0; 3], 0.0, &mut scratch));
+        }
+        assert_eq!([x[0], x[1]], pinned);
+        for k in 1..3 {
+            let len = (x[k + 1] - x[k]).norm();
+            assert!((len - 1.0).abs() < 1e-12, "segment {k} is {len} long");
+        }
+    }
+
+    #[test]
+    fn a_singular_strand_is_refused_and_left_where_it_is() {
+        // Both ends pinned, the middle free, all on one line and too long: no move of the middle
+        // shortens both segments (the second row's pivot vanishes); the projection refuses, moving
+        // nothing, and the caller falls back to Gauss-Seidel.
+        let mut x: Vec<Vector3<f64>> = (0..3).map(|i| Vector3::new(1.2 * i as f64, 0.0, 0.0)).collect();
+        let before = x.clone();
+        let ok = project_strand(&mut x, &[0.0, 1.0, 0.0], &[1.0, 1.0], 0.0, &mut Scratch::default());
+        assert!(!ok, "a singular system was projected: {x:?}");
+        assert_eq!(x, before, "a refused projection moved the strand");
+    }
 }
