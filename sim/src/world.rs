@@ -183,6 +183,11 @@ fn continuous_pose(next: Pose, current: &Pose) -> Pose {
     }
 }
 
+/// Whether link `i` of `rig` is the flange `flange` or hangs from it (the instrument an arm carries).
+fn on_flange(rig: &Rig, i: usize, flange: usize) -> bool {
+    i == flange || rig.tree.path_to(i).iter().any(|&j| rig.tree.joints[j].child == flange)
+}
+
 fn shape_collider(shape: &knotlab_hw::rig::Shape) -> ColliderBuilder {
     match *shape {
         knotlab_hw::rig::Shape::Box { half_extents_m: h } => ColliderBuilder::cuboid(h.x, h.y, h.z),
@@ -293,11 +298,7 @@ impl SimWorld {
         let mut instrument_colliders: Vec<ColliderHandle> = Vec::new();
         let rope = config.thread.model == ThreadModel::Rope;
         let flanges: Vec<usize> = arms.iter().map(|a| rig.arm(a.name).flange_link).collect();
-        let on_instrument = |i: usize| {
-            flanges.iter().any(|&flange| {
-                i == flange || rig.tree.path_to(i).iter().any(|&j| rig.tree.joints[j].child == flange)
-            })
-        };
+        let on_instrument = |i: usize| flanges.iter().any(|&flange| on_flange(&rig, i, flange));
         for (i, link) in rig.tree.links.iter().enumerate() {
             if link.collisions.is_empty() {
                 continue;
@@ -345,9 +346,7 @@ impl SimWorld {
         for arm in &mut arms {
             let flange = rig.arm(arm.name).flange_link;
             arm.instrument_bodies = (0..rig.tree.links.len())
-                .filter(|&i| {
-                    i == flange || rig.tree.path_to(i).iter().any(|&j| rig.tree.joints[j].child == flange)
-                })
+                .filter(|&i| on_flange(&rig, i, flange))
                 .filter_map(|i| link_bodies[i])
                 .collect();
             let prefix = format!("{}_", arm.name);

@@ -5,17 +5,13 @@
 //! had let through, threw it out at 23 m/s. Let go, the needle now rides on the rope's end, and the
 //! jaws let the rope's end out gently.
 
-use knotlab_hw::rig::Rig;
-use knotlab_sim::scene::parse_scene;
-use knotlab_sim::world::SimWorld;
+mod common;
+
 use nalgebra::Vector3;
 
 #[test]
 fn a_released_needle_stays_on_the_ropes_end() {
-    let scene =
-        parse_scene(include_str!("../../scenarios/default.toml"), "default.toml").expect("the shipped scene");
-    let mut w =
-        SimWorld::new(scene, Rig::shipped().expect("the shipped rig")).expect("the rope scene builds");
+    let mut w = common::rope_world();
     for _ in 0..100 {
         w.step().expect("healthy while held");
     }

@@ -4,18 +4,16 @@
 //! thread stays through the stitch, the rope keeps its length, the gauges read no more than the
 //! thread's pull, and the rope's contacts show it in the assist's jaws.
 
-use knotlab_hw::rig::{ArmName, Rig};
-use knotlab_sim::scene::parse_scene;
+mod common;
+
+use knotlab_hw::rig::ArmName;
 use knotlab_sim::tissue::Flap;
 use knotlab_sim::world::SimWorld;
 
 #[test]
 fn the_rope_scene_holds_the_needle_the_tail_and_the_stitch_standing_still() {
-    let scene =
-        parse_scene(include_str!("../../scenarios/default.toml"), "default.toml").expect("the shipped scene");
-    let length_m = scene.thread.length_m;
-    let mut w =
-        SimWorld::new(scene, Rig::shipped().expect("the shipped rig")).expect("the rope scene builds");
+    let mut w = common::rope_world();
+    let length_m = w.config.thread.length_m;
     assert!(w.thread.segments.is_empty(), "no chain beside the rope");
     assert!(w.arm(ArmName::Right).grasp.as_ref().is_some_and(|g| g.on_needle), "the right holds the needle");
     assert!(w.arm(ArmName::Assist).rope_grasp.is_some(), "the assist holds the tail");

@@ -5,16 +5,13 @@
 //! was built would show wrong in Rerun and in the thread's contacts); the jaws' carriers stay
 //! kinematic, for the needle's grasp joint.
 
-use knotlab_hw::rig::{ArmName, Rig};
-use knotlab_sim::scene::parse_scene;
-use knotlab_sim::world::SimWorld;
+mod common;
+
+use knotlab_hw::rig::ArmName;
 
 #[test]
 fn every_link_stands_where_the_kinematics_put_it_while_an_arm_moves() {
-    let scene =
-        parse_scene(include_str!("../../scenarios/default.toml"), "default.toml").expect("the shipped scene");
-    let mut w =
-        SimWorld::new(scene, Rig::shipped().expect("the shipped rig")).expect("the rope scene builds");
+    let mut w = common::rope_world();
     let link4 = w.rig.tree.links.iter().position(|l| l.name == "left_link4").expect("the left's fourth link");
     let body4 = w.link_bodies[link4].expect("the left's fourth link has a body");
     let start_m = w.physics.bodies[body4].position().translation;

@@ -18,6 +18,13 @@ pub fn chain_world() -> SimWorld {
     SimWorld::new(scene, Rig::shipped().expect("shipped rig")).expect("the shipped scene builds")
 }
 
+/// The world of `scenarios/default.toml` (the nominal scene, its suture the rope) on the shipped rig.
+pub fn rope_world() -> SimWorld {
+    let scene =
+        parse_scene(include_str!("../../../scenarios/default.toml"), "default.toml").expect("shipped scene");
+    SimWorld::new(scene, Rig::shipped().expect("shipped rig")).expect("the rope scene builds")
+}
+
 /// Frees the thread, opens the left's jaws `jaw_rad` and lets them get there (0.2 s); returns the
 /// command that holds them open.
 pub fn open_left_jaws(w: &mut SimWorld, jaw_rad: f64) -> ArmJoints {
