@@ -250,6 +250,11 @@ pub fn evaluate_knot_watched(
         max_stitch_distance_m: params.max_stitch_distance_m,
     };
     result.verdict = judge(&before, &params.accepted, &site, &limits);
+    // A thread that passed through itself may hold a knot real thread could not have tied (or
+    // lack one it would have): whatever it ends with, the trial measured the solver, not the skill.
+    if result.thread_self_crossings > 0 {
+        result.verdict = Verdict::Failure(FailureMode::ThreadUnstable);
+    }
     if result.verdict != Verdict::Success {
         return result;
     }
@@ -260,6 +265,10 @@ pub fn evaluate_knot_watched(
         return result;
     }
     result.thread_self_crossings = world.thread_watch.crossings.len();
+    if result.thread_self_crossings > 0 {
+        result.verdict = Verdict::Failure(FailureMode::ThreadUnstable);
+        return result;
+    }
     let gap_after = world.wound_gap_m();
     result.gap_after_m = Some(gap_after);
     if let (Some(before), Some(after)) = (free_before, free_ends_now(world)) {

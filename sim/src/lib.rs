@@ -23,9 +23,11 @@
 //! - [`laid_knot`]: a square or surgeon's knot laid over the stitch and snugged: does it pass the
 //!   holding test?
 //! - [`tunnelling`]: detecting one capsule passing through another.
+//! - [`crossing`]: detecting a strand of the thread passing through another, for either model.
 
 pub mod backend;
 pub mod cinch;
+pub mod crossing;
 pub mod evaluate;
 pub mod gauge;
 pub mod grasp;

@@ -1,15 +1,13 @@
 //! Watches the thread for passing through itself during a run. A knot is made of strands that block
 //! each other; a strand that tunnels through another (a solver failure under load) can tie or untie a
-//! knot that real thread could not. Each step, the pairs of non-neighbouring segments that Rapier's
-//! broad phase found close are judged by a [`TunnellingMonitor`].
+//! knot that real thread could not. Both suture models are judged by one test, the swept one of
+//! [`crate::crossing`]: the capsule chain's centreline (through its joints) after each step, here;
+//! the rope's particles after each of its substeps, by the rope itself, its passes recorded here
+//! ([`ThreadWatch::record`]), so both models' crossings are read in one place.
 
-use std::collections::HashMap;
-
-use rapier3d::prelude::*;
-
+use crate::crossing::CrossingWatch;
 use crate::physics::Physics;
 use crate::thread::Thread;
-use crate::tunnelling::TunnellingMonitor;
 
 /// One strand passing through another.
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
@@ -24,38 +22,48 @@ pub struct SelfCrossing {
 /// `lay_along`) looks like passes: experiments that do so should not read the count.
 #[derive(Clone, Debug)]
 pub struct ThreadWatch {
-    monitor: TunnellingMonitor,
-    segment_of: HashMap<ColliderHandle, usize>,
+    /// The chain's watch.
+    swept: CrossingWatch,
+    /// The chain's segments as pairs of points of its centreline.
+    segments: Vec<[usize; 2]>,
+    /// Every pair of the chain's segments that are not neighbours.
+    pairs: Vec<(usize, usize)>,
     /// Every crossing seen, in order.
     pub crossings: Vec<SelfCrossing>,
 }
 
 impl ThreadWatch {
-    /// Watches `thread`'s segments in `physics`; pairs closer than `watch_m` beyond touching are judged.
-    pub fn new(physics: &Physics, thread: &Thread, watch_m: f64) -> Self {
-        let segment_of = thread
-            .segments
-            .iter()
-            .enumerate()
-            .flat_map(|(i, h)| physics.bodies[*h].colliders().iter().map(move |c| (*c, i)))
-            .collect();
-        Self { monitor: TunnellingMonitor::new(watch_m), segment_of, crossings: Vec::new() }
+    /// Watches `thread`'s segments (none for a scene whose suture is the rope: its passes are
+    /// [`Self::record`]ed).
+    pub fn new(thread: &Thread) -> Self {
+        let n = thread.segments.len();
+        let segments = (0..n).map(|k| [k, k + 1]).collect();
+        let pairs = (0..n).flat_map(|i| (i + 2..n).map(move |j| (i, j))).collect();
+        Self { swept: CrossingWatch::default(), segments, pairs, crossings: Vec::new() }
     }
 
-    /// Judges the pairs after a step at `time_s`; returns how many crossed.
+    /// Records passes another watch found at `time_s` (the rope's, by segment pairs).
+    pub fn record(&mut self, time_s: f64, passes: &[(usize, usize)]) {
+        self.crossings.extend(passes.iter().map(|&segments| SelfCrossing { time_s, segments }));
+    }
+
+    /// Judges the chain's move over the step that ended at `time_s`; returns how many passes it
+    /// made.
     pub fn update(&mut self, physics: &Physics, thread: &Thread, radius_m: f64, time_s: f64) -> usize {
-        let mut pairs: Vec<(usize, usize)> = physics
-            .narrow_phase
-            .contact_pairs()
-            .filter_map(|p| Some((*self.segment_of.get(&p.collider1)?, *self.segment_of.get(&p.collider2)?)))
-            .map(|(i, j)| (i.min(j), i.max(j)))
-            .filter(|(i, j)| j - i >= 2)
-            .collect();
-        // The broad phase's order follows its internal storage: sorted, the watch does not depend on it.
-        pairs.sort_unstable();
+        if self.segments.len() != thread.segments.len() || self.segments.is_empty() {
+            return 0;
+        }
+        // The centreline through the joints: each joint midway between the ends of the capsules
+        // it joins.
         let capsules = thread.capsules(physics, radius_m);
-        let new = self.monitor.update(&capsules, pairs.into_iter());
-        self.crossings.extend(self.monitor.flipped.iter().map(|&segments| SelfCrossing { time_s, segments }));
-        new
+        let mut x = Vec::with_capacity(capsules.len() + 1);
+        x.push(capsules[0].a_m);
+        x.extend(capsules.windows(2).map(|c| 0.5 * (c[0].b_m + c[1].a_m)));
+        x.push(capsules[capsules.len() - 1].b_m);
+        self.swept.start_step(&x);
+        self.swept.look(&x, &self.segments, &self.pairs, radius_m);
+        let passes = self.swept.crossed().to_vec();
+        self.record(time_s, &passes);
+        passes.len()
     }
 }

@@ -382,7 +382,7 @@ impl SimWorld {
         let mut tissue = tissue;
         let stitch = Stitch::anchor(&mut physics, &thread, &mut tissue, config.stitch.slide_friction_n);
         let grip_force_n = config.sensor.grip_force_n;
-        let thread_watch = ThreadWatch::new(&physics, &thread, config.solver.prediction_distance_m);
+        let thread_watch = ThreadWatch::new(&thread);
         Ok(Self {
             physics,
             rig,
@@ -774,6 +774,9 @@ impl SimWorld {
         }
         self.time_s += dt;
         self.thread_watch.update(&self.physics, &self.thread, self.config.thread.radius_m, self.time_s);
+        if let Some(rope) = &self.rope {
+            self.thread_watch.record(self.time_s, rope.ropes.crossed_last_step());
+        }
         let events = self.stitch.follow(&mut self.physics, &self.thread, &self.tissue, self.time_s);
         self.stitch_events.extend(events);
         self.check_slip();

@@ -143,6 +143,8 @@ pub struct Ropes {
     bends: Bends,
     /// Contacts that touched in the last substep.
     pub contacts_last: usize,
+    /// The watch for strands passing through each other.
+    crossing: crate::crossing::CrossingWatch,
 }
 
 /// The bending constraints' constants ([`Ropes::solve_bending`]), worked out once for a rope, its
@@ -208,6 +210,7 @@ impl Ropes {
             rest_m: Vec::new(),
             bends: Bends::default(),
             contacts_last: 0,
+            crossing: crate::crossing::CrossingWatch::default(),
         }
     }
 
@@ -273,9 +276,12 @@ impl Ropes {
     /// Advances by `dt_s` in `surroundings`, applying `force_n` throughout.
     pub fn step_in(&mut self, dt_s: f64, surroundings: &mut dyn Surroundings) {
         let mut watch = std::mem::take(&mut self.watch);
+        let mut crossing = std::mem::take(&mut self.crossing);
+        crossing.start_step(&self.x);
         if !watch.still_covers(self) {
             self.find_candidates();
             watch.found(self);
+            crossing.candidates_changed(self.candidates.len());
         }
         let mut x_prev = std::mem::take(&mut self.x_prev);
         let h = dt_s / self.params.substeps as f64;
@@ -301,8 +307,10 @@ impl Ropes {
             for ((v, x), x_prev) in self.v.iter_mut().zip(&self.x).zip(&x_prev) {
                 *v = (x - x_prev) / h * damp;
             }
+            crossing.look(&self.x, &self.segments, &self.candidates, self.params.radius_m);
         }
         self.watch = watch;
+        self.crossing = crossing;
         self.x_prev = x_prev;
     }
 
@@ -382,6 +390,12 @@ impl Ropes {
             let ([a, b], [c, _]) = (segments[i], segments[j]);
             strand_of[a] == strand_of[c] && c <= b + 1
         });
+    }
+
+    /// The segment pairs (by segment index, smaller first) that passed through each other in the
+    /// last step ([`crate::crossing`]): a solver failure, never real thread.
+    pub fn crossed_last_step(&self) -> &[(usize, usize)] {
+        self.crossing.crossed()
     }
 
     /// The strand's polyline, m.
