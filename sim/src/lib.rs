@@ -24,6 +24,7 @@
 //!   holding test?
 //! - [`tunnelling`]: detecting one capsule passing through another.
 //! - [`crossing`]: detecting a strand of the thread passing through another, for either model.
+//! - [`validation`]: the suture checked against mechanics (`knotlab validate`).
 
 pub mod backend;
 pub mod cinch;
@@ -49,4 +50,5 @@ pub mod thread;
 pub mod thread_watch;
 pub mod tissue;
 pub mod tunnelling;
+pub mod validation;
 pub mod world;

@@ -15,6 +15,7 @@ mod run;
 mod session;
 mod sim;
 mod skill_source;
+mod validate;
 
 use std::process::ExitCode;
 
@@ -58,6 +59,9 @@ enum Command {
     Report(report::ReportArgs),
     /// The lab's workflow at a desk: teleoperate (a gamepad), the skill pedal, preview, execute; recorded.
     Session(session::SessionArgs),
+    /// The suture checked against mechanics: stretch, the elastica, the capstan, a 3-0 suture's size
+    /// and weight; measured, reference, tolerance and source per figure (exit 1: a check failed).
+    Validate(validate::ValidateArgs),
 }
 
 /// Runs a parsed command line.
@@ -76,5 +80,6 @@ pub fn run(cli: Cli) -> anyhow::Result<ExitCode> {
         Command::Session(args) => session::run(args, &mut out),
         Command::Mc(args) => mc::run(args, &mut out),
         Command::Report(args) => report::run(args, &mut out),
+        Command::Validate(args) => validate::run(args, &mut out),
     }
 }

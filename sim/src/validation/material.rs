@@ -1,0 +1,80 @@
+//! The suture's size, stiffness and weight against a real 3-0 suture's: the European
+//! Pharmacopoeia's diameter for USP 3-0 (metric 2), and the solid-rod bending stiffness, weight per
+//! metre and gravity bending length of 3-0 polypropylene, nylon and polyester from their moduli and
+//! densities (`../shared/reference/suture-mechanics.md`, §4).
+
+use super::suture::G_MPS2;
+use super::{Check, SutureUnderTest, Tolerance};
+
+const DIAMETER_SOURCE: &str = "EP metric 2 (USP 3-0): 0.200-0.249 mm";
+const SOLID_ROD_SOURCE: &str =
+    "3-0 PP/nylon/PET solid rod, E 1.5-5 GPa, rho 905-1380 kg/m3 (suture-mechanics.md 4.3)";
+
+/// The size, stiffness, weight and gravity bending length of a 3-0 suture, each within its range.
+pub fn checks(suture: &SutureUnderTest) -> Vec<Check> {
+    let mid = |low: f64, high: f64| 0.5 * (low + high);
+    let weight_mg_per_m = suture.weight_per_m_n / G_MPS2 * 1e6;
+    vec![
+        Check::new(
+            "material",
+            "diameter",
+            "mm",
+            suture.diameter_m() * 1e3,
+            mid(0.200, 0.249),
+            Tolerance::Range { low: 0.200, high: 0.249 },
+            DIAMETER_SOURCE,
+        ),
+        Check::new(
+            "material",
+            "bending stiffness EI",
+            "N m2",
+            suture.bending_stiffness_n_m2(),
+            mid(1.2e-7, 9.4e-7),
+            Tolerance::Range { low: 1.2e-7, high: 9.4e-7 },
+            SOLID_ROD_SOURCE,
+        ),
+        Check::new(
+            "material",
+            "weight per metre",
+            "mg/m",
+            weight_mg_per_m,
+            mid(28.0, 67.0),
+            Tolerance::Range { low: 28.0, high: 67.0 },
+            SOLID_ROD_SOURCE,
+        ),
+        Check::new(
+            "material",
+            "gravity bending length (EI/w)^(1/3)",
+            "mm",
+            suture.gravity_bending_length_m() * 1e3,
+            mid(75.0, 120.0),
+            Tolerance::Range { low: 75.0, high: 120.0 },
+            SOLID_ROD_SOURCE,
+        ),
+    ]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::validation::suture::nominal;
+
+    /// Guards the ranges: a 0.22 mm polypropylene rod (EI 3.5e-7 N m², 34 mg/m) passes all four,
+    /// and each figure out of its range fails on its own.
+    #[test]
+    fn a_real_3_0_suture_passes_and_each_figure_out_of_range_fails() {
+        let mut suture = nominal();
+        suture.params.radius_m = 0.00011;
+        suture.params.bending_stiffness_n_m2 = 3.5e-7;
+        suture.weight_per_m_n = 34e-6 * G_MPS2;
+        let passed =
+            |s: &SutureUnderTest| checks(s).iter().map(|c| c.passed == Some(true)).collect::<Vec<_>>();
+        assert_eq!(passed(&suture), [true; 4]);
+        let mut thick = suture.clone();
+        thick.params.radius_m = 0.0004;
+        assert_eq!(passed(&thick), [false, true, true, true]);
+        let mut heavy = suture.clone();
+        heavy.weight_per_m_n *= 100.0;
+        assert_eq!(passed(&heavy), [true, true, false, false]);
+    }
+}

@@ -1,0 +1,128 @@
+//! The suture checked against mechanics: small experiments built with a scene's suture (its rope's
+//! material, resolution and substeps), each measured figure set beside its reference from a closed
+//! form, a table or a measured suture, with the tolerance and the source. `knotlab validate` runs
+//! them; `docs/validation.md` holds the table it prints.
+//!
+//! - [`suture`]: the suture under test, read from a scene's `[thread]`.
+//! - [`material`]: the suture's size, stiffness and weight against a real 3-0 suture's.
+//! - [`stretch`]: inextensibility under a 2 N pull.
+//! - [`cantilever`]: a clamped length bent by a tip load and by a uniform load, against the elastica.
+//! - [`capstan`]: the suture pulled round a fixed cylinder and round taut suture, against the
+//!   capstan law.
+
+pub mod cantilever;
+pub mod capstan;
+pub mod material;
+pub mod stretch;
+pub mod suture;
+
+use serde::Serialize;
+
+pub use suture::SutureUnderTest;
+
+/// How a measured figure is judged against its reference.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+#[serde(tag = "kind", rename_all = "snake_case")]
+pub enum Tolerance {
+    /// |measured - reference| <= fraction * |reference|.
+    Relative {
+        /// The allowed fraction.
+        fraction: f64,
+    },
+    /// |measured - reference| <= by.
+    Absolute {
+        /// The allowed difference, in the figure's unit.
+        by: f64,
+    },
+    /// low <= measured <= high (the reference is the range's middle).
+    Range {
+        /// Lowest allowed.
+        low: f64,
+        /// Highest allowed.
+        high: f64,
+    },
+    /// Reported beside its reference, not judged (where the model may differ by right: the
+    /// reference's assumptions do not hold).
+    Report,
+}
+
+/// One check: what was measured, against what, and whether it passed.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Check {
+    /// The experiment (`cantilever_tip_load`, say).
+    pub experiment: &'static str,
+    /// What was measured, with its conditions (`v/L at alpha = 1`).
+    pub figure: String,
+    /// The unit of `measured` and `reference` (`1` for a pure number).
+    pub unit: &'static str,
+    /// Measured in the simulation.
+    pub measured: f64,
+    /// The reference value.
+    pub reference: f64,
+    /// How the two are compared.
+    pub tolerance: Tolerance,
+    /// Whether the measured figure is within the tolerance (`None`: reported only).
+    pub passed: Option<bool>,
+    /// Where the reference comes from.
+    pub source: &'static str,
+}
+
+impl Check {
+    /// A check, judged.
+    pub fn new(
+        experiment: &'static str,
+        figure: impl Into<String>,
+        unit: &'static str,
+        measured: f64,
+        reference: f64,
+        tolerance: Tolerance,
+        source: &'static str,
+    ) -> Self {
+        let within = |d: f64, by: f64| measured.is_finite() && d <= by;
+        let passed = match tolerance {
+            Tolerance::Relative { fraction } => {
+                Some(within((measured - reference).abs(), fraction * reference.abs()))
+            }
+            Tolerance::Absolute { by } => Some(within((measured - reference).abs(), by)),
+            Tolerance::Range { low, high } => Some(measured.is_finite() && (low..=high).contains(&measured)),
+            Tolerance::Report => None,
+        };
+        Self { experiment, figure: figure.into(), unit, measured, reference, tolerance, passed, source }
+    }
+
+    /// The tolerance as a reader writes it (`±2 %`, `0.2-0.249`, `report`).
+    pub fn tolerance_text(&self) -> String {
+        match self.tolerance {
+            Tolerance::Relative { fraction } => format!("±{} %", fraction * 100.0),
+            Tolerance::Absolute { by } => format!("±{by}"),
+            Tolerance::Range { low, high } => format!("{low}-{high}"),
+            Tolerance::Report => "report".to_owned(),
+        }
+    }
+}
+
+/// Every check of the suite on `suture`, in a fixed order.
+pub fn run_all(suture: &SutureUnderTest) -> Vec<Check> {
+    let mut checks = material::checks(suture);
+    checks.extend(stretch::checks(suture));
+    checks.extend(cantilever::checks(suture));
+    checks.extend(capstan::checks(suture));
+    checks
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_check_passes_within_its_tolerance_and_fails_outside_it() {
+        let rel = |m| Check::new("x", "f", "1", m, 1.0, Tolerance::Relative { fraction: 0.02 }, "s").passed;
+        assert_eq!((rel(1.019), rel(0.979), rel(f64::NAN)), (Some(true), Some(false), Some(false)));
+        let range =
+            |m| Check::new("x", "f", "m", m, 0.0, Tolerance::Range { low: 1.0, high: 2.0 }, "s").passed;
+        assert_eq!((range(1.5), range(2.5)), (Some(true), Some(false)));
+        let abs = |m| Check::new("x", "f", "m", m, 0.0, Tolerance::Absolute { by: 0.1 }, "s").passed;
+        assert_eq!((abs(-0.05), abs(0.2)), (Some(true), Some(false)));
+        assert_eq!(Check::new("x", "f", "1", 9.0, 1.0, Tolerance::Report, "s").passed, None);
+    }
+}

@@ -1,0 +1,89 @@
+//! `knotlab validate`: the suture checked against mechanics. Builds small experiments with a scene's
+//! suture and prints each measured figure beside its reference, tolerance and source; exits 1 when
+//! a judged figure is outside its tolerance.
+
+use std::fmt::Write as _;
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use anyhow::Context;
+use clap::Args;
+
+use knotlab_sim::scene::load_scene;
+use knotlab_sim::validation::{Check, SutureUnderTest, run_all};
+
+use super::output::{Output, outln};
+
+#[derive(Debug, Args)]
+pub struct ValidateArgs {
+    /// The scene whose suture is checked (its `[thread]`, and its step).
+    #[arg(long, default_value = "scenarios/default.toml")]
+    suture_from: PathBuf,
+    /// Also write `validation.json` and `validation.md` (the table) into this directory.
+    #[arg(long)]
+    out: Option<PathBuf>,
+    /// Print JSON instead of text.
+    #[arg(long)]
+    json: bool,
+}
+
+/// The checks as a Markdown table.
+fn table(checks: &[Check]) -> String {
+    let mut text = String::from(
+        "| experiment | figure | measured | reference | tolerance | result | source |\n|---|---|---|---|---|---|---|\n",
+    );
+    for c in checks {
+        let result = match c.passed {
+            Some(true) => "pass",
+            Some(false) => "FAIL",
+            None => "reported",
+        };
+        let unit = if c.unit == "1" { String::new() } else { format!(" {}", c.unit) };
+        let _ = writeln!(
+            text,
+            "| {} | {} | {:.4}{unit} | {:.4}{unit} | {} | {result} | {} |",
+            c.experiment,
+            c.figure,
+            c.measured,
+            c.reference,
+            c.tolerance_text(),
+            c.source
+        );
+    }
+    text
+}
+
+pub fn run(args: ValidateArgs, out: &mut Output) -> anyhow::Result<ExitCode> {
+    let scene = load_scene(&args.suture_from)?;
+    let suture = SutureUnderTest::from_thread(&scene.thread, scene.solver.dt_s);
+    let checks = run_all(&suture);
+    let failed = checks.iter().filter(|c| c.passed == Some(false)).count();
+    let judged = checks.iter().filter(|c| c.passed.is_some()).count();
+    let report = serde_json::json!({
+        "suture_from": args.suture_from.display().to_string(),
+        "judged": judged,
+        "failed": failed,
+        "checks": checks,
+    });
+    if let Some(dir) = &args.out {
+        std::fs::create_dir_all(dir).with_context(|| format!("{}: cannot create", dir.display()))?;
+        let json_path = dir.join("validation.json");
+        std::fs::write(&json_path, serde_json::to_string_pretty(&report)? + "\n")
+            .with_context(|| format!("{}: cannot write", json_path.display()))?;
+        let md_path = dir.join("validation.md");
+        std::fs::write(&md_path, table(&checks))
+            .with_context(|| format!("{}: cannot write", md_path.display()))?;
+    }
+    if args.json {
+        outln!(out, "{}", serde_json::to_string_pretty(&report)?);
+    } else {
+        out.line(table(&checks).trim_end());
+        outln!(
+            out,
+            "{} of {judged} judged checks passed ({} reported only)",
+            judged - failed,
+            checks.len() - judged
+        );
+    }
+    Ok(if failed == 0 { ExitCode::SUCCESS } else { ExitCode::FAILURE })
+}
