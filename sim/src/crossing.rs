@@ -15,10 +15,10 @@
 //! strands touching): two strands left lying through each other flip the sign back and forth with
 //! every substep, one pass.
 //!
-//! Most candidate pairs lie far from each other: a pair whose distance, less twice the farthest
-//! any particle has moved since it was measured, stays above that threshold cannot pass, and is
-//! not measured (a segment's points move no farther than its ends, so the distance between two
-//! segments changes by no more than twice the farthest move).
+//! Most candidate pairs lie far from each other: a pair whose distance when last measured, less
+//! how far its two segments have moved since, stays above that threshold cannot pass, and is not
+//! measured (a segment's points move no farther than its farther end, so the distance between two
+//! segments changes by no more than the sum of their moves).
 
 use knotlab_hw::geometry::segment_closest_parameters;
 use nalgebra::Vector3;
@@ -37,8 +37,14 @@ pub struct CrossingWatch {
     x_last: Vec<Vector3<f64>>,
     /// Per candidate pair, the signed volume at `x_last` (NaN: not measured then).
     volume: Vec<f64>,
-    /// Per candidate pair, a lower bound on its segments' distance at `x_last`, m.
+    /// Per candidate pair, its segments' distance when last measured, m (-inf: never).
     clear_m: Vec<f64>,
+    /// Per candidate pair, its two segments' travel when it was last measured, m.
+    travel_at_measure_m: Vec<f64>,
+    /// Per segment, how far it moved at the last look (the farther of its ends), m.
+    moved_m: Vec<f64>,
+    /// Per segment, how far it has moved in all, m (the sum of its moves).
+    travel_m: Vec<f64>,
     /// The segment pairs that passed through each other in the current step, in order (smaller
     /// segment first).
     crossed: Vec<(usize, usize)>,
@@ -81,6 +87,7 @@ impl CrossingWatch {
             self.x_last = x.to_vec();
             self.volume.clear();
             self.clear_m.clear();
+            self.travel_m.clear();
         }
     }
 
@@ -89,6 +96,7 @@ impl CrossingWatch {
     pub fn candidates_changed(&mut self, count: usize) {
         self.volume = vec![f64::NAN; count];
         self.clear_m = vec![f64::NEG_INFINITY; count];
+        self.travel_at_measure_m = vec![0.0; count];
     }
 
     /// The centreline is now at `x`: judges every candidate pair of `segments` (pairs of points of
@@ -100,20 +108,32 @@ impl CrossingWatch {
         candidates: &[(usize, usize)],
         radius_m: f64,
     ) {
+        if self.travel_m.len() != segments.len() {
+            self.travel_m = vec![0.0; segments.len()];
+            self.moved_m = vec![0.0; segments.len()];
+            self.candidates_changed(candidates.len());
+        }
         if self.volume.len() != candidates.len() {
             self.candidates_changed(candidates.len());
         }
+        // How far each segment moved since the last look, and in all.
+        for (s, [a, b]) in segments.iter().enumerate() {
+            let moved_sq =
+                (x[*a] - self.x_last[*a]).norm_squared().max((x[*b] - self.x_last[*b]).norm_squared());
+            self.moved_m[s] = moved_sq.sqrt();
+            self.travel_m[s] += self.moved_m[s];
+        }
         let threshold_m = CROSSING_DISTANCE_RADII * radius_m;
-        let farthest_m =
-            x.iter().zip(&self.x_last).map(|(x, last)| (x - last).norm_squared()).fold(0.0, f64::max);
-        let reach_m = 2.0 * farthest_m.sqrt();
         let first = self.crossed.len();
         let apart_m = 2.0 * radius_m;
         for (k, &(i, j)) in candidates.iter().enumerate() {
-            if self.clear_m[k] - reach_m > threshold_m {
-                self.clear_m[k] -= reach_m;
+            // The pair's distance now is at least its distance when measured less how far its
+            // segments have moved since.
+            let since_m = self.travel_m[i] + self.travel_m[j] - self.travel_at_measure_m[k];
+            let counted = !self.passed.is_empty() && self.passed.contains(&(i, j));
+            if self.clear_m[k] - since_m > threshold_m {
                 self.volume[k] = f64::NAN;
-                if !self.passed.is_empty() && self.clear_m[k] >= apart_m {
+                if counted && self.clear_m[k] - since_m >= apart_m {
                     self.passed.retain(|p| *p != (i, j));
                 }
                 continue;
@@ -126,10 +146,12 @@ impl CrossingWatch {
             } else {
                 self.volume[k]
             };
+            let pair_moved_m = self.moved_m[i] + self.moved_m[j];
+            let clear_before_m = self.clear_m[k] - (since_m - pair_moved_m);
             let now = volume(&x[a], &x[b], &x[c], &x[d]);
             self.volume[k] = now;
             self.clear_m[k] = distance(&x[a], &x[b], &x[c], &x[d]);
-            let counted = !self.passed.is_empty() && self.passed.contains(&(i, j));
+            self.travel_at_measure_m[k] = self.travel_m[i] + self.travel_m[j];
             if counted && self.clear_m[k] >= apart_m {
                 // Apart again (a flip on the way out ends the pass counted already).
                 self.passed.retain(|p| *p != (i, j));
@@ -137,7 +159,13 @@ impl CrossingWatch {
             if counted || before == 0.0 || now == 0.0 || before.signum() == now.signum() {
                 continue;
             }
-            // The coplanar instant, s in 0..1 of the substep, on the straight moves.
+            // Over the look the distance falls no faster than the pair moves: from both ends, it
+            // stays above half their sum less the move. Most flips are of pairs lying apart in
+            // one plane (neighbours along a straight strand).
+            if 0.5 * (clear_before_m + self.clear_m[k] - pair_moved_m) > threshold_m {
+                continue;
+            }
+            // The coplanar instant, s in 0..1 of the look, on the straight moves.
             let at = |s: f64, p: usize| last[p] + (x[p] - last[p]) * s;
             let (mut lo, mut hi) = (0.0, 1.0);
             for _ in 0..BISECTIONS {

@@ -10,7 +10,7 @@ use anyhow::Context;
 use clap::Args;
 
 use knotlab_sim::scene::load_scene;
-use knotlab_sim::validation::{Check, SutureUnderTest, run_all};
+use knotlab_sim::validation::{Check, SutureUnderTest, figure_text, run_all};
 
 use super::output::{Output, outln};
 
@@ -41,11 +41,11 @@ fn table(checks: &[Check]) -> String {
         let unit = if c.unit == "1" { String::new() } else { format!(" {}", c.unit) };
         let _ = writeln!(
             text,
-            "| {} | {} | {:.4}{unit} | {:.4}{unit} | {} | {result} | {} |",
+            "| {} | {} | {}{unit} | {}{unit} | {} | {result} | {} |",
             c.experiment,
             c.figure,
-            c.measured,
-            c.reference,
+            figure_text(c.measured),
+            figure_text(c.reference),
             c.tolerance_text(),
             c.source
         );

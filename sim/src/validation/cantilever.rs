@@ -43,7 +43,8 @@ pub const UNIFORM_LOAD: [(f64, f64, f64, f64); 7] = [
     (20.0, 0.8299, 0.5548, 76.75),
 ];
 
-const SOURCE: &str = "elastica, suture-mechanics.md 3.2 (Bisshopp & Drucker 1945 for the tip load)";
+const TIP_SOURCE: &str = "elastica, tip load (Bisshopp & Drucker 1945; suture-mechanics.md 3.2)";
+const UNIFORM_SOURCE: &str = "elastica, uniform load (shooting; suture-mechanics.md 3.2)";
 
 /// The load on the cantilever.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -122,16 +123,24 @@ pub fn deflect(suture: &SutureUnderTest, load: Load) -> Deflection {
 pub fn checks(suture: &SutureUnderTest) -> Vec<Check> {
     let mut checks = Vec::new();
     let cases = [
-        ("cantilever_tip_load", "alpha", Load::Tip as fn(f64) -> Load, &TIP_LOAD[..], [0.25, 1.0, 5.0]),
+        (
+            "cantilever_tip_load",
+            "alpha",
+            Load::Tip as fn(f64) -> Load,
+            &TIP_LOAD[..],
+            [0.25, 1.0, 5.0],
+            TIP_SOURCE,
+        ),
         (
             "cantilever_uniform_load",
             "beta",
             Load::Uniform as fn(f64) -> Load,
             &UNIFORM_LOAD[..],
             [0.5, 3.0, 10.0],
+            UNIFORM_SOURCE,
         ),
     ];
-    for (experiment, name, load, table, picks) in cases {
+    for (experiment, name, load, table, picks, source) in cases {
         for pick in picks {
             let Some(&(_, v, u, _)) = table.iter().find(|row| row.0 == pick) else { continue };
             let got = deflect(suture, load(pick));
@@ -142,7 +151,7 @@ pub fn checks(suture: &SutureUnderTest) -> Vec<Check> {
                 got.v_over_l,
                 v,
                 Tolerance::Relative { fraction: 0.02 },
-                SOURCE,
+                source,
             ));
             if pick >= 1.0 {
                 checks.push(Check::new(
@@ -152,7 +161,7 @@ pub fn checks(suture: &SutureUnderTest) -> Vec<Check> {
                     got.u_over_l,
                     u,
                     Tolerance::Relative { fraction: 0.05 },
-                    SOURCE,
+                    source,
                 ));
             }
         }

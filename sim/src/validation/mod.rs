@@ -94,10 +94,21 @@ impl Check {
     pub fn tolerance_text(&self) -> String {
         match self.tolerance {
             Tolerance::Relative { fraction } => format!("±{} %", fraction * 100.0),
-            Tolerance::Absolute { by } => format!("±{by}"),
-            Tolerance::Range { low, high } => format!("{low}-{high}"),
+            Tolerance::Absolute { by } => format!("±{}", figure_text(by)),
+            Tolerance::Range { low, high } => format!("{}-{}", figure_text(low), figure_text(high)),
             Tolerance::Report => "report".to_owned(),
         }
+    }
+}
+
+/// A figure to four significant digits: fixed between 0.001 and 100,000, else in exponent form.
+pub fn figure_text(x: f64) -> String {
+    if x == 0.0 || !x.is_finite() || (1e-3..1e5).contains(&x.abs()) {
+        let digits =
+            if x == 0.0 || !x.is_finite() { 4 } else { (3 - x.abs().log10().floor() as i32).clamp(0, 6) };
+        format!("{x:.*}", digits as usize)
+    } else {
+        format!("{x:.3e}")
     }
 }
 
@@ -124,5 +135,12 @@ mod tests {
         let abs = |m| Check::new("x", "f", "m", m, 0.0, Tolerance::Absolute { by: 0.1 }, "s").passed;
         assert_eq!((abs(-0.05), abs(0.2)), (Some(true), Some(false)));
         assert_eq!(Check::new("x", "f", "1", 9.0, 1.0, Tolerance::Report, "s").passed, None);
+    }
+
+    #[test]
+    fn figures_keep_four_significant_digits() {
+        let texts: Vec<String> =
+            [6.25e-8, 0.08361, 0.5, 4.6714, 50000.0, 0.0].into_iter().map(figure_text).collect();
+        assert_eq!(texts, ["6.250e-8", "0.08361", "0.5000", "4.671", "50000", "0.0000"]);
     }
 }
