@@ -63,3 +63,36 @@ fn a_bad_scene_or_time_is_refused_clearly() {
     assert_eq!(code, 1);
     assert!(err.contains("--at"), "{err}");
 }
+
+/// Guards `knotlab validate`: every experiment reports measured, reference, tolerance and source; the
+/// exit status says whether a judged check failed; the rope's bending follows the elastica.
+#[test]
+fn validate_reports_every_check_and_exits_by_the_judged_ones() {
+    let (code, v) = json(&["validate", "--json"]);
+    let checks = v["checks"].as_array().expect("checks");
+    let experiments: std::collections::BTreeSet<&str> =
+        checks.iter().filter_map(|c| c["experiment"].as_str()).collect();
+    for e in [
+        "material",
+        "stretch",
+        "cantilever_tip_load",
+        "cantilever_uniform_load",
+        "capstan_cylinder",
+        "capstan_suture",
+    ] {
+        assert!(experiments.contains(e), "no {e} in {v}");
+    }
+    for c in checks {
+        assert!(c["measured"].is_number() || c["measured"].is_null(), "{c}");
+        assert!(
+            c["reference"].as_f64().is_some() && c["source"].as_str().is_some_and(|s| !s.is_empty()),
+            "{c}"
+        );
+    }
+    let failed = checks.iter().filter(|c| c["passed"] == false).count();
+    assert_eq!(v["failed"].as_u64(), Some(failed as u64), "{v}");
+    assert_eq!(code, if failed > 0 { 1 } else { 0 }, "{v}");
+    let cantilever =
+        checks.iter().filter(|c| c["experiment"].as_str().is_some_and(|e| e.starts_with("cantilever")));
+    assert!(cantilever.clone().count() >= 6 && cantilever.clone().all(|c| c["passed"] == true), "{v}");
+}
