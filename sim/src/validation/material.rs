@@ -12,46 +12,33 @@ const SOLID_ROD_SOURCE: &str =
 
 /// The size, stiffness, weight and gravity bending length of a 3-0 suture, each within its range.
 pub fn checks(suture: &SutureUnderTest) -> Vec<Check> {
-    let mid = |low: f64, high: f64| 0.5 * (low + high);
     let weight_mg_per_m = suture.weight_per_m_n / G_MPS2 * 1e6;
-    vec![
-        Check::new(
-            "material",
-            "diameter",
-            "mm",
-            suture.diameter_m() * 1e3,
-            mid(0.200, 0.249),
-            Tolerance::Range { low: 0.200, high: 0.249 },
-            DIAMETER_SOURCE,
-        ),
-        Check::new(
-            "material",
-            "bending stiffness EI",
-            "N m2",
-            suture.bending_stiffness_n_m2(),
-            mid(1.2e-7, 9.4e-7),
-            Tolerance::Range { low: 1.2e-7, high: 9.4e-7 },
-            SOLID_ROD_SOURCE,
-        ),
-        Check::new(
-            "material",
-            "weight per metre",
-            "mg/m",
-            weight_mg_per_m,
-            mid(28.0, 67.0),
-            Tolerance::Range { low: 28.0, high: 67.0 },
-            SOLID_ROD_SOURCE,
-        ),
-        Check::new(
-            "material",
+    let figures = [
+        ("diameter", "mm", suture.diameter_m() * 1e3, (0.200, 0.249), DIAMETER_SOURCE),
+        ("bending stiffness EI", "N m2", suture.bending_stiffness_n_m2(), (1.2e-7, 9.4e-7), SOLID_ROD_SOURCE),
+        ("weight per metre", "mg/m", weight_mg_per_m, (28.0, 67.0), SOLID_ROD_SOURCE),
+        (
             "gravity bending length (EI/w)^(1/3)",
             "mm",
             suture.gravity_bending_length_m() * 1e3,
-            mid(75.0, 120.0),
-            Tolerance::Range { low: 75.0, high: 120.0 },
+            (75.0, 120.0),
             SOLID_ROD_SOURCE,
         ),
-    ]
+    ];
+    figures
+        .into_iter()
+        .map(|(figure, unit, measured, (low, high), source)| {
+            Check::new(
+                "material",
+                figure,
+                unit,
+                measured,
+                0.5 * (low + high),
+                Tolerance::Range { low, high },
+                source,
+            )
+        })
+        .collect()
 }
 
 #[cfg(test)]
