@@ -22,11 +22,14 @@ fn the_second_throw_is_of_the_other_hand_and_makes_a_surgeons_knot() {
     let at_release = run.knot_at_release.as_ref().expect("the left let go of the tail");
     assert_eq!(at_release.knot, KnotType::SurgeonsKnot, "{:?}", run.evaluation);
     assert_eq!(run.evaluation.knot_before, Some(KnotType::SurgeonsKnot), "{:?}", run.evaluation);
-    // Not yet holding.
+    // Not yet holding (and on the chain the thread passes through itself once on the way: the
+    // self-crossing watch makes that thread_unstable).
     assert!(
         matches!(
             run.evaluation.verdict,
-            Verdict::Failure(FailureMode::KnotNotDown | FailureMode::KnotSlipped)
+            Verdict::Failure(
+                FailureMode::KnotNotDown | FailureMode::KnotSlipped | FailureMode::ThreadUnstable
+            )
         ),
         "{:?}",
         run.evaluation
