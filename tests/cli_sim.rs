@@ -92,7 +92,9 @@ fn validate_reports_every_check_and_exits_by_the_judged_ones() {
     let failed = checks.iter().filter(|c| c["passed"] == false).count();
     assert_eq!(v["failed"].as_u64(), Some(failed as u64), "{v}");
     assert_eq!(code, if failed > 0 { 1 } else { 0 }, "{v}");
-    let cantilever =
-        checks.iter().filter(|c| c["experiment"].as_str().is_some_and(|e| e.starts_with("cantilever")));
-    assert!(cantilever.clone().count() >= 6 && cantilever.clone().all(|c| c["passed"] == true), "{v}");
+    let cantilever: Vec<_> = checks
+        .iter()
+        .filter(|c| c["experiment"].as_str().is_some_and(|e| e.starts_with("cantilever")))
+        .collect();
+    assert!(cantilever.len() >= 6 && cantilever.iter().all(|c| c["passed"] == true), "{v}");
 }
