@@ -98,3 +98,12 @@ fn validate_reports_every_check_and_exits_by_the_judged_ones() {
         .collect();
     assert!(cantilever.len() >= 6 && cantilever.iter().all(|c| c["passed"] == true), "{v}");
 }
+
+/// Guards `knotlab validate` against checking a rope a scene does not use: a chain scene is refused,
+/// naming the file and the field.
+#[test]
+fn validate_refuses_a_scene_whose_suture_is_the_chain() {
+    let (code, _, stderr) = knotlab(&["validate", "--suture-from", "scenarios/chain.toml"]);
+    assert_ne!(code, 0);
+    assert!(stderr.contains("scenarios/chain.toml") && stderr.contains("thread.model"), "{stderr}");
+}

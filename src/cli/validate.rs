@@ -10,13 +10,14 @@ use anyhow::Context;
 use clap::Args;
 
 use knotlab_sim::scene::load_scene;
+use knotlab_sim::thread::ThreadModel;
 use knotlab_sim::validation::{Check, SutureUnderTest, figure_text, run_all};
 
 use super::output::{Output, outln};
 
 #[derive(Debug, Args)]
 pub struct ValidateArgs {
-    /// The scene whose suture is checked (its `[thread]`, and its step).
+    /// The scene whose suture is checked (its `[thread]`, which must be the rope, and its step).
     #[arg(long, default_value = "scenarios/default.toml")]
     suture_from: PathBuf,
     /// Also write `validation.json` and `validation.md` (the table) into this directory.
@@ -55,6 +56,13 @@ fn table(checks: &[Check]) -> String {
 
 pub fn run(args: ValidateArgs, out: &mut Output) -> anyhow::Result<ExitCode> {
     let scene = load_scene(&args.suture_from)?;
+    if scene.thread.model != ThreadModel::Rope {
+        anyhow::bail!(
+            "{}: thread.model: the suite builds its experiments with the rope (\"rope\"), not the capsule \
+             chain this scene simulates (try scenarios/default.toml)",
+            args.suture_from.display()
+        );
+    }
     let suture = SutureUnderTest::from_thread(&scene.thread, scene.solver.dt_s);
     let checks = run_all(&suture);
     let failed = checks.iter().filter(|c| c.passed == Some(false)).count();
