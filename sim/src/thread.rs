@@ -75,6 +75,15 @@ pub struct ThreadParams {
     /// the length ([`crate::rope::suture::SPACING_RADII`] if left out). The chain ignores it.
     #[serde(default)]
     pub rope_spacing_radii: Option<f64>,
+    /// The rope's inertial mass per metre, kg/m ([`crate::rope::RopeParams::mass_per_m_kg`]): what
+    /// its particles weigh to the solver, apart from the weight `mass_kg` puts on them; left out, the
+    /// rope's default (0.67 kg/m). The chain ignores it.
+    #[serde(default)]
+    pub rope_inertial_mass_kg_per_m: Option<f64>,
+    /// Whether the rope's bending joints are solved a strand at once
+    /// ([`crate::rope::RopeParams::direct_bending`]); left out, one pass a joint. The chain ignores it.
+    #[serde(default)]
+    pub rope_direct_bending: bool,
 }
 
 /// How the suture is simulated.
@@ -108,6 +117,8 @@ impl Default for ThreadParams {
             axial_stiffness_n: None,
             rope_substeps: None,
             rope_spacing_radii: None,
+            rope_inertial_mass_kg_per_m: None,
+            rope_direct_bending: false,
             linear_damping_per_s: 1.0,
             twist_free: true,
             model: ThreadModel::Chain,

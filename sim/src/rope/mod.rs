@@ -10,6 +10,7 @@
 //! couples it to Rapier's bodies, [`grasp`] to jaws; [`trials`], [`wound`] and [`tissue_trial`]
 //! are its knot trials.
 
+mod bend;
 mod broad_phase;
 mod contact;
 pub mod grasp;
@@ -68,6 +69,10 @@ pub struct RopeParams {
     /// Whether each strand's lengths are solved directly (`stretch::project_strand`) instead of
     /// by Gauss-Seidel.
     pub direct_stretch: bool,
+    /// Whether each strand's bending joints are solved at once ([`bend`]: exact for the substep's
+    /// implicit spring) instead of by one Gauss-Seidel pass, which leaves a stiff, finely divided
+    /// rope too soft (the joints' compliance small against their particles' inverse masses).
+    pub direct_bending: bool,
     /// Passes over the contacts in each substep. More let friction act closer to its coefficient:
     /// with 4 the reef trial's square knot at friction 0.5 holds within 0.1-0.8 mm where with 1 it
     /// creeps 1.4-2.2 mm a second, at three times the cost (session 42).
@@ -101,6 +106,7 @@ impl Default for RopeParams {
             substeps: 20,
             stretch_iterations: 1,
             direct_stretch: true,
+            direct_bending: false,
             contact_passes: 1,
             damping_per_s: 100.0,
             contact_margin_m: 0.001,
@@ -136,6 +142,8 @@ pub struct Ropes {
     x_prev: Vec<Vector3<f64>>,
     /// The direct stretch solver's working space.
     stretch_scratch: stretch::Scratch,
+    /// The direct bending solver's working space.
+    bend_scratch: bend::Scratch,
     /// Each segment's rest length, m (as `segments`: the segments of strand `s` from particle `a` on
     /// are `a - s` on).
     rest_m: Vec<f64>,
@@ -207,6 +215,7 @@ impl Ropes {
             watch: contact::Watch::default(),
             x_prev: Vec::new(),
             stretch_scratch: stretch::Scratch::default(),
+            bend_scratch: bend::Scratch::default(),
             rest_m: Vec::new(),
             bends: Bends::default(),
             contacts_last: 0,
@@ -318,11 +327,17 @@ impl Ropes {
     /// `l1`, `l2`) the constraint `C = (x_c - x_b)/l2 - (x_b - x_a)/l1` (the turn, about the angle for
     /// a small one) with stiffness `EI / l̄`, `l̄` their mean: the energy of a rod's curvature
     /// `|C|/l̄` over `l̄`. The constraint is linear in the positions, so one pass from `λ = 0` is a
-    /// substep's implicit spring.
+    /// substep's implicit spring for each joint alone; with [`RopeParams::direct_bending`] the
+    /// strand's joints are solved together ([`bend`]).
     fn solve_bending(&mut self, h_s: f64) {
         let key = (self.params.bending_stiffness_n_m2.to_bits(), h_s.to_bits(), self.rest_m.len());
         if self.bends.key != key {
             self.bends = Bends::new(self, h_s, key);
+        }
+        if self.params.direct_bending {
+            // A run it cannot solve (every particle pinned, no compliance) cannot move either.
+            bend::project(&self.bends.joints, &mut self.x, &self.w, &mut self.bend_scratch);
+            return;
         }
         for bend in &self.bends.joints {
             let [a, b, c] = bend.p;

@@ -48,13 +48,21 @@ pub struct SceneRope {
     needle_weight_n: f64,
 }
 
+/// Segment pairs within this many of the rope's radii beyond touching are watched for contact
+/// ([`RopeParams::contact_margin_m`]): 1 mm at the nominal 0.4 mm radius, and as many particle
+/// spacings at any other radius (a fixed millimetre round a 0.11 mm rope watched three times the
+/// pairs, and a trial took 16 times as long).
+pub const CONTACT_MARGIN_RADII: f64 = 2.5;
+
 /// How far beyond the rope's radius a collider still counts as touching it, m.
 const TOUCH_SLOP_M: f64 = 1e-4;
 
 /// The rope's material from the scene's thread: its radius and friction on itself (kinetic 0.8 of
 /// the static), its bending stiffness the chain's per joint times a segment's length (the nominal
-/// scene's 2e-5 N m/rad over 3.125 mm: 6.25e-8 N m²), its damping the chain's, two contact passes a
-/// substep, its substeps the scene's `thread.rope_substeps` (20 if left out).
+/// scene's 2e-5 N m/rad over 2.5 mm: 5.0e-8 N m²), its damping the chain's, two contact passes a
+/// substep, its substeps the scene's `thread.rope_substeps` (20 if left out), its inertial mass the
+/// scene's `thread.rope_inertial_mass_kg_per_m` (0.67 kg/m if left out), its bending solved a
+/// strand at once if `thread.rope_direct_bending`, its contact margin [`CONTACT_MARGIN_RADII`] radii.
 pub fn rope_params(thread: &ThreadParams) -> RopeParams {
     let friction = thread.friction_on_itself.unwrap_or(thread.friction);
     RopeParams {
@@ -66,6 +74,9 @@ pub fn rope_params(thread: &ThreadParams) -> RopeParams {
         contact_passes: 2,
         substeps: thread.rope_substeps.unwrap_or(RopeParams::default().substeps),
         axial_stiffness_n: thread.axial_stiffness_n.unwrap_or(f64::INFINITY),
+        mass_per_m_kg: thread.rope_inertial_mass_kg_per_m.unwrap_or(RopeParams::default().mass_per_m_kg),
+        contact_margin_m: CONTACT_MARGIN_RADII * thread.radius_m,
+        direct_bending: thread.rope_direct_bending,
         ..RopeParams::default()
     }
 }

@@ -402,6 +402,9 @@ impl SceneConfig {
         if let Some(k) = t.rope_spacing_radii {
             c.range("thread.rope_spacing_radii", k, 0.5, 4.0);
         }
+        if let Some(m) = t.rope_inertial_mass_kg_per_m {
+            c.range("thread.rope_inertial_mass_kg_per_m", m, 1e-6, 10.0);
+        }
         c.range("thread.linear_damping_per_s", t.linear_damping_per_s, 0.0, 100.0);
         if t.radius_m * 2.0 >= t.length_m / t.segments.max(1) as f64 {
             c.0.push((

@@ -9,9 +9,12 @@
 //! - [`cantilever`]: a clamped length bent by a tip load and by a uniform load, against the elastica.
 //! - [`capstan`]: the suture pulled round a fixed cylinder and round taut suture, against the
 //!   capstan law.
+//! - [`dynamics`]: a clamped length ringing at the first cantilever mode, and the rope's inertial
+//!   mass against the suture's real one.
 
 pub mod cantilever;
 pub mod capstan;
+pub mod dynamics;
 pub mod material;
 pub mod stretch;
 pub mod suture;
@@ -118,6 +121,7 @@ pub fn run_all(suture: &SutureUnderTest) -> Vec<Check> {
     checks.extend(stretch::checks(suture));
     checks.extend(cantilever::checks(suture));
     checks.extend(capstan::checks(suture));
+    checks.extend(dynamics::checks(suture));
     checks
 }
 

@@ -62,3 +62,15 @@ pub(crate) fn nominal() -> SutureUnderTest {
         .expect("the shipped scene");
     SutureUnderTest::from_thread(&scene.thread, scene.solver.dt_s)
 }
+
+/// The suture of the 3-0 polypropylene scene (`scenarios/polypropylene-3-0.toml`), for the
+/// experiments' tests.
+#[cfg(test)]
+pub(crate) fn polypropylene() -> SutureUnderTest {
+    let scene = crate::scene::parse_scene(
+        include_str!("../../../scenarios/polypropylene-3-0.toml"),
+        "polypropylene-3-0.toml",
+    )
+    .expect("the shipped scene");
+    SutureUnderTest::from_thread(&scene.thread, scene.solver.dt_s)
+}

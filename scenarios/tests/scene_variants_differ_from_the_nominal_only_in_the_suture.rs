@@ -1,9 +1,15 @@
+//! The shipped scene variants are the nominal scene with another suture, so that runs on them
+//! compare on the suture alone.
+//!
 //! `scenarios/chain.toml` is the nominal scene with the suture as Rapier's capsule chain (the nominal
 //! suture until session 48): one friction for all (0.15), 0.25 m long, held in the tissue by 0.05 N a
 //! flap, no rope substeps or spacing (the chain has neither), Rapier's solver at the 8 substeps of 4
 //! sweeps its joints need (the rope leaves Rapier only the needle and the flaps: 2 of 1), nothing else
-//! changed, so that the chain's tests run in the nominal operating scene and runs on the two compare
-//! on the suture alone.
+//! changed, so that the chain's tests run in the nominal operating scene.
+//!
+//! `scenarios/polypropylene-3-0.toml` is the nominal scene with a measured 3-0 polypropylene suture:
+//! its thread's size, stiffness and weight, the rope's substeps, inertial mass and bending solve, and
+//! the randomization's bending stiffness.
 
 use knotlab_sim::scene::parse_scene;
 use knotlab_sim::thread::ThreadModel;
@@ -33,4 +39,26 @@ fn the_chain_scene_differs_from_the_nominal_one_only_in_the_suture() {
     chain.solver.pgs_iterations_per_substep = nominal.solver.pgs_iterations_per_substep;
     chain.stitch.slide_friction_n = nominal.stitch.slide_friction_n;
     assert_eq!(chain, nominal, "every other setting as in default.toml");
+}
+
+#[test]
+fn the_polypropylene_scene_differs_from_the_nominal_one_only_in_the_suture() {
+    let nominal = parse_scene(include_str!("../default.toml"), "default.toml").expect("the shipped scene");
+    let mut pp = parse_scene(include_str!("../polypropylene-3-0.toml"), "polypropylene-3-0.toml")
+        .expect("the polypropylene scene");
+    assert_eq!((pp.thread.radius_m, pp.thread.mass_kg), (0.0001125, 7.2e-6));
+    let ei = pp.thread.bend_stiffness_n_m_per_rad * pp.thread.segment_length_m();
+    assert!((ei - 5.0e-7).abs() < 1e-15, "EI {ei:e} N m²");
+    assert_eq!((pp.thread.rope_substeps, pp.thread.rope_direct_bending), (Some(12), true));
+    assert_eq!(pp.thread.rope_inertial_mass_kg_per_m, Some(0.67));
+    assert_eq!(pp.randomization.thread_bend_stiffness, [1.25e-4, 3.0e-4]);
+    pp.thread.radius_m = nominal.thread.radius_m;
+    pp.thread.mass_kg = nominal.thread.mass_kg;
+    pp.thread.bend_stiffness_n_m_per_rad = nominal.thread.bend_stiffness_n_m_per_rad;
+    pp.thread.rope_substeps = nominal.thread.rope_substeps;
+    pp.thread.rope_direct_bending = nominal.thread.rope_direct_bending;
+    pp.thread.rope_inertial_mass_kg_per_m = nominal.thread.rope_inertial_mass_kg_per_m;
+    pp.randomization.thread_bend_stiffness = nominal.randomization.thread_bend_stiffness;
+    pp.description = nominal.description.clone();
+    assert_eq!(pp, nominal, "every other setting as in default.toml");
 }
