@@ -66,6 +66,24 @@ pub struct Rest {
     pub rested_s: f64,
 }
 
+/// Why a tightening's figures are void.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Void {
+    /// The thread passed through itself, this long after the first load, s.
+    PassedThroughItself(f64),
+    /// At the end it no longer held a trefoil (or no knot could be read).
+    NoLongerATrefoil,
+}
+
+impl std::fmt::Display for Void {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Void::PassedThroughItself(t) => write!(f, "void: passed through itself at {t:.1} s"),
+            Void::NoLongerATrefoil => write!(f, "void: no longer a trefoil"),
+        }
+    }
+}
+
 /// The tightening force of the law at `epsilon` for radius `h_m`, stiffness `b_n_m2` and friction
 /// `mu`, N.
 pub fn law_n(epsilon: f64, h_m: f64, b_n_m2: f64, mu: f64) -> f64 {
@@ -91,9 +109,8 @@ pub fn open_trefoil(radius_m: f64) -> Vec<Vector3<f64>> {
 
 /// Lays the loose trefoil in `suture`'s rope with friction `friction` on itself, holds its first
 /// end and pulls the other, for each of [`EPSILONS`] in turn, with the law's force for that ε;
-/// returns the rest at each load (`None`: the thread passed through itself, or it no longer holds a
-/// trefoil).
-pub fn tighten(suture: &SutureUnderTest, friction: f64) -> Option<Vec<Rest>> {
+/// returns the rest at each load, or why the figures are void.
+pub fn tighten(suture: &SutureUnderTest, friction: f64) -> Result<Vec<Rest>, Void> {
     let h = suture.params.radius_m;
     let b = suture.bending_stiffness_n_m2();
     let params = RopeParams {
@@ -110,6 +127,7 @@ pub fn tighten(suture: &SutureUnderTest, friction: f64) -> Option<Vec<Rest>> {
     let along = (ropes.x[last] - ropes.x[first]).normalize();
     let steps_per_s = (1.0 / suture.dt_s).round() as usize;
     let mut rests = Vec::new();
+    let mut elapsed_s = 0.0;
     for epsilon in EPSILONS {
         let force_n = law_n(epsilon, h, b, friction);
         ropes.force_n[last] = along * force_n;
@@ -118,8 +136,9 @@ pub fn tighten(suture: &SutureUnderTest, friction: f64) -> Option<Vec<Rest>> {
         for second in 1..=MAX_REST_S as usize {
             for _ in 0..steps_per_s {
                 ropes.step(suture.dt_s);
+                elapsed_s += suture.dt_s;
                 if !ropes.crossed_last_step().is_empty() {
-                    return None;
+                    return Err(Void::PassedThroughItself(elapsed_s));
                 }
             }
             apart.push((ropes.x[last] - ropes.x[first]).norm());
@@ -140,8 +159,11 @@ pub fn tighten(suture: &SutureUnderTest, friction: f64) -> Option<Vec<Rest>> {
             rested_s,
         });
     }
-    let still = crate::knot::classify::classify(&ropes.polyline(0)).ok()?;
-    (still.knot == crate::knot::classify::KnotType::Trefoil).then_some(rests)
+    let still = crate::knot::classify::classify(&ropes.polyline(0)).map(|c| c.knot);
+    if still != Ok(crate::knot::classify::KnotType::Trefoil) {
+        return Err(Void::NoLongerATrefoil);
+    }
+    Ok(rests)
 }
 
 /// The pull over the law's tightening force at the loop size the knot rested at, for each load but
@@ -151,11 +173,19 @@ pub fn checks(suture: &SutureUnderTest) -> Vec<Check> {
     for friction in [0.0, suture.params.static_friction] {
         let rests = tighten(suture, friction);
         for (k, epsilon) in EPSILONS.iter().enumerate().skip(1) {
-            let (ratio, at) =
-                rests.as_ref().map_or((f64::NAN, *epsilon), |r| (r[k].force_n / r[k].law_n, r[k].epsilon));
+            let (ratio, figure) = match &rests {
+                Ok(r) => (
+                    r[k].force_n / r[k].law_n,
+                    format!("pull over the law's force, at rest at eps = {:.3}, mu {friction}", r[k].epsilon),
+                ),
+                Err(void) => (
+                    f64::NAN,
+                    format!("pull over the law's force, load for eps = {epsilon}, mu {friction} ({void})"),
+                ),
+            };
             checks.push(Check::new(
                 "knot_trefoil",
-                format!("pull over the law's force, at rest at eps = {at:.3}, mu {friction}"),
+                figure,
                 "1",
                 ratio,
                 1.0,
