@@ -7,8 +7,8 @@
 //! better its solver converges (session 42, `docs/knot-tying-notes.md`); this rope holds a square
 //! knot, and a surgeon's knot over the wound within 0.2 mm where a rope without bending stiffness
 //! lets it open 2-7 mm (session 43; `cargo bench -p knotlab-bench --bench rope_knot`). [`rigid`]
-//! couples it to Rapier's bodies, [`grasp`] to jaws; [`trials`], [`wound`] and [`tissue_trial`]
-//! are its knot trials.
+//! couples it to Rapier's bodies, [`grasp`] to jaws; `stretch` and `bend` solve a strand's lengths
+//! and its bending joints at once; [`trials`], [`wound`] and [`tissue_trial`] are its knot trials.
 
 mod bend;
 mod broad_phase;
