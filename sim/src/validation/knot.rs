@@ -43,7 +43,7 @@ const TAIL_UNITS: f64 = 15.0;
 /// stops it, and a heavier drag on the whole strand slows the pull through the knot to a crawl).
 const DAMPING_PER_S: f64 = 0.5;
 /// Longest rest sought at one load, s.
-const MAX_REST_S: f64 = 90.0;
+pub const MAX_REST_S: f64 = 90.0;
 /// The low friction the law is checked at beside the suture's own: the elastic part dominates
 /// (μσ a fifth to a third of ε/2), and the knot stays where it is tied (frictionless, it drifts
 /// along the rope as it is pulled and off an end).
@@ -68,7 +68,7 @@ pub struct Rest {
     pub epsilon: f64,
     /// The law's tightening force at that ε, N.
     pub law_n: f64,
-    /// Simulated time to rest, s.
+    /// Simulated time to rest, s ([`MAX_REST_S`]: it had not come to rest by then).
     pub rested_s: f64,
 }
 
@@ -180,10 +180,20 @@ pub fn checks(suture: &SutureUnderTest) -> Vec<Check> {
         let rests = tighten(suture, friction);
         for (k, epsilon) in EPSILONS.iter().enumerate().skip(1) {
             let (ratio, figure) = match &rests {
-                Ok(r) => (
-                    r[k].force_n / r[k].law_n,
-                    format!("pull over the law's force, at rest at eps = {:.3}, mu {friction}", r[k].epsilon),
-                ),
+                Ok(r) => {
+                    let rest = if r[k].rested_s < MAX_REST_S {
+                        "at rest".to_owned()
+                    } else {
+                        format!("still moving after {MAX_REST_S} s")
+                    };
+                    (
+                        r[k].force_n / r[k].law_n,
+                        format!(
+                            "pull over the law's force, {rest} at eps = {:.3}, mu {friction}",
+                            r[k].epsilon
+                        ),
+                    )
+                }
                 Err(void) => (
                     f64::NAN,
                     format!("pull over the law's force, load for eps = {epsilon}, mu {friction} ({void})"),
