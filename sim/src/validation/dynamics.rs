@@ -21,6 +21,10 @@ const BETA_1: f64 = 1.875_104_068_711_961;
 /// the linear beam, large enough to read the tip.
 const ALPHA: f64 = 0.05;
 
+/// The longest the let-go length is watched, s of simulated time (a nearly limp rope's mode is
+/// minutes long).
+pub const MAX_RING_S: f64 = 600.0;
+
 const MODE_SOURCE: &str = "first cantilever mode, 1.8751^2/(2 pi) sqrt(EI/(m L^4)) (suture-mechanics.md 3.1)";
 const INERTIA_SOURCE: &str =
     "quasi-static within a factor 2 in time of the suture's real mass (its weight / g)";
@@ -45,7 +49,8 @@ pub struct Ringing {
 
 /// Bends a clamped length of `suture`'s rope to rest under a small tip load, lets it go with no
 /// damping and gravity, and times the tip's swings through the clamp's level over two periods
-/// (`None`: it did not swing through twice within 20 closed-form periods).
+/// (`None`: it has no stiffness, or did not swing through twice within 20 closed-form periods or
+/// [`MAX_RING_S`]).
 pub fn ring(suture: &SutureUnderTest) -> Option<Ringing> {
     let (mut ropes, clamp, tip, length_m) = clamped(suture, suture.params);
     rest_under(suture, &mut ropes, clamp, tip, length_m, Load::Tip(ALPHA));
@@ -54,9 +59,14 @@ pub fn ring(suture: &SutureUnderTest) -> Option<Ringing> {
     ropes.params = RopeParams { damping_per_s: 0.0, ..ropes.params };
     ropes.force_n.iter_mut().for_each(|f| *f = Vector3::zeros());
     let level = clamp_point(&ropes, clamp).z;
-    // Steps of at most a hundredth of a period, whole substeps of the scene's.
+    // A string (no stiffness) has no mode to ring at.
+    if !(closed_form_hz > 0.0 && closed_form_hz.is_finite()) {
+        return None;
+    }
+    // Steps of at most a hundredth of a period, for 20 periods or MAX_RING_S, whichever is shorter.
     let dt_s = suture.dt_s.min(0.01 / closed_form_hz);
-    let steps = (20.0 / closed_form_hz / dt_s).ceil() as usize;
+    let steps = (20.0 / closed_form_hz).min(MAX_RING_S) / dt_s;
+    let steps = steps.ceil() as usize;
     let mut upward = Vec::new();
     let mut below = ropes.x[tip].z - level;
     for k in 1..=steps {
@@ -133,6 +143,19 @@ mod tests {
         let light = ring(&light).expect("it rings");
         let faster = light.measured_hz / heavy.measured_hz;
         assert!((faster - 2.0).abs() < 0.1, "a quarter of the mass rings {faster:.3} times as fast");
+    }
+
+    /// Guards against a rope with no mode: a string (EI 0) and a nearly limp rope give no ringing,
+    /// at once or within [`MAX_RING_S`], and their checks fail instead of running on.
+    #[test]
+    fn a_limp_rope_gives_no_mode_and_fails() {
+        let mut string = nominal();
+        string.params.bending_stiffness_n_m2 = 0.0;
+        assert_eq!(ring(&string), None);
+        assert_eq!(checks(&string)[0].passed, Some(false));
+        let mut limp = nominal();
+        limp.params.bending_stiffness_n_m2 = 1e-16;
+        assert_eq!(ring(&limp), None);
     }
 
     /// Guards the inertia check: the nominal rope (0.67 kg/m against its weight's 0.05 kg/m) is
