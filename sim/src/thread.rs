@@ -84,6 +84,10 @@ pub struct ThreadParams {
     /// ([`crate::rope::RopeParams::direct_bending`]); left out, one pass a joint. The chain ignores it.
     #[serde(default)]
     pub rope_direct_bending: bool,
+    /// The rope's passes over its lengths and joints together in each substep
+    /// ([`crate::rope::RopeParams::constraint_passes`]); left out, one. The chain ignores it.
+    #[serde(default)]
+    pub rope_constraint_passes: Option<usize>,
 }
 
 /// How the suture is simulated.
@@ -119,6 +123,7 @@ impl Default for ThreadParams {
             rope_spacing_radii: None,
             rope_inertial_mass_kg_per_m: None,
             rope_direct_bending: false,
+            rope_constraint_passes: None,
             linear_damping_per_s: 1.0,
             twist_free: true,
             model: ThreadModel::Chain,

@@ -29,7 +29,13 @@ pub(super) struct Scratch {
 /// previous joint's) of `joints` onto its constraints at once, moving `x` by the inverse masses `w`.
 /// Returns false where a run's matrix is singular (a pivot not positive, as when a joint's three
 /// particles are all pinned and it has no compliance), leaving that run as it was.
-pub(super) fn project(joints: &[Bend], x: &mut [Vector3<f64>], w: &[f64], scratch: &mut Scratch) -> bool {
+pub(super) fn project(
+    joints: &[Bend],
+    lambda: &mut [Vector3<f64>],
+    x: &mut [Vector3<f64>],
+    w: &[f64],
+    scratch: &mut Scratch,
+) -> bool {
     let mut ok = true;
     let mut start = 0;
     while start < joints.len() {
@@ -37,14 +43,20 @@ pub(super) fn project(joints: &[Bend], x: &mut [Vector3<f64>], w: &[f64], scratc
         while end < joints.len() && joints[end].p[0] == joints[end - 1].p[0] + 1 {
             end += 1;
         }
-        ok &= project_run(&joints[start..end], x, w, scratch);
+        ok &= project_run(&joints[start..end], &mut lambda[start..end], x, w, scratch);
         start = end;
     }
     ok
 }
 
 /// Projects one run of consecutive joints.
-fn project_run(run: &[Bend], x: &mut [Vector3<f64>], w: &[f64], scratch: &mut Scratch) -> bool {
+fn project_run(
+    run: &[Bend],
+    total: &mut [Vector3<f64>],
+    x: &mut [Vector3<f64>],
+    w: &[f64],
+    scratch: &mut Scratch,
+) -> bool {
     let n = run.len();
     let Scratch { pivot, l1, l2, lambda } = scratch;
     pivot.clear();
@@ -82,12 +94,12 @@ fn project_run(run: &[Bend], x: &mut [Vector3<f64>], w: &[f64], scratch: &mut Sc
         l1.push((e - coupled) / d);
         l2.push(if j + 2 < n { off2(j) / d } else { 0.0 });
     }
-    // Forward: L y = -C; then z = y / D; back: Lᵀ λ = z.
+    // Forward: L y = -(C + α̃ λ); then z = y / D; back: Lᵀ Δλ = z.
     for j in 0..n {
         let b = &run[j];
         let [pa, pb, pc] = b.p;
         let turn = (x[pc] - x[pb]) / b.l2 - (x[pb] - x[pa]) / b.l1;
-        let mut y = -turn;
+        let mut y = -(turn + total[j] * b.compliance);
         if j >= 1 {
             y -= lambda[j - 1] * l1[j - 1];
         }
@@ -109,7 +121,8 @@ fn project_run(run: &[Bend], x: &mut [Vector3<f64>], w: &[f64], scratch: &mut Sc
         }
         lambda[j] = z;
     }
-    for (b, l) in run.iter().zip(lambda.iter()) {
+    for ((b, l), total) in run.iter().zip(lambda.iter()).zip(total.iter_mut()) {
+        *total += l;
         for (p, g) in b.p.into_iter().zip(b.g) {
             x[p] += l * (w[p] * g);
         }
@@ -151,9 +164,11 @@ mod tests {
             // No compliance: the fixed point is the straight strand, so a second projection moves
             // nothing once the first has straightened it.
             ropes.params.bending_stiffness_n_m2 = f64::INFINITY;
-            ropes.solve_bending(1e-3);
+            ropes.start_bending(1e-3);
+            ropes.solve_bending();
             let once = ropes.x.clone();
-            ropes.solve_bending(1e-3);
+            ropes.start_bending(1e-3);
+            ropes.solve_bending();
             let moved = ropes.x.iter().zip(&once).map(|(a, b)| (a - b).norm()).fold(0.0, f64::max);
             assert_eq!(moved < 1e-12, settled, "direct {direct}: moved {moved:e} m");
         }
@@ -202,7 +217,8 @@ mod tests {
             }
         }
         let mut scratch = Scratch::default();
-        assert!(project(&joints, &mut ropes.x, &ropes.w, &mut scratch));
+        let mut lambda = vec![Vector3::zeros(); n];
+        assert!(project(&joints, &mut lambda, &mut ropes.x, &ropes.w, &mut scratch));
         let worst = ropes.x.iter().zip(&expected).map(|(a, b)| (a - b).norm()).fold(0.0, f64::max);
         assert!(worst < 1e-12, "differs from the dense solve by {worst:e} m");
     }

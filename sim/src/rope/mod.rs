@@ -73,6 +73,12 @@ pub struct RopeParams {
     /// implicit spring) instead of by one Gauss-Seidel pass, which leaves a stiff, finely divided
     /// rope too soft (the joints' compliance small against their particles' inverse masses).
     pub direct_bending: bool,
+    /// Passes over the lengths and the joints together in each substep, the joints' multipliers
+    /// carried from pass to pass (XPBD's accumulated `λ`), so that more passes converge on the
+    /// substep's implicit step for both at once rather than on whichever was solved last. One pass
+    /// is enough while the particles are heavy against the joints' stiffness; a rope at a real
+    /// suture's mass needs more (`validation::dynamics`).
+    pub constraint_passes: usize,
     /// Passes over the contacts in each substep. More let friction act closer to its coefficient:
     /// with 4 the reef trial's square knot at friction 0.5 holds within 0.1-0.8 mm where with 1 it
     /// creeps 1.4-2.2 mm a second, at three times the cost (session 42).
@@ -107,6 +113,7 @@ impl Default for RopeParams {
             stretch_iterations: 1,
             direct_stretch: true,
             direct_bending: false,
+            constraint_passes: 1,
             contact_passes: 1,
             damping_per_s: 100.0,
             contact_margin_m: 0.001,
@@ -163,6 +170,8 @@ struct Bends {
     /// out for.
     key: (u64, u64, usize),
     joints: Vec<Bend>,
+    /// Each joint's multiplier accumulated over the substep's passes so far.
+    lambda: Vec<Vector3<f64>>,
 }
 
 /// One joint between two segments `a b` and `b c`: their rest lengths, the turn's gradients and the
@@ -196,7 +205,8 @@ impl Bends {
                 joints.push(Bend { p: [a, b, c], l1, l2, g, compliance });
             }
         }
-        Self { key, joints }
+        let lambda = vec![Vector3::zeros(); joints.len()];
+        Self { key, joints, lambda }
     }
 }
 
@@ -302,11 +312,17 @@ impl Ropes {
                     self.x[i] += self.v[i] * h;
                 }
             }
-            for _ in 0..self.params.stretch_iterations {
-                self.solve_stretch(h);
+            let bending = self.params.bending_stiffness_n_m2 > 0.0;
+            if bending {
+                self.start_bending(h);
             }
-            if self.params.bending_stiffness_n_m2 > 0.0 {
-                self.solve_bending(h);
+            for _ in 0..self.params.constraint_passes.max(1) {
+                for _ in 0..self.params.stretch_iterations {
+                    self.solve_stretch(h);
+                }
+                if bending {
+                    self.solve_bending();
+                }
             }
             for pass in 0..self.params.contact_passes.max(1) {
                 self.contacts_last = contact::solve_contacts(self, &mut watch, &x_prev, pass == 0);
@@ -323,28 +339,37 @@ impl Ropes {
         self.x_prev = x_prev;
     }
 
-    /// One XPBD pass over the joints: at joint `b` between segments `a b` and `b c` (rest lengths
-    /// `l1`, `l2`) the constraint `C = (x_c - x_b)/l2 - (x_b - x_a)/l1` (the turn, about the angle for
-    /// a small one) with stiffness `EI / l̄`, `l̄` their mean: the energy of a rod's curvature
-    /// `|C|/l̄` over `l̄`. The constraint is linear in the positions, so one pass from `λ = 0` is a
-    /// substep's implicit spring for each joint alone; with [`RopeParams::direct_bending`] the
-    /// strand's joints are solved together ([`bend`]).
-    fn solve_bending(&mut self, h_s: f64) {
+    /// Readies the joints for a substep of `h_s` seconds: their constants (worked out anew when the
+    /// stiffness, the substep or the rope changed) and their multipliers at zero.
+    fn start_bending(&mut self, h_s: f64) {
         let key = (self.params.bending_stiffness_n_m2.to_bits(), h_s.to_bits(), self.rest_m.len());
         if self.bends.key != key {
             self.bends = Bends::new(self, h_s, key);
         }
+        self.bends.lambda.iter_mut().for_each(|l| *l = Vector3::zeros());
+    }
+
+    /// One XPBD pass over the joints: at joint `b` between segments `a b` and `b c` (rest lengths
+    /// `l1`, `l2`) the constraint `C = (x_c - x_b)/l2 - (x_b - x_a)/l1` (the turn, about the angle for
+    /// a small one) with stiffness `EI / l̄`, `l̄` their mean: the energy of a rod's curvature
+    /// `|C|/l̄` over `l̄`. Each pass moves the joint's multiplier by `Δλ = -(C + α̃ λ) / (w + α̃)`
+    /// (XPBD); the constraint is linear in the positions, so the first pass from `λ = 0` is a
+    /// substep's implicit spring for each joint alone; with [`RopeParams::direct_bending`] the
+    /// strand's joints are solved together ([`bend`]).
+    fn solve_bending(&mut self) {
+        let Bends { joints, lambda, .. } = &mut self.bends;
         if self.params.direct_bending {
             // A run it cannot solve (every particle pinned, no compliance) cannot move either.
-            bend::project(&self.bends.joints, &mut self.x, &self.w, &mut self.bend_scratch);
+            bend::project(joints, lambda, &mut self.x, &self.w, &mut self.bend_scratch);
             return;
         }
-        for bend in &self.bends.joints {
+        for (bend, lambda) in joints.iter().zip(lambda.iter_mut()) {
             let [a, b, c] = bend.p;
             let g = bend.g;
             let turn = (self.x[c] - self.x[b]) / bend.l2 - (self.x[b] - self.x[a]) / bend.l1;
             let weight: f64 = (0..3).map(|k| self.w[bend.p[k]] * g[k] * g[k]).sum();
-            let dlambda = -turn / (weight + bend.compliance);
+            let dlambda = -(turn + *lambda * bend.compliance) / (weight + bend.compliance);
+            *lambda += dlambda;
             for (p, g) in bend.p.into_iter().zip(g) {
                 self.x[p] += dlambda * (self.w[p] * g);
             }

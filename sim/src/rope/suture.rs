@@ -62,7 +62,8 @@ const TOUCH_SLOP_M: f64 = 1e-4;
 /// scene's 2e-5 N m/rad over 2.5 mm: 5.0e-8 N m²), its damping the chain's, two contact passes a
 /// substep, its substeps the scene's `thread.rope_substeps` (20 if left out), its inertial mass the
 /// scene's `thread.rope_inertial_mass_kg_per_m` (0.67 kg/m if left out), its bending solved a
-/// strand at once if `thread.rope_direct_bending`, its contact margin [`CONTACT_MARGIN_RADII`] radii.
+/// strand at once if `thread.rope_direct_bending`, its lengths and joints passed over
+/// `thread.rope_constraint_passes` times a substep (once if left out), its contact margin [`CONTACT_MARGIN_RADII`] radii.
 pub fn rope_params(thread: &ThreadParams) -> RopeParams {
     let friction = thread.friction_on_itself.unwrap_or(thread.friction);
     RopeParams {
@@ -77,6 +78,7 @@ pub fn rope_params(thread: &ThreadParams) -> RopeParams {
         mass_per_m_kg: thread.rope_inertial_mass_kg_per_m.unwrap_or(RopeParams::default().mass_per_m_kg),
         contact_margin_m: CONTACT_MARGIN_RADII * thread.radius_m,
         direct_bending: thread.rope_direct_bending,
+        constraint_passes: thread.rope_constraint_passes.unwrap_or(1),
         ..RopeParams::default()
     }
 }

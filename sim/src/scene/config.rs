@@ -399,6 +399,9 @@ impl SceneConfig {
         if let Some(n) = t.rope_substeps {
             c.count("thread.rope_substeps", n, 1, 1000);
         }
+        if let Some(n) = t.rope_constraint_passes {
+            c.count("thread.rope_constraint_passes", n, 1, 100);
+        }
         if let Some(k) = t.rope_spacing_radii {
             c.range("thread.rope_spacing_radii", k, 0.5, 4.0);
         }
