@@ -4,7 +4,7 @@ three EndoWrist-style instruments and a stereo endoscope).
 
 Edit this script, not the URDF, then run `python3 hw/urdf/generate_rig.py` from the repository root.
 The closed-form kinematics in hw/src/kinematics must describe the same robot: the test
-`hw/tests/fk_agreement.rs` and `knotlab rig check` compare the two to 1e-9 m.
+`hw/tests/integration/fk_agreement.rs` and `knotlab rig check` compare the two to 1e-9 m.
 
 Conventions (documented in hw/src/kinematics/mod.rs too):
 - World: z up, origin on the floor under the table centre, metres and radians.

@@ -32,7 +32,7 @@ pub struct EvaluationParams {
     /// During the settle, each flap is also pulled away from the wound with this force, N (0: the
     /// tissue's elastic load alone). A load below the stitch's friction cannot draw the thread through
     /// the tissue, so the wound cannot open whether or not a knot holds it (see
-    /// `sim/tests/holding_test_passed_an_untied_stitch.rs`).
+    /// `sim/tests/integration/holding_test_passed_an_untied_stitch.rs`).
     #[serde(default = "default_holding_load_n")]
     pub holding_load_n: f64,
 }

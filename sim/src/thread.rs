@@ -242,7 +242,7 @@ impl Thread {
     /// twist-locked joint wants them, however the polyline bends in space. (Turning each segment from
     /// the x axis by its own smallest turn left the shipped layout's neighbours up to 2.3 rad apart in
     /// twist, which the twist-locked joints snapped straight in the first steps, and a knot laid that
-    /// way came apart: `sim/tests/thread_laid_along_a_bent_path_starts_untwisted.rs`.)
+    /// way came apart: `sim/tests/integration/thread_laid_along_a_bent_path_starts_untwisted.rs`.)
     pub fn lay_along(&self, physics: &mut Physics, polyline: &[nalgebra::Vector3<f64>]) {
         let points = crate::layout::chord_points(polyline, self.segment_length_m, self.segments.len() + 1);
         let mut rotation = Rotation::IDENTITY;

@@ -174,7 +174,7 @@ fn to_pose(iso: &IsometryMatrix3<f64>) -> Pose {
 /// a kinematic body's velocity from the quaternion of `next * current^-1` without taking its shorter
 /// arc, so a sign flip between two steps (which `from_rotation_matrix` makes wherever its branch
 /// changes) became a one-step spin of hundreds of rad/s that flung the thread off a shaft
-/// (`sim/tests/kinematic_link_spun_when_its_quaternion_flipped_sign.rs`).
+/// (`sim/tests/integration/kinematic_link_spun_when_its_quaternion_flipped_sign.rs`).
 fn continuous_pose(next: Pose, current: &Pose) -> Pose {
     if next.rotation.dot(current.rotation) < 0.0 {
         Pose::from_parts(next.translation, -next.rotation)
@@ -982,7 +982,7 @@ impl SimWorld {
                 // ... and its pull on the needle these jaws hold, which reaches them through the
                 // needle: applied to the needle before Rapier's step, the joint takes it up in its
                 // first substeps and its last one (all the grasp reads) shows none of it
-                // (`sim/tests/needle_gauge_missed_the_ropes_pull.rs`).
+                // (`sim/tests/integration/needle_gauge_missed_the_ropes_pull.rs`).
                 if self.arms[a].grasp.as_ref().is_some_and(|g| g.on_needle) {
                     total += rope.contacts.impulse_on(rope.needle_body) / dt;
                 }

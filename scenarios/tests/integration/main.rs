@@ -1,0 +1,29 @@
+//! The scenarios crate's integration tests, one binary (one link, and the tests of every topic run side
+//! by side): each module guards what its doc comment says.
+//!
+//! - The scripted expert: [`expert_ties_a_knot`], [`expert_recording`], [`expert_looks_where_the_tail_lies`],
+//!   [`every_expert_file_loads`], [`jaws_turned_the_opposite_way_gave_poses_with_nan`].
+//! - Its second throw: [`expert_second_throw_goes_on_from_the_first`], [`expert_second_throw_keeps_the_tail`],
+//!   [`expert_second_throw_of_the_other_hand`], [`expert_second_throw_on_the_assists_jaws`],
+//!   [`expert_second_throw_takes_the_tail_by_its_end`], [`draw_through_sees_the_first_throw`].
+//! - The shipped scenes: [`scene_variants_differ_from_the_nominal_only_in_the_suture`],
+//!   [`short_suture_scene_is_the_chain_one_with_less_thread`].
+//! - The lab's workflow: [`lab_session`].
+//! - [`common`]: the expert runs the second-throw tests share.
+
+mod common;
+
+mod draw_through_sees_the_first_throw;
+mod every_expert_file_loads;
+mod expert_looks_where_the_tail_lies;
+mod expert_recording;
+mod expert_second_throw_goes_on_from_the_first;
+mod expert_second_throw_keeps_the_tail;
+mod expert_second_throw_of_the_other_hand;
+mod expert_second_throw_on_the_assists_jaws;
+mod expert_second_throw_takes_the_tail_by_its_end;
+mod expert_ties_a_knot;
+mod jaws_turned_the_opposite_way_gave_poses_with_nan;
+mod lab_session;
+mod scene_variants_differ_from_the_nominal_only_in_the_suture;
+mod short_suture_scene_is_the_chain_one_with_less_thread;

@@ -1,0 +1,46 @@
+//! The sim crate's integration tests, one binary: one link, and the tests of every file run side by side. Each module
+//! guards what its doc comment says.
+
+mod common;
+
+mod backend_rig;
+mod capsized_square_knot_slides_where_the_flat_one_holds;
+mod closed_empty_jaws_grasped_later;
+mod closing_jaws_squeezed_the_thread_along_them;
+mod coils_cinched_round_the_suture_across_the_wound;
+mod grasp_slip;
+mod grasp_took_coils_around_the_jaws;
+mod holding_test_kept_a_grip_taken_wide;
+mod holding_test_passed_an_untied_stitch;
+mod jaws_took_a_coil_lying_beside_them;
+mod kinematic_link_spun_when_its_quaternion_flipped_sign;
+mod knot_classify;
+mod laid_knot_lays_its_knot_through_the_stitch;
+mod lone_double_throw_comes_undone_under_the_holding_load;
+mod needle_gauge_missed_the_ropes_pull;
+mod released_needle_flew_off_the_rope;
+mod rope_among_rigid_bodies;
+mod rope_held_in_jaws;
+mod rope_held_on_the_tissue_tore_the_grip;
+mod rope_holds_a_wrap_and_a_square_knot;
+mod rope_knot_in_the_scenes_own_tissue;
+mod rope_laid_surgeons_knot_in_the_wound;
+mod rope_scene_holds_its_start_condition;
+mod rope_scene_poses_the_links_outside_rapiers_solver;
+mod rope_slides_through_jaws_pulled_past_their_grip;
+mod rope_stitch_hands_the_flaps_back_to_their_joints;
+mod rope_stitch_ignored_its_slide_friction;
+mod rope_stitch_stays_calm_through_a_cinch;
+mod scene_determinism;
+mod scene_file;
+mod square_knot_holds_its_free_ends_let_go;
+mod stitch_point_slid_past_its_segment_into_empty_space;
+mod strand_passed_through_a_double_wrap_at_0_7_n;
+mod string_surgeons_knot_gave_the_wound_its_gap_back;
+mod thread_drag;
+mod thread_laid_along_a_bent_path_starts_untwisted;
+mod thread_physics;
+mod thread_watch;
+mod throw_holds_the_loop_only_while_its_ends_are_held;
+mod tissue_stitch;
+mod wrapped_strand_rolled_off_whatever_the_friction;

@@ -1,0 +1,148 @@
+//! (g) Scene files: the shipped one loads; malformed ones give errors naming the key (and line).
+
+use knotlab_sim::scene::{SceneError, load_scene, parse_scene};
+
+const DEFAULT: &str = include_str!("../../../scenarios/default.toml");
+/// The chain's scene: it sets neither `thread.model` nor `friction_on_itself`, which the tests below add.
+const CHAIN: &str = include_str!("../../../scenarios/chain.toml");
+
+fn err(text: &str) -> String {
+    match parse_scene(text, "bad.toml") {
+        Ok(_) => panic!("a malformed scene loaded"),
+        Err(e) => e.to_string(),
+    }
+}
+
+#[test]
+fn the_shipped_scene_loads() {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenarios/default.toml");
+    let scene = load_scene(&path).unwrap();
+    assert_eq!(scene.thread.segments, 80);
+    assert_eq!(scene.trocars.left, [-0.08, 0.12, 1.02]);
+}
+
+#[test]
+fn an_unknown_key_is_named_with_its_path_and_line() {
+    let text = DEFAULT.replace("segments = 80", "segments = 80\nsegmnets = 81");
+    let e = err(&text);
+    let line = text.lines().position(|l| l.starts_with("segmnets")).unwrap() + 1;
+    assert!(e.starts_with(&format!("bad.toml:{line}: thread.segmnets: unknown field `segmnets`")), "{e}");
+}
+
+#[test]
+fn an_unknown_thread_model_is_named_with_its_path_line_and_the_models() {
+    let text = CHAIN.replace("segments = 80", "segments = 80\nmodel = \"ropes\"");
+    let e = err(&text);
+    let line = text.lines().position(|l| l.starts_with("model = ")).unwrap() + 1;
+    assert!(e.starts_with(&format!("bad.toml:{line}: thread.model:")), "{e}");
+    assert!(e.contains("`chain` or `rope`"), "{e}");
+}
+
+#[test]
+fn a_wrong_type_is_named_with_its_path() {
+    let e = err(&DEFAULT.replace("segments = 80", "segments = \"eighty\""));
+    assert!(e.contains("thread.segments:"), "{e}");
+}
+
+#[test]
+fn a_missing_key_is_named() {
+    // The thread's own friction line (the first key `friction` in the file), whatever its value.
+    let text: String =
+        DEFAULT.lines().filter(|l| !l.starts_with("friction = ")).map(|l| format!("{l}\n")).collect();
+    assert!(text.len() < DEFAULT.len(), "the scene has a friction line");
+    let e = err(&text);
+    assert!(e.contains("thread") && e.contains("missing field `friction`"), "{e}");
+}
+
+#[test]
+fn out_of_range_values_are_all_named() {
+    let text = CHAIN
+        .replace("dt_s = 0.001", "dt_s = 0.5")
+        .replace(
+            "segments = 80",
+            "segments = 2\nfriction_on_itself = -0.5\naxial_stiffness_n = 0.0\nrope_substeps = 0\nrope_spacing_radii = 0.1\nrope_inertial_mass_kg_per_m = 0.0\nrope_constraint_passes = 0",
+        )
+        .replace("holding_load_n = 0.3", "holding_load_n = -0.3")
+        .replace("force_filter_s = 0.02", "force_filter_s = -0.02");
+    let text =
+        text.replacen("left = [0.0, 0.0, 0.0, 0.0, 0.0, 0.0]", "left = [0.0, 0.0, 0.3, 0.0, 0.0, 0.0]", 1);
+    match parse_scene(&text, "bad.toml") {
+        Err(SceneError::Invalid { problems, .. }) => {
+            let keys: Vec<&str> = problems.iter().map(|(k, _)| k.as_str()).collect();
+            assert!(keys.contains(&"solver.dt_s"), "{keys:?}");
+            assert!(keys.contains(&"thread.segments"), "{keys:?}");
+            assert!(keys.contains(&"thread.friction_on_itself"), "{keys:?}");
+            assert!(keys.contains(&"thread.axial_stiffness_n"), "{keys:?}");
+            assert!(keys.contains(&"thread.rope_substeps"), "{keys:?}");
+            assert!(keys.contains(&"thread.rope_spacing_radii"), "{keys:?}");
+            assert!(keys.contains(&"thread.rope_inertial_mass_kg_per_m"), "{keys:?}");
+            assert!(keys.contains(&"thread.rope_constraint_passes"), "{keys:?}");
+            assert!(keys.contains(&"servo.calibration_offset_rad.left[2]"), "{keys:?}");
+            assert!(keys.contains(&"evaluation.holding_load_n"), "{keys:?}");
+            assert!(keys.contains(&"sensor.force_filter_s"), "{keys:?}");
+        }
+        other => panic!("expected range errors, got {other:?}"),
+    }
+}
+
+#[test]
+fn bad_randomization_bounds_are_named() {
+    let text = DEFAULT
+        .replace("thread_friction = [0.12, 0.18]", "thread_friction = [0.18, 0.12]")
+        .replace("play_rad = [0.0, 0.0005]", "play_rad = [0.0, 0.5]");
+    match parse_scene(&text, "bad.toml") {
+        Err(SceneError::Invalid { problems, .. }) => {
+            let keys: Vec<&str> = problems.iter().map(|(k, _)| k.as_str()).collect();
+            assert!(keys.contains(&"randomization.thread_friction"), "{keys:?}");
+            assert!(keys.contains(&"randomization.play_rad[1]"), "{keys:?}");
+        }
+        other => panic!("expected range errors, got {other:?}"),
+    }
+    let e = err(&DEFAULT.replace(
+        "stitch_z_m = [0.0, 0.0]",
+        "stitch_z_m = [0.0, 0.0]
+stich_w_m = [0.0, 0.0]",
+    ));
+    assert!(e.contains("stich_w_m"), "{e}");
+}
+
+#[test]
+fn presets_are_checked_applied_and_named() {
+    // A preset's bounds are checked as applied, under the preset's name.
+    let text = DEFAULT.replace("play_rad = [0.0005, 0.002]", "play_rad = [0.002, 0.0005]");
+    match parse_scene(&text, "bad.toml") {
+        Err(SceneError::Invalid { problems, .. }) => {
+            let keys: Vec<&str> = problems.iter().map(|(k, _)| k.as_str()).collect();
+            assert_eq!(keys, vec!["presets.endopar.play_rad"], "{problems:?}");
+        }
+        other => panic!("expected range errors, got {other:?}"),
+    }
+    let scene = parse_scene(DEFAULT, "default.toml").expect("the default scene");
+    let endopar = scene.with_preset("endopar").expect("endopar");
+    assert_eq!(endopar.randomization.play_rad, [0.0005, 0.002]);
+    assert_eq!(endopar.randomization.calibration_rad, [-0.002, 0.002]);
+    // What the preset does not name stays as declared.
+    assert_eq!(endopar.randomization.stitch_x_m, scene.randomization.stitch_x_m);
+    assert!(endopar.presets.is_empty());
+    let ideal = scene.with_preset("ideal").expect("ideal");
+    assert_eq!((ideal.randomization.play_rad, ideal.randomization.calibration_rad), ([0.0; 2], [0.0; 2]));
+    let e = scene.with_preset("endopr").expect_err("no such preset").to_string();
+    assert!(e.contains("presets.endopr") && e.contains("endopar, ideal"), "{e}");
+    // Unknown keys in a preset are named too.
+    let e = err(&DEFAULT.replace("[presets.ideal]", "[presets.ideal]\nplay = [0.0, 0.0]"));
+    assert!(e.contains("play"), "{e}");
+}
+
+#[test]
+fn broken_toml_gives_the_line() {
+    let text = DEFAULT.replace("[stitch]", "[stitch");
+    let line = text.lines().position(|l| l == "[stitch").unwrap() + 1;
+    let e = err(&text);
+    assert!(e.starts_with(&format!("bad.toml:{line}: (syntax)")), "{e}");
+}
+
+#[test]
+fn an_unreadable_file_is_named() {
+    let e = load_scene(std::path::Path::new("/nonexistent/scene.toml")).unwrap_err().to_string();
+    assert!(e.starts_with("/nonexistent/scene.toml: cannot read"), "{e}");
+}

@@ -1,0 +1,243 @@
+//! `knotlab mc` end to end on short trials (`--until`): the same seed gives byte-identical summaries with
+//! one and two jobs and with two shards merged; a run killed mid-way (SIGKILL, or its last line cut
+//! short) and resumed has every trial once; Ctrl-C (SIGINT) stops it cleanly and it resumes; a damaged
+//! results file, another run's directory, an unknown preset and an incomplete merge are named.
+
+use super::common;
+
+use std::path::{Path, PathBuf};
+
+use common::knotlab;
+
+fn dir(name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("knotlab-cli-mc-{name}-{}", std::process::id()));
+    std::fs::remove_dir_all(&d).ok();
+    d
+}
+
+fn mc_args(out: &Path, trials: u64, jobs: u64) -> Vec<String> {
+    let out = out.to_str().expect("a UTF-8 path");
+    let trials = trials.to_string();
+    let jobs = jobs.to_string();
+    ["mc", "--trials", &trials, "--seed", "7", "--jobs", &jobs, "--until", "0.3", "--method", "dmp"]
+        .iter()
+        .chain(&["--method", "replay", "--out", out])
+        .map(|s| s.to_string())
+        .collect()
+}
+
+fn mc_with(out: &Path, trials: u64, jobs: u64, more: &[&str]) -> (i32, String) {
+    let mut args = mc_args(out, trials, jobs);
+    args.extend(more.iter().map(|s| s.to_string()));
+    let args: Vec<&str> = args.iter().map(String::as_str).collect();
+    let (code, stdout, stderr) = knotlab(&args);
+    (code, format!("{stdout}{stderr}"))
+}
+
+fn mc(out: &Path, trials: u64, jobs: u64) -> (i32, String) {
+    mc_with(out, trials, jobs, &[])
+}
+
+/// The (trial, method) pairs in the results, sorted.
+fn pairs(out: &Path) -> Vec<(u64, String)> {
+    let mut seen: Vec<(u64, String)> = lines(out)
+        .iter()
+        .map(|l| {
+            (l["trial"].as_u64().expect("a trial index"), l["method"].as_str().expect("a method").to_owned())
+        })
+        .collect();
+    seen.sort();
+    seen
+}
+
+fn expected_pairs(trials: u64) -> Vec<(u64, String)> {
+    (0..trials).flat_map(|t| ["dmp", "replay"].map(|m| (t, m.to_owned()))).collect()
+}
+
+/// Starts `knotlab mc` in the background and waits until its results hold at least one line.
+fn spawn_until_a_line(out: &Path, trials: u64) -> std::process::Child {
+    let child = std::process::Command::new(env!("CARGO_BIN_EXE_knotlab"))
+        .args(mc_args(out, trials, 1))
+        .stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::null())
+        .spawn()
+        .expect("start knotlab mc");
+    let started = std::time::Instant::now();
+    while std::fs::read_to_string(out.join("results.jsonl")).map_or(0, |t| t.lines().count()) == 0 {
+        assert!(started.elapsed().as_secs() < 300, "no trial finished in 300 s");
+        std::thread::sleep(std::time::Duration::from_millis(50));
+    }
+    child
+}
+
+fn lines(out: &Path) -> Vec<serde_json::Value> {
+    std::fs::read_to_string(out.join("results.jsonl"))
+        .expect("results.jsonl")
+        .lines()
+        .map(|l| serde_json::from_str(l).expect("a JSON line"))
+        .collect()
+}
+
+#[test]
+fn the_same_seed_gives_the_same_summary_with_one_or_two_jobs() {
+    let (a, b) = (dir("jobs1"), dir("jobs2"));
+    assert_eq!(mc(&a, 3, 1).0, 0);
+    assert_eq!(mc(&b, 3, 2).0, 0);
+    let (sa, sb) =
+        (std::fs::read(a.join("summary.json")).unwrap(), std::fs::read(b.join("summary.json")).unwrap());
+    assert_eq!(sa, sb, "summary.json differs between --jobs 1 and --jobs 2");
+    let summary: serde_json::Value = serde_json::from_slice(&sa).unwrap();
+    assert_eq!(summary["methods"][0]["trials"], 3);
+    // The draws vary from trial to trial (the scene's [randomization]).
+    let draws: Vec<String> = lines(&a).iter().map(|l| l["draw"]["stitch_offset_m"].to_string()).collect();
+    assert!(draws.iter().any(|d| d != &draws[0]), "{draws:?}");
+    // Each line counts the thread's passes through itself.
+    for l in lines(&a) {
+        assert!(l["thread_self_crossings"].as_u64().is_some(), "{l}");
+        // ... and names the first, when there is one.
+        let first = &l["first_self_crossing"];
+        assert_eq!(first.is_null(), l["thread_self_crossings"] == 0, "{l}");
+    }
+    std::fs::remove_dir_all(&a).ok();
+    std::fs::remove_dir_all(&b).ok();
+}
+
+#[test]
+fn a_killed_run_resumes_with_every_trial_once() {
+    let out = dir("resume");
+    assert_eq!(mc(&out, 2, 2).0, 0);
+    // As if killed while writing: the last line cut in the middle.
+    let path = out.join("results.jsonl");
+    let text = std::fs::read_to_string(&path).unwrap();
+    std::fs::write(&path, &text[..text.len() - 40]).unwrap();
+    // Resumed with more trials: a trial is the same whatever their number.
+    let (code, log) = mc(&out, 4, 2);
+    assert_eq!(code, 0, "{log}");
+    assert_eq!(pairs(&out), expected_pairs(4), "every trial of every method exactly once");
+    // A damaged line that is not the last is an error naming the file and the line.
+    let text = std::fs::read_to_string(&path).unwrap();
+    std::fs::write(&path, text.replacen("{\"trial\"", "{\"trial?\"", 1)).unwrap();
+    let (code, log) = mc(&out, 4, 1);
+    assert_eq!(code, 1);
+    assert!(log.contains("results.jsonl: line 1"), "{log}");
+    std::fs::remove_dir_all(&out).ok();
+}
+
+#[test]
+fn a_run_killed_with_sigkill_resumes_with_every_trial_once() {
+    let out = dir("sigkill");
+    let mut child = spawn_until_a_line(&out, 6);
+    child.kill().expect("SIGKILL");
+    child.wait().expect("reaped");
+    let before = pairs(&out).len();
+    let (code, log) = mc(&out, 6, 2);
+    assert_eq!(code, 0, "{log}");
+    assert_eq!(pairs(&out), expected_pairs(6), "killed after {before} lines: every pair exactly once");
+    std::fs::remove_dir_all(&out).ok();
+}
+
+#[test]
+fn ctrl_c_stops_cleanly_and_the_run_resumes() {
+    let out = dir("sigint");
+    let mut child = spawn_until_a_line(&out, 400);
+    let pid = child.id().to_string();
+    let sent = std::process::Command::new("kill").args(["-INT", &pid]).status().expect("run kill");
+    assert!(sent.success());
+    let status = child.wait().expect("reaped");
+    assert_eq!(status.code(), Some(130), "a run stopped by Ctrl-C exits 130");
+    // Every line written is whole, none twice, and the summary covers them.
+    let done = pairs(&out);
+    let mut unique = done.clone();
+    unique.dedup();
+    assert_eq!(done, unique);
+    assert!(done.len() < 800, "stopped before the end");
+    let summary: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(out.join("summary.json")).expect("summary.json")).unwrap();
+    let counted: u64 =
+        summary["methods"].as_array().unwrap().iter().map(|m| m["trials"].as_u64().unwrap()).sum();
+    assert_eq!(counted as usize, done.len());
+    // Resumed up to a few trials past where it stopped.
+    let trials = done.iter().map(|(t, _)| t + 1).max().unwrap_or(0) + 1;
+    let (code, log) = mc(&out, trials, 2);
+    assert_eq!(code, 0, "{log}");
+    assert_eq!(pairs(&out), expected_pairs(trials));
+    std::fs::remove_dir_all(&out).ok();
+}
+
+#[test]
+fn two_shards_merged_give_the_single_run() {
+    let (whole, s0, s1, merged) = (dir("whole"), dir("shard0"), dir("shard1"), dir("merged"));
+    assert_eq!(mc(&whole, 5, 2).0, 0);
+    assert_eq!(mc_with(&s0, 5, 1, &["--shard", "0/2"]).0, 0);
+    // Shard 0 of 2 holds trials 0, 2, 4 alone.
+    assert_eq!(pairs(&s0).iter().map(|(t, _)| *t).collect::<Vec<_>>(), vec![0, 0, 2, 2, 4, 4]);
+    let (s0s, s1s, ms) = (s0.display().to_string(), s1.display().to_string(), merged.display().to_string());
+    // Merging before every shard is there names what is missing.
+    let (code, stdout, stderr) = knotlab(&["mc", "merge", &s0s, "--out", &ms]);
+    assert_eq!(code, 1, "{stdout}");
+    assert!(stderr.contains("4 (trial, method) pairs") && stderr.contains("1 dmp"), "{stderr}");
+    assert_eq!(mc_with(&s1, 5, 2, &["--shard", "1/2"]).0, 0);
+    let (code, stdout, stderr) = knotlab(&["mc", "merge", &s0s, &s1s, "--out", &ms]);
+    assert_eq!(code, 0, "{stdout}{stderr}");
+    let read = |d: &Path| std::fs::read(d.join("summary.json")).expect("summary.json");
+    assert_eq!(read(&whole), read(&merged), "summary.json of the merged shards differs from the single run");
+    let without_wall = |d: &Path| -> Vec<serde_json::Value> {
+        lines(d)
+            .into_iter()
+            .map(|mut l| {
+                l["wall_seconds"] = 0.0.into();
+                l
+            })
+            .collect()
+    };
+    let mut single = without_wall(&whole);
+    single.sort_by_key(|l| (l["trial"].as_u64(), l["method"].as_str().map(str::to_owned)));
+    assert_eq!(single, without_wall(&merged), "the merged lines are the single run's, sorted");
+    // A shard of another run (another seed) is refused, naming the difference.
+    let other = dir("other");
+    let (code, _) = knotlab_mc_seed(&other, 5, "8", &["--shard", "1/2"]);
+    assert_eq!(code, 0);
+    let (code, _, stderr) = knotlab(&["mc", "merge", &s0s, &other.display().to_string(), "--out", &ms]);
+    assert_eq!(code, 1);
+    assert!(stderr.contains("seed: 7 here, 8 asked"), "{stderr}");
+    for d in [whole, s0, s1, merged, other] {
+        std::fs::remove_dir_all(&d).ok();
+    }
+}
+
+fn knotlab_mc_seed(out: &Path, trials: u64, seed: &str, more: &[&str]) -> (i32, String) {
+    let mut args = mc_args(out, trials, 1);
+    let at = args.iter().position(|a| a == "--seed").expect("--seed") + 1;
+    args[at] = seed.to_owned();
+    args.extend(more.iter().map(|s| s.to_string()));
+    let args: Vec<&str> = args.iter().map(String::as_str).collect();
+    let (code, stdout, stderr) = knotlab(&args);
+    (code, format!("{stdout}{stderr}"))
+}
+
+#[test]
+fn another_runs_directory_and_an_unknown_preset_are_named() {
+    let out = dir("another");
+    assert_eq!(mc(&out, 1, 1).0, 0);
+    let (code, log) = knotlab_mc_seed(&out, 1, "8", &[]);
+    assert_eq!(code, 1);
+    assert!(log.contains("run.json") && log.contains("seed: 7 here, 8 asked"), "{log}");
+    let (code, log) = mc_with(&dir("preset"), 1, 1, &["--preset", "nope"]);
+    assert_eq!(code, 1);
+    assert!(log.contains("presets.nope") && log.contains("endopar, ideal"), "{log}");
+    // The presets change what is drawn: ideal draws no play and no calibration error.
+    let ideal = dir("ideal");
+    assert_eq!(mc_with(&ideal, 2, 1, &["--preset", "ideal"]).0, 0);
+    for l in lines(&ideal) {
+        assert_eq!(l["draw"]["play_rad"], 0.0);
+        assert_eq!(l["draw"]["calibration_max_rad"], 0.0);
+    }
+    let endopar = dir("endopar");
+    assert_eq!(mc_with(&endopar, 2, 1, &["--preset", "endopar"]).0, 0);
+    for l in lines(&endopar) {
+        assert!(l["draw"]["play_rad"].as_f64().unwrap() >= 0.0005, "{l}");
+    }
+    for d in [out, ideal, endopar] {
+        std::fs::remove_dir_all(&d).ok();
+    }
+}

@@ -1,0 +1,203 @@
+//! `knotlab report DIR` on hand-made results: the HTML is self-contained, has a chart per varying
+//! parameter (text for a fixed one), and its figures (and `--json`'s) follow from the lines; a directory
+//! without results.jsonl, or with a malformed line, is an error naming the file.
+
+use super::common;
+
+use std::path::{Path, PathBuf};
+
+use common::knotlab;
+use serde_json::{Value, json};
+
+const METHODS: [&str; 2] = ["dmp", "fluid"];
+
+fn dir(name: &str) -> PathBuf {
+    let d = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("cli-report-{name}-{}", std::process::id()));
+    std::fs::remove_dir_all(&d).ok();
+    std::fs::create_dir_all(&d).expect("a temporary directory");
+    d
+}
+
+/// 2 methods x 6 trials; play, calibration and offset vary with the trial unless `fixed_play`.
+fn hand_made_lines(fixed_play: bool) -> Vec<Value> {
+    let verdicts = [
+        ("dmp", ["success", "wrong_knot_type", "no_knot", "no_knot", "success", "unreachable"]),
+        ("fluid", ["success", "no_knot", "success", "loose", "success", "success"]),
+    ];
+    let mut lines = Vec::new();
+    for trial in 0..6u64 {
+        for (method, v) in &verdicts {
+            let t = trial as f64;
+            let play_rad = if fixed_play { 0.0 } else { 0.001 * t };
+            lines.push(json!({
+                "trial": trial,
+                "seed": 42,
+                "method": method,
+                "draw": {
+                    "stitch_offset_m": [0.002 * t, 0.001, -0.0005 * t],
+                    "stitch_rotate_rad": 0.01 * t,
+                    "play_rad": play_rad,
+                    "calibration_max_rad": 0.002 + 0.0005 * t,
+                    "thread_friction": 0.3,
+                    "thread_bend_stiffness": 1e-5,
+                    "force_noise_n": 0.01,
+                    "sim_seed": 1000 + trial,
+                },
+                "verdict": v[trial as usize],
+                "knot": if v[trial as usize] == "success" { json!("square") } else { Value::Null },
+                "wound_gap_m": 0.001,
+                "sim_seconds": 30.0,
+                "wall_seconds": 2.0,
+                "error": if v[trial as usize] == "unreachable" { json!("no IK") } else { Value::Null },
+            }));
+        }
+    }
+    lines
+}
+
+fn write_results(dir: &Path, lines: &[Value]) {
+    let text: String = lines.iter().map(|l| format!("{l}\n")).collect();
+    std::fs::write(dir.join("results.jsonl"), text).expect("write results.jsonl");
+}
+
+fn successes(lines: &[Value], method: &str) -> (usize, usize) {
+    let mine: Vec<&Value> = lines.iter().filter(|l| l["method"] == method).collect();
+    (mine.len(), mine.iter().filter(|l| l["verdict"] == "success").count())
+}
+
+fn number(v: &Value) -> f64 {
+    v.as_f64().expect("a number in the hand-made line")
+}
+
+/// Charts expected: methods side by side, failure modes (when any failed), one per varying parameter.
+fn expected_charts(lines: &[Value]) -> usize {
+    let varies = |f: &dyn Fn(&Value) -> f64| {
+        let first = f(&lines[0]);
+        lines.iter().any(|l| f(l) != first)
+    };
+    let norm = |l: &Value| {
+        let offset = l["draw"]["stitch_offset_m"].as_array().expect("an offset in the hand-made line");
+        offset.iter().map(|c| number(c).powi(2)).sum::<f64>()
+    };
+    1 + usize::from(lines.iter().any(|l| l["verdict"] != "success"))
+        + usize::from(varies(&|l| number(&l["draw"]["play_rad"])))
+        + usize::from(varies(&|l| number(&l["draw"]["calibration_max_rad"])))
+        + usize::from(varies(&norm))
+}
+
+fn method_table<'a>(html: &'a str, method: &str) -> &'a str {
+    let start =
+        html.find(&format!("id=\"method-{method}\"")).unwrap_or_else(|| panic!("no table for {method}"));
+    let end = html[start..].find("</table>").expect("the table ends");
+    &html[start..start + end]
+}
+
+fn assert_self_contained(html: &str) {
+    let without_xmlns = html.replace("xmlns=\"http://www.w3.org/2000/svg\"", "");
+    assert!(
+        !without_xmlns.contains("http://") && !without_xmlns.contains("https://"),
+        "an outside reference"
+    );
+    for fetch in ["<script", "<link", "src=", "@import", "url("] {
+        assert!(!html.contains(fetch), "{fetch} in the report");
+    }
+}
+
+#[test]
+fn the_report_shows_every_method_and_a_chart_per_varying_parameter() {
+    let d = dir("full");
+    let lines = hand_made_lines(false);
+    write_results(&d, &lines);
+    let (code, stdout, stderr) = knotlab(&["report", d.to_str().expect("a UTF-8 path")]);
+    assert_eq!(code, 0, "{stdout}{stderr}");
+    let path = d.join("report.html");
+    assert!(stdout.contains(&path.display().to_string()), "{stdout}");
+    let html = std::fs::read_to_string(&path).expect("report.html written");
+    assert_eq!(expected_charts(&lines), 5);
+    assert_eq!(html.matches("<svg").count(), expected_charts(&lines));
+    for title in [
+        "Methods side by side",
+        "Failure modes",
+        "Success against play",
+        "Success against calibration error",
+        "Success against stitch displacement",
+    ] {
+        assert!(html.contains(&format!("<h2>{title}</h2>")), "{title}");
+    }
+    for m in METHODS {
+        let (trials, won) = successes(&lines, m);
+        let table = method_table(&html, m);
+        assert!(table.contains(&format!("<th>trials</th><td>{trials}</td>")), "{table}");
+        assert!(table.contains(&format!("<th>successes</th><td>{won}</td>")), "{table}");
+        assert!(stdout.contains(&format!("{m}: {won} of {trials} trials")), "{stdout}");
+        for l in lines.iter().filter(|l| l["method"] == m) {
+            let verdict = l["verdict"].as_str().unwrap();
+            let n = lines.iter().filter(|k| k["method"] == m && k["verdict"] == verdict).count();
+            assert!(table.contains(&format!("<th>verdict: {verdict}</th><td>{n}</td>")), "{verdict} {table}");
+        }
+    }
+    // Every failure mode is on the failure chart's axis.
+    for l in &lines {
+        let verdict = l["verdict"].as_str().unwrap();
+        if verdict != "success" {
+            assert!(html.matches(verdict).count() >= 2, "{verdict}");
+        }
+    }
+    assert!(html.contains("<dt>seed</dt><dd>42</dd>"), "the run's seed");
+    assert_self_contained(&html);
+    std::fs::remove_dir_all(&d).ok();
+}
+
+#[test]
+fn a_fixed_parameter_is_said_in_text_and_json_matches_the_lines() {
+    let d = dir("fixed");
+    let lines = hand_made_lines(true);
+    write_results(&d, &lines);
+    let out = d.join("elsewhere").join("r.html");
+    let (code, stdout, stderr) =
+        knotlab(&["report", d.to_str().unwrap(), "--out", out.to_str().unwrap(), "--json"]);
+    assert_eq!(code, 0, "{stdout}{stderr}");
+    let summary: Value = serde_json::from_str(&stdout).unwrap_or_else(|e| panic!("not JSON ({e}): {stdout}"));
+    assert_eq!(summary["report"], out.display().to_string());
+    let methods = summary["methods"].as_array().unwrap();
+    assert_eq!(methods.len(), METHODS.len());
+    for (m, reported) in METHODS.iter().zip(methods) {
+        let (trials, won) = successes(&lines, m);
+        assert_eq!(reported["method"], *m);
+        assert_eq!(reported["trials"], trials);
+        assert_eq!(reported["successes"], won);
+        assert!((reported["success_rate"].as_f64().unwrap() - won as f64 / trials as f64).abs() < 1e-12);
+    }
+    let html = std::fs::read_to_string(&out).expect("the report at --out");
+    assert_eq!(expected_charts(&lines), 4);
+    assert_eq!(html.matches("<svg").count(), expected_charts(&lines));
+    assert!(
+        html.contains("The play was the same in every trial (0.000 mrad): no chart."),
+        "no text for fixed play"
+    );
+    assert!(!d.join("report.html").exists());
+    assert_self_contained(&html);
+    std::fs::remove_dir_all(&d).ok();
+}
+
+#[test]
+fn a_directory_without_results_or_with_a_bad_line_is_named() {
+    let d = dir("missing");
+    let (code, stdout, stderr) = knotlab(&["report", d.to_str().unwrap()]);
+    assert_ne!(code, 0, "{stdout}");
+    assert!(stderr.contains(&d.join("results.jsonl").display().to_string()), "{stderr}");
+    assert!(!d.join("report.html").exists());
+
+    std::fs::write(d.join("results.jsonl"), "").unwrap();
+    let (code, _, stderr) = knotlab(&["report", d.to_str().unwrap()]);
+    assert_ne!(code, 0);
+    assert!(stderr.contains("results.jsonl") && stderr.contains("no finished trial"), "{stderr}");
+
+    let mut text = format!("{}\n", hand_made_lines(false)[0]);
+    text.push_str("{\"trial\": \"one\"}\n");
+    std::fs::write(d.join("results.jsonl"), text).unwrap();
+    let (code, _, stderr) = knotlab(&["report", d.to_str().unwrap()]);
+    assert_ne!(code, 0);
+    assert!(stderr.contains("results.jsonl") && stderr.contains("line 2"), "{stderr}");
+    std::fs::remove_dir_all(&d).ok();
+}

@@ -1,0 +1,19 @@
+//! The knotlab command's and the end-to-end tests, one binary: one link, and the tests of every file run side by side. Each module
+//! guards what its doc comment says.
+
+mod common;
+
+mod backend_melfa_agreement;
+mod cli_demo;
+mod cli_fluid;
+mod cli_knot;
+mod cli_learn;
+mod cli_mc;
+mod cli_melfa;
+mod cli_obstacles;
+mod cli_report;
+mod cli_rig;
+mod cli_run;
+mod cli_session;
+mod cli_sim;
+mod rerun_recording;
