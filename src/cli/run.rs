@@ -132,7 +132,10 @@ fn log_synthesis(recording: Option<&rerun_log::Recording>, trial: &TrialRun) -> 
     for track in &trial.skill.tracks {
         let points: Vec<[f32; 3]> =
             track.poses.iter().map(|k| k.world_position_m.map(|x| x as f32)).collect();
-        rec.log_static(format!("instruments/{}/planned", track.arm), &rerun::LineStrips3D::new([points]))?;
+        rec.log_static(
+            format!("instruments/{}/planned", track.arm),
+            &rerun_log::sdk::LineStrips3D::new([points]),
+        )?;
     }
     for (name, inst, start_s) in &trial.fluid {
         rerun_log::log_instantiation(rec, inst, &format!("fluid/{name}"), *start_s)?;

@@ -26,9 +26,10 @@ impl RerunArgs {
     /// Opens the asked recording (none when not asked), named `what` in the viewer.
     #[cfg(feature = "rerun")]
     pub fn open(&self, what: &str) -> anyhow::Result<Option<Recording>> {
+        use super::sdk;
         use anyhow::Context;
         let builder =
-            || rerun::RecordingStreamBuilder::new("knotlab").recording_name(format!("knotlab {what}"));
+            || sdk::RecordingStreamBuilder::new("knotlab").recording_name(format!("knotlab {what}"));
         if let Some(path) = &self.rerun {
             if let Some(parent) = path.parent().filter(|p| !p.as_os_str().is_empty()) {
                 std::fs::create_dir_all(parent)

@@ -7,6 +7,7 @@ use knotlab_learner::segment::Decomposition;
 
 use super::Recording;
 use super::convert::{arm_color, v3};
+use super::sdk;
 
 /// Logs the demonstration's samples on `sim_time` (its own clock) and `step` (sample index), and each
 /// instrument's whole path (`demonstration/<arm>/...`).
@@ -19,19 +20,19 @@ pub fn log_demonstration(recording: &Recording, demo: &Demonstration) -> anyhow:
             recording.set_time_sequence("step", k as i64);
             recording.log(
                 format!("demonstration/{arm}/tip"),
-                &rerun::Points3D::new([v3(&sample.position_m)]).with_radii([0.0008_f32]).with_colors([color]),
+                &sdk::Points3D::new([v3(&sample.position_m)]).with_radii([0.0008_f32]).with_colors([color]),
             )?;
             recording.log(
                 format!("plots/demonstration/force_n/{arm}"),
-                &rerun::Scalars::single(sample.force_n.norm()),
+                &sdk::Scalars::single(sample.force_n.norm()),
             )?;
             recording
-                .log(format!("plots/demonstration/jaw_rad/{arm}"), &rerun::Scalars::single(sample.jaw_rad))?;
+                .log(format!("plots/demonstration/jaw_rad/{arm}"), &sdk::Scalars::single(sample.jaw_rad))?;
         }
         let path: Vec<[f32; 3]> = record.samples.iter().map(|s| v3(&s.position_m)).collect();
         recording.log_static(
             format!("demonstration/{arm}/path"),
-            &rerun::LineStrips3D::new([path]).with_radii([0.0002_f32]).with_colors([color]),
+            &sdk::LineStrips3D::new([path]).with_radii([0.0002_f32]).with_colors([color]),
         )?;
     }
     Ok(())
@@ -51,7 +52,7 @@ pub fn log_decomposition(
         let labels: Vec<String> = analysis.features.iter().map(|f| f.kind.as_str().to_owned()).collect();
         recording.log_static(
             format!("features/{arm}"),
-            &rerun::Points3D::new(analysis.features.iter().map(|f| v3(&f.position_m)))
+            &sdk::Points3D::new(analysis.features.iter().map(|f| v3(&f.position_m)))
                 .with_radii([0.0006_f32])
                 .with_labels(labels)
                 .with_colors([arm_color(&arm)]),
@@ -60,7 +61,7 @@ pub fn log_decomposition(
             recording.set_duration_secs("sim_time", feature.time_s);
             recording.log(
                 format!("features/{arm}/log"),
-                &rerun::TextLog::new(format!("{} ({:.4})", feature.kind.as_str(), feature.magnitude)),
+                &sdk::TextLog::new(format!("{} ({:.4})", feature.kind.as_str(), feature.magnitude)),
             )?;
         }
     }
@@ -78,15 +79,15 @@ pub fn log_decomposition(
         let label = format!("{} ({})", segment.name, segment.kind.as_str());
         recording.log_static(
             format!("primitives/{arm}/{}", segment.name),
-            &rerun::LineStrips3D::new([stretch])
+            &sdk::LineStrips3D::new([stretch])
                 .with_radii([0.0005_f32])
                 .with_labels([label.clone()])
                 .with_colors([arm_color(&arm)]),
         )?;
         recording.set_duration_secs("sim_time", segment.start_s);
-        recording.log(format!("primitives/{arm}/log"), &rerun::TextLog::new(format!("start {label}")))?;
+        recording.log(format!("primitives/{arm}/log"), &sdk::TextLog::new(format!("start {label}")))?;
         recording.set_duration_secs("sim_time", segment.end_s);
-        recording.log(format!("primitives/{arm}/log"), &rerun::TextLog::new(format!("end {label}")))?;
+        recording.log(format!("primitives/{arm}/log"), &sdk::TextLog::new(format!("end {label}")))?;
     }
     Ok(())
 }

@@ -9,6 +9,7 @@ use knotlab_learner::fluid::Instantiation;
 
 use super::Recording;
 use super::convert::v3;
+use super::sdk;
 
 /// Logs `inst` under `PREFIX/...` (images with row 0 at the grid's j = 0, the plane's -y side), the
 /// particle on `sim_time` from `start_s`.
@@ -52,10 +53,9 @@ pub fn log_instantiation(
         }
     }
     let (w, h) = (n as u32, n as u32);
-    recording.log_static(format!("{prefix}/grid/speed"), &rerun::Image::from_rgb24(speed_rgb, [w, h]))?;
-    recording
-        .log_static(format!("{prefix}/grid/pressure"), &rerun::Image::from_rgb24(pressure_rgb, [w, h]))?;
-    recording.log_static(format!("{prefix}/grid/obstacles"), &rerun::Image::from_rgb24(cells_rgb, [w, h]))?;
+    recording.log_static(format!("{prefix}/grid/speed"), &sdk::Image::from_rgb24(speed_rgb, [w, h]))?;
+    recording.log_static(format!("{prefix}/grid/pressure"), &sdk::Image::from_rgb24(pressure_rgb, [w, h]))?;
+    recording.log_static(format!("{prefix}/grid/obstacles"), &sdk::Image::from_rgb24(cells_rgb, [w, h]))?;
     // Velocity arrows at every fourth cell centre, in the world (1 m/s drawn as one cell).
     let (mut origins, mut vectors) = (Vec::new(), Vec::new());
     let scale = region.cell_m / top;
@@ -70,18 +70,18 @@ pub fn log_instantiation(
     }
     recording.log_static(
         format!("{prefix}/velocity"),
-        &rerun::Arrows3D::from_vectors(vectors).with_origins(origins),
+        &sdk::Arrows3D::from_vectors(vectors).with_origins(origins),
     )?;
     let stirring: Vec<[f32; 3]> = inst.stirring_path_m.iter().map(|p| v3(&inst.plane.to_world(p))).collect();
-    recording.log_static(format!("{prefix}/stirring_path"), &rerun::LineStrips3D::new([stirring]))?;
+    recording.log_static(format!("{prefix}/stirring_path"), &sdk::LineStrips3D::new([stirring]))?;
     let path: Vec<[f32; 3]> = inst.points.iter().map(|p| v3(&p.world_m)).collect();
-    recording.log_static(format!("{prefix}/path"), &rerun::LineStrips3D::new([path]))?;
+    recording.log_static(format!("{prefix}/path"), &sdk::LineStrips3D::new([path]))?;
     for (k, p) in inst.points.iter().enumerate() {
         recording.set_duration_secs("sim_time", start_s + p.t_s);
         recording.set_time_sequence("step", k as i64);
         recording.log(
             format!("{prefix}/particle"),
-            &rerun::Points3D::new([v3(&p.world_m)]).with_radii([0.0005_f32]),
+            &sdk::Points3D::new([v3(&p.world_m)]).with_radii([0.0005_f32]),
         )?;
     }
     Ok(())

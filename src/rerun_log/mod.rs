@@ -18,6 +18,8 @@ mod fluid;
 #[cfg(feature = "rerun")]
 mod scene;
 #[cfg(feature = "rerun")]
+pub(crate) mod sdk;
+#[cfg(feature = "rerun")]
 mod trial;
 
 pub use args::RerunArgs;
@@ -31,7 +33,7 @@ pub use trial::TrialLogger;
 /// An open recording: a Rerun recording stream when the feature is built, nothing otherwise (then no
 /// value of this type can exist: [`RerunArgs::open`] refuses).
 #[cfg(feature = "rerun")]
-pub type Recording = rerun::RecordingStream;
+pub type Recording = sdk::RecordingStream;
 
 /// Without the `rerun` feature no recording can be opened.
 #[cfg(not(feature = "rerun"))]

@@ -10,15 +10,16 @@ use knotlab_sim::shapes::{Owner, SceneShapes, Solid, SolidShape};
 
 use super::Recording;
 use super::convert::{arm_color, quaternion, v3, z_onto};
+use super::sdk;
 
 /// Boxes and capsules gathered for one entity.
 #[derive(Default)]
 struct Solids {
     box_centres: Vec<[f32; 3]>,
     box_halves: Vec<[f32; 3]>,
-    box_rotations: Vec<rerun::Quaternion>,
+    box_rotations: Vec<sdk::Quaternion>,
     capsule_starts: Vec<[f32; 3]>,
-    capsule_rotations: Vec<rerun::Quaternion>,
+    capsule_rotations: Vec<sdk::Quaternion>,
     capsule_lengths: Vec<f32>,
     capsule_radii: Vec<f32>,
 }
@@ -50,11 +51,11 @@ impl Solids {
         self.capsule_radii.push(radius_m as f32);
     }
 
-    fn log(self, recording: &Recording, path: &str, color: rerun::Color) -> anyhow::Result<()> {
+    fn log(self, recording: &Recording, path: &str, color: sdk::Color) -> anyhow::Result<()> {
         if !self.box_centres.is_empty() {
             recording.log(
                 format!("{path}/boxes"),
-                &rerun::Boxes3D::from_centers_and_half_sizes(self.box_centres, self.box_halves)
+                &sdk::Boxes3D::from_centers_and_half_sizes(self.box_centres, self.box_halves)
                     .with_quaternions(self.box_rotations)
                     .with_colors([color]),
             )?;
@@ -62,7 +63,7 @@ impl Solids {
         if !self.capsule_starts.is_empty() {
             recording.log(
                 format!("{path}/capsules"),
-                &rerun::Capsules3D::from_lengths_and_radii(self.capsule_lengths, self.capsule_radii)
+                &sdk::Capsules3D::from_lengths_and_radii(self.capsule_lengths, self.capsule_radii)
                     .with_translations(self.capsule_starts)
                     .with_quaternions(self.capsule_rotations)
                     .with_colors([color]),
@@ -105,19 +106,19 @@ pub fn log_suture(recording: &Recording, scene: &SceneShapes) -> anyhow::Result<
             Owner::Link(_) | Owner::Other => {}
         }
     }
-    flaps.log(recording, "scene/tissue/flaps", rerun::Color::from_rgb(220, 120, 150))?;
-    pad.log(recording, "scene/tissue/pad", rerun::Color::from_rgb(200, 180, 140))?;
+    flaps.log(recording, "scene/tissue/flaps", sdk::Color::from_rgb(220, 120, 150))?;
+    pad.log(recording, "scene/tissue/pad", sdk::Color::from_rgb(200, 180, 140))?;
     recording.log(
         "scene/tissue/holes",
-        &rerun::Points3D::new(scene.holes_m.iter().map(v3))
+        &sdk::Points3D::new(scene.holes_m.iter().map(v3))
             .with_radii([0.0006_f32])
-            .with_colors([rerun::Color::from_rgb(20, 160, 60)]),
+            .with_colors([sdk::Color::from_rgb(20, 160, 60)]),
     )?;
     let thread: Vec<[f32; 3]> = scene.thread_m.iter().map(v3).collect();
-    let thread_color = rerun::Color::from_rgb(40, 90, 220);
+    let thread_color = sdk::Color::from_rgb(40, 90, 220);
     recording.log(
         "scene/thread",
-        &rerun::LineStrips3D::new([thread])
+        &sdk::LineStrips3D::new([thread])
             .with_radii([scene.thread_radius_m as f32])
             .with_colors([thread_color]),
     )?;
@@ -129,10 +130,10 @@ pub fn log_suture(recording: &Recording, scene: &SceneShapes) -> anyhow::Result<
     let needle: Vec<[f32; 3]> = scene.needle_m.iter().map(v3).collect();
     recording.log(
         "scene/needle",
-        &rerun::LineStrips3D::new([needle])
+        &sdk::LineStrips3D::new([needle])
             .with_radii([scene.needle_radius_m as f32])
-            .with_colors([rerun::Color::from_rgb(200, 30, 30)]),
+            .with_colors([sdk::Color::from_rgb(200, 30, 30)]),
     )?;
-    recording.log("plots/wound_gap_m", &rerun::Scalars::single(scene.wound_gap_m))?;
+    recording.log("plots/wound_gap_m", &sdk::Scalars::single(scene.wound_gap_m))?;
     Ok(())
 }

@@ -11,6 +11,7 @@ use knotlab_sim::world::SimWorld;
 use super::Recording;
 use super::convert::{arm_color, v3};
 use super::scene::{log_robots, log_suture};
+use super::sdk;
 
 /// Metres of arrow per newton of measured force.
 const ARROW_M_PER_N: f64 = 0.01;
@@ -61,16 +62,16 @@ impl<'a> TrialLogger<'a> {
             let color = arm_color(&name);
             rec.log(
                 format!("instruments/{name}/tip"),
-                &rerun::Points3D::new([v3(&tip)]).with_radii([0.0008_f32]).with_colors([color]),
+                &sdk::Points3D::new([v3(&tip)]).with_radii([0.0008_f32]).with_colors([color]),
             )?;
             rec.log(
                 format!("instruments/{name}/force"),
-                &rerun::Arrows3D::from_vectors([v3(&(arm.world_force_n * ARROW_M_PER_N))])
+                &sdk::Arrows3D::from_vectors([v3(&(arm.world_force_n * ARROW_M_PER_N))])
                     .with_origins([v3(&tip)])
                     .with_colors([color]),
             )?;
-            rec.log(format!("plots/force_n/{name}"), &rerun::Scalars::single(arm.world_force_n.norm()))?;
-            rec.log(format!("plots/jaw_rad/{name}"), &rerun::Scalars::single(arm.measured.tool.jaw_rad))?;
+            rec.log(format!("plots/force_n/{name}"), &sdk::Scalars::single(arm.world_force_n.norm()))?;
+            rec.log(format!("plots/jaw_rad/{name}"), &sdk::Scalars::single(arm.measured.tool.jaw_rad))?;
         }
         let scene = scene_shapes(world);
         log_suture(rec, &scene)?;
@@ -78,7 +79,7 @@ impl<'a> TrialLogger<'a> {
             log_robots(rec, &scene)?;
         }
         for event in &world.events[self.events_logged.min(world.events.len())..] {
-            rec.log("events", &rerun::TextLog::new(format!("{event:?}")))?;
+            rec.log("events", &sdk::TextLog::new(format!("{event:?}")))?;
         }
         self.events_logged = world.events.len();
         Ok(())
@@ -103,7 +104,7 @@ impl<'a> TrialLogger<'a> {
         for (arm, points) in tip_paths {
             rec.log_static(
                 format!("instruments/{arm}/path"),
-                &rerun::LineStrips3D::new([points.iter().map(v3).collect::<Vec<_>>()])
+                &sdk::LineStrips3D::new([points.iter().map(v3).collect::<Vec<_>>()])
                     .with_radii([0.0002_f32])
                     .with_colors([arm_color(arm)]),
             )?;
@@ -130,9 +131,9 @@ impl<'a> TrialLogger<'a> {
                 if let Some(span) = &c.span {
                     rec.log(
                         "knot/crossings",
-                        &rerun::Points3D::new(span.points_m.iter().map(v3))
+                        &sdk::Points3D::new(span.points_m.iter().map(v3))
                             .with_radii([0.0004_f32])
-                            .with_colors([rerun::Color::from_rgb(250, 140, 20)]),
+                            .with_colors([sdk::Color::from_rgb(250, 140, 20)]),
                     )?;
                 }
                 format!(
@@ -147,8 +148,8 @@ impl<'a> TrialLogger<'a> {
             }
             Err(e) => format!("{text}| knot at the end | not classified: {e} |\n"),
         };
-        rec.log("verdict", &rerun::TextDocument::from_markdown(text))?;
-        rec.log("events", &rerun::TextLog::new(format!("verdict: {}", e.verdict.label())))?;
+        rec.log("verdict", &sdk::TextDocument::from_markdown(text))?;
+        rec.log("events", &sdk::TextLog::new(format!("verdict: {}", e.verdict.label())))?;
         Ok(())
     }
 }
