@@ -10,11 +10,15 @@
 //!   pedals, cycle clock), limit decorators, dummy drivers.
 //! - [`rig_config`]: the rig config (TOML) choosing a backend per device, and building the devices.
 //! - [`skill`]: the Skill the learner produces and the controller executes.
+//! - [`arm_setup`]: one arm as the controller and the preview need it: its kinematics and its trocar.
 //! - [`controller`]: the skill executor.
+//! - [`gate`]: the gate between a preview and real hardware.
 //! - [`melfa`]: Mitsubishi MELFA real-time external control over UDP, and a controller emulator.
 
+pub mod arm_setup;
 pub mod controller;
 pub mod device;
+pub mod gate;
 pub mod geometry;
 pub mod kinematics;
 pub mod melfa;

@@ -12,8 +12,8 @@ use clap::Args;
 use nalgebra::Vector3;
 use serde::Serialize;
 
-use knotlab_hw::controller::gate::real_devices;
-use knotlab_hw::controller::{PreviewOutcome, RunOutcome, may_execute};
+use knotlab_hw::controller::RunOutcome;
+use knotlab_hw::gate::{PreviewOutcome, may_execute, real_devices};
 use knotlab_hw::rig::Rig;
 use knotlab_hw::rig_config::{RigConfig, build_rig, load_rig_config};
 use knotlab_hw::skill::Skill;

@@ -9,8 +9,8 @@ use crate::rig::ArmName;
 use crate::skill::{ForceAction, Track};
 
 use super::error::ControllerError;
-use super::params::ArmSetup;
 use super::record::{ArmRecord, FiredEvent};
+use crate::arm_setup::ArmSetup;
 
 /// The state of one event of the arm's track.
 #[derive(Clone, Copy, Debug, Default)]

@@ -21,14 +21,13 @@
 
 mod arm;
 pub mod error;
-pub mod gate;
 pub mod params;
 pub mod record;
 pub mod teleop;
 
+pub use crate::arm_setup::ArmSetup;
 pub use error::ControllerError;
-pub use gate::{ExecutionRefused, PreviewOutcome, may_execute};
-pub use params::{ArmSetup, ControllerParams};
+pub use params::ControllerParams;
 pub use record::{ArmRecord, CycleRecord, FiredEvent, RunOutcome, RunSummary, Status};
 pub use teleop::TeleopSettings;
 

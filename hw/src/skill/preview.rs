@@ -3,7 +3,7 @@
 //! reach, past a joint limit or through the trocar is found before anything moves, with the arm and the
 //! time.
 
-use crate::controller::ArmSetup;
+use crate::arm_setup::ArmSetup;
 use crate::kinematics::{ArmJoints, IkError};
 use crate::rig::ArmName;
 

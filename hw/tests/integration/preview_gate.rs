@@ -4,8 +4,7 @@
 
 use std::path::Path;
 
-use knotlab_hw::controller::gate::real_devices;
-use knotlab_hw::controller::{PreviewOutcome, may_execute};
+use knotlab_hw::gate::{PreviewOutcome, may_execute, real_devices};
 use knotlab_hw::rig_config::parse_rig_config;
 
 fn rig(file: &str) -> knotlab_hw::rig_config::RigConfig {
