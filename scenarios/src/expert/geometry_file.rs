@@ -7,7 +7,7 @@
 
 use std::path::Path;
 
-use super::plan::{LeftFetch, TieGeometry};
+use super::geometry::{LeftFetch, TieGeometry};
 
 /// Why a tie geometry file was refused (`Invalid`: every value out of range, with its key).
 pub type GeometryFileError = knotlab_hw::toml_file::TomlFileError;

@@ -9,7 +9,7 @@ use super::common;
 
 use common::{event_segment, event_time_s, expert};
 use knotlab_hw::rig::{ArmName, Rig};
-use knotlab_scenarios::expert::plan::LeftFetch;
+use knotlab_scenarios::expert::LeftFetch;
 use knotlab_scenarios::expert::tail::{TAKE_CLEARANCE_M, tail_ahead_of_jaws};
 use knotlab_scenarios::expert::{
     RecordOptions, SecondThrow, TieGeometry, demonstrate_with, plan_instrument_tie, plan_second_tail_take,

@@ -373,7 +373,7 @@ fn bearing_across_the_turn(
 
 #[test]
 fn fetching_the_tail_as_one_body_the_right_turns_with_the_left_jaws() {
-    use knotlab_scenarios::expert::plan::LeftFetch;
+    use knotlab_scenarios::expert::LeftFetch;
     let world = SimWorld::new(scene(), Rig::shipped().expect("the shipped rig")).expect("the scene builds");
     let geometry = coils_on_the_left();
     let fetch = geometry.left_fetches.clone().expect("the left fetches the tail");
@@ -398,7 +398,7 @@ fn fetching_the_tail_as_one_body_the_right_turns_with_the_left_jaws() {
 #[test]
 fn fetching_the_tail_the_right_follows_as_told_and_the_hinge_can_lie_along_the_tail() {
     use knotlab_hw::skill::Orientation;
-    use knotlab_scenarios::expert::plan::LeftFetch;
+    use knotlab_scenarios::expert::LeftFetch;
     let world = SimWorld::new(scene(), Rig::shipped().expect("the shipped rig")).expect("the scene builds");
     let shipped = TieGeometry::default();
     let fetch = shipped.left_fetches.clone().expect("the shipped left fetches the tail");

@@ -3,10 +3,10 @@
 //! two throws can (`sim/tests/integration/square_knot_holds_its_free_ends_let_go.rs`). The expert plans it from
 //! the world the first throw left, as a surgeon looks before the next move: the assist takes the tail
 //! between the knot and the left's jaws, the left lets go of it, and the throw goes as the first
-//! ([`super::plan`]) with its own winding and pulls; or, with `left_retakes_from_end_m`, it is wound
+//! ([`super::super::plan`]) with its own winding and pulls; or, with `left_retakes_from_end_m`, it is wound
 //! on the assist's jaws instead, the left presenting the tail.
 
-use super::plan::{LeftFetch, TieGeometry};
+use super::{LeftFetch, TieGeometry};
 
 /// Where the second throw differs from the first (stitch frame, m; the rest as the first throw).
 #[derive(Clone, Debug, PartialEq, serde::Deserialize, serde::Serialize)]
