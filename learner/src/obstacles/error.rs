@@ -1,4 +1,4 @@
-//! Why a virtual-obstacle grid cannot be computed.
+//! Why a virtual-obstacle grid cannot be computed, on the CPU or the GPU.
 
 use knotlab_hw::rig::ArmName;
 
@@ -43,5 +43,42 @@ pub enum ObstacleError {
     /// The GPU backend failed (or none is available).
     #[cfg(feature = "gpu")]
     #[error(transparent)]
-    Gpu(#[from] super::gpu::GpuError),
+    Gpu(#[from] GpuError),
+}
+
+#[cfg(feature = "gpu")]
+/// Why the GPU backend cannot run.
+#[derive(Debug, thiserror::Error)]
+pub enum GpuError {
+    /// wgpu found no adapter at all (no Vulkan, Metal, DX12 or GL driver, not even a software one).
+    #[error(
+        "no GPU adapter found ({reason}); on Linux install Mesa's software Vulkan driver \
+         (apt-get install mesa-vulkan-drivers libvulkan1) or use the CPU backend"
+    )]
+    NoAdapter {
+        /// What wgpu said.
+        reason: String,
+    },
+    /// The adapter refused to give a device.
+    #[error("GPU adapter {adapter}: cannot open a device: {reason}")]
+    RequestDevice {
+        /// The adapter.
+        adapter: String,
+        /// What wgpu said.
+        reason: String,
+    },
+    /// The kernel did not compile or validate on this device.
+    #[error("GPU kernel rejected by {adapter}: {reason}")]
+    Kernel {
+        /// The adapter.
+        adapter: String,
+        /// What wgpu said.
+        reason: String,
+    },
+    /// Running the kernel or reading its results failed.
+    #[error("GPU run failed: {0}")]
+    Run(String),
+    /// The grid does not fit the device's limits.
+    #[error("grid too large for the GPU: {0}")]
+    TooLarge(String),
 }

@@ -12,7 +12,8 @@ use crate::obstacles::plane::GridPlane;
 use crate::obstacles::prepare::PreparedGrid;
 
 use super::buffers::{MAX_GPU_ENV_BOXES, pack};
-use super::device::{GpuContext, GpuError};
+use super::device::GpuContext;
+use crate::obstacles::error::GpuError;
 
 /// The WGSL source.
 pub const SHADER: &str = include_str!("virtual_obstacles.wgsl");

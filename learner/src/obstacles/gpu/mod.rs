@@ -10,5 +10,6 @@ pub mod buffers;
 pub mod device;
 pub mod kernel;
 
-pub use device::{GpuContext, GpuError};
+pub use super::error::GpuError;
+pub use device::GpuContext;
 pub use kernel::{GpuJob, GpuKernel, GpuReadback, GpuTimings, compute_gpu};
