@@ -10,6 +10,11 @@ use knotlab_hw::geometry::segment_distance;
 
 use crate::thread::Thread;
 
+/// The jaws close on what passes within this distance of their line (hinge to tip), m: about a jaw's
+/// radius, so what lies between them, not a coil wound around them (the thread touching the outside
+/// of closed jaws is a jaw radius plus its own radius, 1.9 mm, from that line).
+pub const GRASP_REACH_M: f64 = 0.0016;
+
 /// What happened to a grasp.
 #[derive(Clone, Debug, PartialEq)]
 pub enum GraspEvent {
@@ -117,7 +122,7 @@ impl Grasp {
         jaw_offset_m: f64,
     ) -> Option<Self> {
         let (hinge, tip) = jaw_line_m(world_from_tip, jaw_offset_m);
-        let reach_m = crate::world::GRASP_REACH_M;
+        let reach_m = GRASP_REACH_M;
         // (segment, on the needle, how far beyond reach of the jaws' line it passes)
         let segments = thread
             .capsules(physics, 0.0)
@@ -185,7 +190,7 @@ impl Grasp {
         thread_radius_m: f64,
     ) -> bool {
         let (hinge, tip) = jaw_line_m(world_from_tip, jaw_offset_m);
-        let reach_m = crate::world::GRASP_REACH_M;
+        let reach_m = GRASP_REACH_M;
         let faces = JawFaces::of(world_from_tip, jaw_radius_m, thread_radius_m);
         let axis = tip - hinge;
         let length_m = axis.norm();

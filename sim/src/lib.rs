@@ -9,6 +9,7 @@
 //! - [`layout`]: where the thread lies at the start of the task.
 //! - [`evaluate`]: the knot's verdict in the scene, with the holding test.
 //! - [`grasp`]: grasping as a constraint that slips above the grip force.
+//! - [`groups`]: the collision groups: which kinds of body may touch which.
 //! - [`hooks`]: the contact filter (thread through the flaps and through the jaws holding it) and
 //!   the thread's friction on itself.
 //! - [`knot`]: which knot a thread's centreline holds, whether it is down, the verdict.
@@ -18,6 +19,7 @@
 //! - [`stress`]: the scripted stress sequence behind `knotlab sim` and its figures.
 //! - [`servo`]: how a joint follows its command (lag, limits, play, calibration).
 //! - [`thread`]: the suture as a chain of capsules.
+//! - [`chords`]: points a fixed chord apart along a polyline, where a thread is laid.
 //! - [`cinch`]: a strand wound twice round another and pulled: how much tension the contacts hold.
 //! - [`reef`]: a square knot of two strands, loaded with its free ends let go: does it hold?
 //! - [`laid_knot`]: a square or surgeon's knot laid over the stitch and snugged: does it pass the
@@ -27,11 +29,13 @@
 //! - [`validation`]: the suture checked against mechanics (`knotlab validate`).
 
 pub mod backend;
+pub mod chords;
 pub mod cinch;
 pub mod crossing;
 pub mod evaluate;
 pub mod gauge;
 pub mod grasp;
+pub mod groups;
 pub mod hooks;
 pub mod knot;
 pub mod laid_knot;

@@ -8,10 +8,10 @@
 use nalgebra::Vector3;
 use rapier3d::prelude::*;
 
+use crate::groups::{FLAP_GROUP, PAD_GROUP, THREAD_GROUP};
 use crate::physics::Physics;
 use crate::scene::NeedleParams;
-use crate::thread::{THREAD_GROUP, Thread};
-use crate::tissue::{FLAP_GROUP, PAD_GROUP};
+use crate::thread::Thread;
 
 /// Capsules approximating the arc.
 const PIECES: usize = 8;

@@ -6,10 +6,11 @@
 use nalgebra::{IsometryMatrix3, Matrix3, Rotation3, Translation3, Vector3};
 use rapier3d::prelude::*;
 
+use crate::groups::{ENVIRONMENT_GROUP, FLAP_GROUP, PAD_GROUP, THREAD_GROUP};
 use crate::needle::Needle;
-use crate::thread::{THREAD_GROUP, to_na};
-use crate::tissue::{FLAP_GROUP, Flap, PAD_GROUP};
-use crate::world::{ENVIRONMENT_GROUP, SimWorld};
+use crate::thread::to_na;
+use crate::tissue::Flap;
+use crate::world::SimWorld;
 
 /// Who a solid belongs to.
 #[derive(Clone, Debug, PartialEq, Eq)]

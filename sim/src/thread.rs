@@ -22,10 +22,8 @@
 
 use rapier3d::prelude::*;
 
+use crate::groups::THREAD_GROUP;
 use crate::physics::Physics;
-
-/// Collision group of thread segments.
-pub const THREAD_GROUP: Group = Group::GROUP_1;
 
 /// The suture's material and discretisation.
 #[derive(Clone, Copy, Debug, PartialEq, serde::Deserialize, serde::Serialize)]
@@ -244,7 +242,7 @@ impl Thread {
     /// twist, which the twist-locked joints snapped straight in the first steps, and a knot laid that
     /// way came apart: `sim/tests/integration/thread_laid_along_a_bent_path_starts_untwisted.rs`.)
     pub fn lay_along(&self, physics: &mut Physics, polyline: &[nalgebra::Vector3<f64>]) {
-        let points = crate::layout::chord_points(polyline, self.segment_length_m, self.segments.len() + 1);
+        let points = crate::chords::chord_points(polyline, self.segment_length_m, self.segments.len() + 1);
         let mut rotation = Rotation::IDENTITY;
         let mut along = Vector::X;
         for (i, h) in self.segments.iter().enumerate() {

@@ -10,14 +10,9 @@
 use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};
 use rapier3d::prelude::*;
 
+use crate::groups::{FLAP_GROUP, PAD_GROUP, THREAD_GROUP};
 use crate::physics::Physics;
 use crate::scene::{StitchParams, TissueParams};
-use crate::thread::THREAD_GROUP;
-
-/// Collision group of the two flaps.
-pub const FLAP_GROUP: Group = Group::GROUP_4;
-/// Collision group of the pad under the flaps (the body wall the thread rests on).
-pub const PAD_GROUP: Group = Group::GROUP_5;
 
 /// Half size of the square pad under the flaps, m: wide enough for the thread laid on it.
 const PAD_HALF_M: f64 = 0.12;

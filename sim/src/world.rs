@@ -10,7 +10,9 @@ use rand_chacha::ChaCha8Rng;
 use rand_distr::{Distribution, Normal};
 use rapier3d::prelude::*;
 
+pub use crate::grasp::GRASP_REACH_M;
 use crate::grasp::{Grasp, GraspEvent};
+use crate::groups::{ENVIRONMENT_GROUP, ROBOT_GROUP, THREAD_GROUP};
 use crate::hooks::{ContactFilter, ThreadOnItself};
 use crate::layout::start_layout;
 use crate::needle::Needle;
@@ -20,15 +22,9 @@ use crate::rope::suture::SceneRope;
 use crate::scene::SceneConfig;
 use crate::servo::{ServoModel, ServoState};
 use crate::stitch::{Stitch, StitchEvent};
-use crate::thread::{THREAD_GROUP, Thread, ThreadModel};
+use crate::thread::{Thread, ThreadModel};
 use crate::thread_watch::ThreadWatch;
 use crate::tissue::Tissue;
-
-/// Collision group of robot links (instruments and arms).
-pub const ROBOT_GROUP: Group = Group::GROUP_2;
-/// Collision group of the environment (table, patient's torso, gantry): kept away from the thread,
-/// which works inside the chest cavity the torso box stands for.
-pub const ENVIRONMENT_GROUP: Group = Group::GROUP_3;
 
 /// Why a scene cannot be built.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
@@ -1019,11 +1015,6 @@ pub fn tip_for_jaw_centre(trocar_m: &Vector3<f64>, jaw_centre_m: &Vector3<f64>) 
         orientation: TipOrientation::AlongShaft,
     }
 }
-
-/// The jaws close on what passes within this distance of their line (hinge to tip), m: about a jaw's
-/// radius, so what lies between them, not a coil wound around them (the thread touching the outside
-/// of closed jaws is a jaw radius plus its own radius, 1.9 mm, from that line).
-pub const GRASP_REACH_M: f64 = 0.0016;
 
 /// Thread within this distance of the centre of jaws whose grasp slipped (beyond a segment's length)
 /// does not collide with them until they reopen, m.

@@ -243,7 +243,7 @@ impl Ropes {
         let length_m: f64 = path.windows(2).map(|w| (w[1] - w[0]).norm()).sum();
         let spacing_m = if spacing_m > 0.0 && spacing_m.is_finite() { spacing_m } else { length_m.max(1e-6) };
         let count = ((length_m / spacing_m).floor() as usize + 1).max(2);
-        self.add_strand(&crate::layout::chord_points(path, spacing_m, count))
+        self.add_strand(&crate::chords::chord_points(path, spacing_m, count))
     }
 
     /// Adds a strand through `points` (its particles, at rest; each segment's rest length is its

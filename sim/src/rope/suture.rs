@@ -14,11 +14,12 @@ use rapier3d::prelude::*;
 use super::rigid::{Attachment, RigidContacts, na, v};
 use super::slides::SlideStitch;
 use super::{RopeParams, Ropes};
+use crate::groups::{FLAP_GROUP, PAD_GROUP, THREAD_GROUP};
 use crate::needle::Needle;
 use crate::physics::Physics;
 use crate::scene::{NeedleParams, TissueParams};
-use crate::thread::{THREAD_GROUP, ThreadParams};
-use crate::tissue::{FLAP_GROUP, Flap, PAD_GROUP, Tissue};
+use crate::thread::ThreadParams;
+use crate::tissue::{Flap, Tissue};
 
 /// The rope's particles lie about this many radii apart unless the scene says otherwise
 /// (`thread.rope_spacing_radii`): as near it as whole segments fit the thread's length.
@@ -106,7 +107,7 @@ impl SceneRope {
         let spacing_m = thread.length_m / segments as f64;
         let count = segments + 1;
         let mut ropes = Ropes::new(params);
-        let strand = ropes.add_strand(&crate::layout::chord_points(layout, spacing_m, count));
+        let strand = ropes.add_strand(&crate::chords::chord_points(layout, spacing_m, count));
         // The suture's own weight (the rope's mass is inflated for its solver).
         let weight_per_particle_n = thread.mass_kg / thread.length_m * spacing_m * 9.81;
         for f in &mut ropes.force_n {

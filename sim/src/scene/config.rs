@@ -31,7 +31,7 @@ pub struct SceneConfig {
     pub start: StartParams,
     /// How the knot is judged.
     #[serde(default)]
-    pub evaluation: crate::evaluate::EvaluationParams,
+    pub evaluation: super::EvaluationParams,
     /// Extra boxes in the workspace.
     #[serde(default)]
     pub obstacles: Vec<Obstacle>,

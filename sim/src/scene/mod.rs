@@ -2,10 +2,12 @@
 //! servos and the solver behave. Unknown keys and out-of-range values are errors naming the key.
 
 mod config;
+mod evaluation;
 mod load;
 
 pub use config::{
     NeedleParams, Obstacle, RandomObstacle, Randomization, RandomizationPreset, SceneConfig, SensorParams,
     ServoParams, StartParams, StitchParams, TissueParams, Trocars, UnknownPreset,
 };
+pub use evaluation::EvaluationParams;
 pub use load::{SceneError, load_scene, parse_scene};
