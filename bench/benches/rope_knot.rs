@@ -11,7 +11,7 @@
 //! - the reef trial: a loose square knot snugged by its four ends at 1 N, then its standing parts
 //!   pulled apart with 0.3 N, the free ends let go, for 2 s. The chain's flat knots settle 0.5-14 mm
 //!   at 0.5 and 5-25 mm or come apart at 1.0 (`thread_reef`).
-//! - the laid-knot trial in the wound (`knotlab_sim::rope::wound`): `laid_knot`'s surgeon's knot over
+//! - the laid-knot trial in the wound (`knotlab_sim::lab::wound`): `laid_knot`'s surgeon's knot over
 //!   the stitch of `scenarios/short-suture-friction-0.5.toml`, laid loose (nine layouts, 4 mm up) and
 //!   tight (six layouts, 1 mm up), snugged by its free ends at 2 N, then the holding test (0.3 N a flap
 //!   for 1 s), the rope damped at 10/s. The chain leaves the wound 2.3-19.3 mm open (median 16;
@@ -30,10 +30,10 @@
 
 use std::time::Instant;
 
+use knotlab_sim::lab::wound::{WoundTrialParams, laid_surgeons_knot_in_wound};
 use knotlab_sim::laid_knot::{LaidKnotKind, LaidKnotParams};
 use knotlab_sim::rope::RopeParams;
 use knotlab_sim::rope::trials::{Slide, capstan, reef};
-use knotlab_sim::rope::wound::{WoundTrialParams, laid_surgeons_knot_in_wound};
 
 const FRICTIONS: [f64; 3] = [0.3, 0.5, 1.0];
 const RATIOS: [f64; 4] = [3.0, 10.0, 30.0, 100.0];

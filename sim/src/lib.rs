@@ -13,6 +13,7 @@
 //! - [`hooks`]: the contact filter (thread through the flaps and through the jaws holding it) and
 //!   the thread's friction on itself.
 //! - [`knot`]: which knot a thread's centreline holds, whether it is down, the verdict.
+//! - [`lab`]: experiment rigs the tests and benchmarks run: the rope knotted over a wound.
 //! - [`physics`]: the Rapier sets of a scene, its step and health check.
 //! - [`scene`]: the scene file (TOML) and its checks.
 //! - [`snapshot`]: the scene drawn in top, front and side views (PNG).
@@ -38,6 +39,7 @@ pub mod grasp;
 pub mod groups;
 pub mod hooks;
 pub mod knot;
+pub mod lab;
 pub mod laid_knot;
 pub mod layout;
 pub mod needle;

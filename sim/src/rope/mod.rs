@@ -8,7 +8,7 @@
 //! knot, and a surgeon's knot over the wound within 0.2 mm where a rope without bending stiffness
 //! lets it open 2-7 mm (session 43; `cargo bench -p knotlab-bench --bench rope_knot`). [`rigid`]
 //! couples it to Rapier's bodies, [`grasp`] to jaws; `stretch` and `bend` solve a strand's lengths
-//! and its bending joints at once; [`trials`], [`wound`] and [`tissue_trial`] are its knot trials.
+//! and its bending joints at once; [`trials`] are its knot trials ([`crate::lab`] holds those over a wound).
 
 mod bend;
 mod broad_phase;
@@ -18,9 +18,7 @@ pub mod rigid;
 pub mod slides;
 mod stretch;
 pub mod suture;
-pub mod tissue_trial;
 pub mod trials;
-pub mod wound;
 
 use std::ops::Range;
 

@@ -9,8 +9,8 @@
 use super::common;
 
 use knotlab_sim::knot::KnotType;
+use knotlab_sim::lab::wound::{WoundTrialParams, laid_surgeons_knot_in_wound};
 use knotlab_sim::laid_knot::LaidKnotKind;
-use knotlab_sim::rope::wound::{WoundTrialParams, laid_surgeons_knot_in_wound};
 
 #[test]
 fn a_double_throw_alone_lets_the_wound_open_under_the_holding_load() {

@@ -1,15 +1,15 @@
-//! The rope among the scene's own Rapier bodies (`knotlab_sim::rope::tissue_trial`): a tight
+//! The rope among the scene's own Rapier bodies (`knotlab_sim::lab::tissue_trial`): a tight
 //! surgeon's knot laid over the stitch of the tissue as `knotlab_sim::tissue` builds it (flaps on
 //! prismatic joints and springs, the rope on them through `rope::rigid`'s contacts and sliding
 //! through four guides fixed in the flaps) closes the wound in the snug and holds it closed through
-//! the holding test, as it does between the flaps `rope::wound` integrates by hand: the coupling
+//! the holding test, as it does between the flaps `lab::wound` integrates by hand: the coupling
 //! the rope will need as the scene's thread moves the flaps as those do.
 
 use super::common;
 
 use knotlab_sim::knot::KnotType;
-use knotlab_sim::rope::tissue_trial::laid_surgeons_knot_in_tissue;
-use knotlab_sim::rope::wound::{WoundTrialParams, laid_surgeons_knot_in_wound};
+use knotlab_sim::lab::tissue_trial::laid_surgeons_knot_in_tissue;
+use knotlab_sim::lab::wound::{WoundTrialParams, laid_surgeons_knot_in_wound};
 
 #[test]
 fn a_tight_surgeons_knot_holds_the_rapier_flaps_as_it_holds_the_hand_integrated_ones() {

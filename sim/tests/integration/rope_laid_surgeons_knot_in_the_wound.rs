@@ -1,5 +1,5 @@
 //! The rope (`knotlab_sim::rope`) laid as `laid_knot`'s surgeon's knot over the stitch
-//! (`knotlab_sim::rope::wound`): snugged at 2 N by its free ends, it draws the wound closed, the
+//! (`knotlab_sim::lab::wound`): snugged at 2 N by its free ends, it draws the wound closed, the
 //! thread sliding through the four stitch points, and stays a surgeon's knot through the holding
 //! test; the wound opens only by the thread the knot gives up to the loop. (How far the load opens
 //! the wound is printed by `cargo bench -p knotlab-bench --bench rope_knot`; that a stiff rope's
@@ -7,9 +7,9 @@
 //! `string_surgeons_knot_gave_the_wound_its_gap_back.rs`.)
 
 use knotlab_sim::knot::KnotType;
+use knotlab_sim::lab::wound::{WoundTrialParams, laid_surgeons_knot_in_wound};
 use knotlab_sim::laid_knot::{LaidKnotKind, LaidKnotParams};
 use knotlab_sim::rope::RopeParams;
-use knotlab_sim::rope::wound::{WoundTrialParams, laid_surgeons_knot_in_wound};
 use knotlab_sim::scene::parse_scene;
 
 #[test]

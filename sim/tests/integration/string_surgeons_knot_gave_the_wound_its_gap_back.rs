@@ -9,8 +9,8 @@
 use super::common;
 
 use knotlab_sim::knot::KnotType;
+use knotlab_sim::lab::wound::{WoundOutcome, WoundTrialParams, laid_surgeons_knot_in_wound};
 use knotlab_sim::rope::RopeParams;
-use knotlab_sim::rope::wound::{WoundOutcome, WoundTrialParams, laid_surgeons_knot_in_wound};
 
 /// A tight surgeon's knot (helices of 0.22 mm radius, 1.6 mm either side of the wound, 1 mm up)
 /// laid, snugged at 2 N and held at 0.3 N a flap in `rope` at friction 0.5 and a light damping.

@@ -9,11 +9,11 @@
 use nalgebra::Vector3;
 use rapier3d::prelude::*;
 
-use super::rigid::{Guide, RigidContacts};
 use super::wound::{Moment, SPACING_M, WoundOutcome, WoundTrialParams, length_m, observe, thread_between_m};
-use super::{RopeParams, Ropes};
 use crate::laid_knot::{LaidKnotParams, surgeons_knot_through};
 use crate::physics::Physics;
+use crate::rope::rigid::{Guide, RigidContacts};
+use crate::rope::{RopeParams, Ropes};
 use crate::scene::SceneConfig;
 use crate::tissue::{Flap, Tissue};
 

@@ -10,11 +10,11 @@
 
 use nalgebra::{Isometry3, Vector3};
 
-use super::rigid::{nearest_on_rope, thread_through};
-use super::{RopeParams, Ropes, Surroundings};
 use crate::knot::legs::free_ends;
 use crate::knot::{KnotPlacement, KnotType, TissueSurface, classify};
 use crate::laid_knot::{LaidKnotKind, LaidKnotParams, surgeons_knot_through, surgeons_throw_through};
+use crate::rope::rigid::{nearest_on_rope, thread_through};
+use crate::rope::{RopeParams, Ropes, Surroundings};
 use crate::scene::{StitchParams, TissueParams};
 
 /// Particle spacing of the trial's rope, m.
