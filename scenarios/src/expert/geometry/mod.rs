@@ -27,8 +27,8 @@ pub struct TieGeometry {
     /// The assist presents the tail to the left's jaws where they wound, as in the paper's task,
     /// instead of the left fetching it: `left_fetches` is then not used (a file cannot unset it, the
     /// base plan fetches). Meant for a first throw that forms flat, the jaws level along the wound
-    /// (a fetch with the jaws turned down draws the tail straight through the coils). Tried in
-    /// session 41 with the second throw's winding on a 47 mm tail: two turns reached the jaws and
+    /// (a fetch with the jaws turned down draws the tail straight through the coils). Tried with
+    /// the second throw's winding on a 47 mm tail: two turns reached the jaws and
     /// the left took the tail, but its free end lay back along the jaws inside the coils
     /// (`knotlab knot draw-through`: no knot).
     pub assist_presents: bool,
@@ -43,7 +43,7 @@ pub struct TieGeometry {
     /// thread in the right's jaws would pass through the left's wrist there ([`super::clearance`]).
     pub winding_behind_m: f64,
     /// The winding advances this far along the left's jaws (towards their tips; negative: towards
-    /// the wrist) per turn, m: a helix, not a circle. (Session 36: tried so that the second turn
+    /// the wrist) per turn, m: a helix, not a circle. (Tried so that the second turn
     /// would close over the long end's knot leg, which decides the throw's hand; the turn slid along
     /// the jaws as a whole instead.)
     pub winding_pitch_m: f64,
@@ -91,11 +91,11 @@ pub struct TieGeometry {
     /// was caught in the turn and torn from the assist's jaws, 32 N), brought near the stitch for the
     /// take: the long end reaches no further with the turn round the left's jaws
     /// ([`super::turn_thread`]), and taken far from its end, the tail's bight must be drawn through
-    /// the turn. (Session 47: on the way the assist lost the tail in every run so far, 15-62 N.)
+    /// the turn. (Tried: on the way the assist lost the tail in every run, at 15-62 N.)
     pub tail_brought_to_m: Option<[f64; 3]>,
     /// First the knot is run down onto the wound: the left draws the tail up and out over the tail's
     /// flap to here, while the right takes its jaws, and the knot just under them, down to
-    /// `right_run_down_to_m`. With both ends pulled from above (session 24: left (0, 0.01, 0.045),
+    /// `right_run_down_to_m`. With both ends pulled from above (left (0, 0.01, 0.045),
     /// right (0, -0.015, 0.045)) the knot was cinched about 8 mm under the jaws, 28-38 mm up with
     /// 122-152 mm of thread between it and the stitch; the knot is there because the right's jaws,
     /// which hold the needle, are only a few centimetres of thread from the coils.
@@ -108,7 +108,7 @@ pub struct TieGeometry {
     pub left_run_down_via_m: Vec<[f64; 3]>,
     /// The right goes through these points (stitch frame) on its way to `right_run_down_to_m`, each
     /// leg taking `run_down_s`: for example out of the way while the left carries the tail across
-    /// (tried in session 40: drawn away before the left crossed, the second throw's turn came off).
+    /// (drawn away before the left crossed, the second throw's turn came off).
     pub right_run_down_via_m: Vec<[f64; 3]>,
     /// How long the run-down takes, s.
     pub run_down_s: f64,
@@ -118,8 +118,8 @@ pub struct TieGeometry {
     /// Then the left pulls the tail towards here, out over its flap at the tissue's level...
     pub left_pull_to_m: [f64; 3],
     /// ... while the right pulls the long end out over the other flap, until the set force. Pulled
-    /// level with the tissue, the ends draw the knot down onto it and the wound closed (session 27,
-    /// seeds 0-7: the wound 1.1-1.8 mm as both let go); pulled up and out (the left to (0, 0.05,
+    /// level with the tissue, the ends draw the knot down onto it and the wound closed (seeds
+    /// 0-7: the wound 1.1-1.8 mm as both let go); pulled up and out (the left to (0, 0.05,
     /// 0.055)), the knot stayed 2-7 mm up and the wound 2.5-3.3 mm open.
     pub right_pull_to_m: [f64; 3],
     /// How long each pull takes to its target, s (it stops sooner at its set force; a fast pull
@@ -127,11 +127,11 @@ pub struct TieGeometry {
     pub pull_s: f64,
     /// Past its target each pull goes on this much further the same way (level with the tissue), at
     /// the same speed, within the arm's reach, m: to be stopped by its set force rather than by where
-    /// it was sent (a slack loop never strains a pull that stops at its target: session 45, the wound
+    /// it was sent (a slack loop never strains a pull that stops at its target: the wound
     /// 3.9 mm open at release; sent beyond, 0.14 mm).
     pub pull_on_m: f64,
     /// Whether both pulls stop as soon as either reaches its set force (the other pulling on tore
-    /// the tail out of the left's stopped jaws: session 45, 16.5 N).
+    /// the tail out of the left's stopped jaws at 16.5 N).
     pub pulls_stop_together: bool,
     /// Where the assist retreats to.
     pub assist_retreat_m: [f64; 3],
@@ -147,8 +147,8 @@ pub struct TieGeometry {
     pub right_draws_to_m: Option<[f64; 3]>,
     /// Before the draw, the right carries the long end through these points (stitch frame) while the
     /// left holds the tail still. Meant for a second throw: round ahead of the jaws, so that the long
-    /// end leaves the turn opposite to where the tail is drawn, as a surgeon's hands cross (session 34:
-    /// taken over the top, the needle leg dragged the turn forward onto the grip, and the draw took it
+    /// end leaves the turn opposite to where the tail is drawn, as a surgeon's hands cross (taken
+    /// over the top, the needle leg dragged the turn forward onto the grip, and the draw took it
     /// off the tips without the tail).
     pub right_before_draw_m: Vec<[f64; 3]>,
     /// How long the draw takes, s.
@@ -170,7 +170,7 @@ pub struct TieGeometry {
     pub hold_at_force: bool,
     /// Whether that hold lasts until the jaws have opened at the end. Otherwise it ends as they start
     /// to open, and each arm goes on towards where its pull was headed while it lets go, jerking the
-    /// thread (session 37: grips slipping at 5-14 N as they opened, the thread passing through itself).
+    /// thread (grips slipping at 5-14 N as they opened, the thread passing through itself).
     pub hold_through_release: bool,
     /// The second throw, if the expert ties one: the first throw's pulls then hold, and the second
     /// is planned from the world they leave ([`SecondThrow`]).
@@ -274,16 +274,16 @@ pub struct LeftFetch {
     pub as_one_body: bool,
     /// The left looks where the tail lies before it closes on it, as a surgeon does: the first
     /// throw's plan stops with the left's jaws over the tail, and the rest is planned from the world
-    /// then ([`plan_tail_take`]), the jaws closing on the tail's point nearest their line, not on
+    /// then ([`super::plan_tail_take`]), the jaws closing on the tail's point nearest their line, not on
     /// the straight line from the entry point to the assist's jaws (a slack tail sags off it: 3-8 mm
-    /// on the rope, session 44). The second throw's fetch looks too where the left takes the tail
-    /// from the assist ([`plan_second_tail_take`]).
+    /// on the rope). The second throw's fetch looks too where the left takes the tail
+    /// from the assist ([`super::plan_second_tail_take`]).
     #[serde(default)]
     pub looks: bool,
     /// Without `as_one_body`, the right follows this fraction of the left's shift (1: all of it, the
     /// coils carried as they are; 0: it stays, and the long end runs out through the coils as the
     /// left goes). Carried all the way to a tail the assist holds up, the right brought the needle's
-    /// end of the long end beside the tail (session 45).
+    /// end of the long end beside the tail.
     #[serde(default = "all_the_way")]
     pub right_follows: f64,
     /// Without `as_one_body`, if set: the right goes to this offset from the left's jaw centre
@@ -291,7 +291,7 @@ pub struct LeftFetch {
     /// as the left comes onto the tail. The turn round the left's jaws needs the long end's thread
     /// from the knot round the jaws to the needle ([`super::turn_thread`]): left where it wound, the
     /// right stood too far from jaws taken 65-85 mm away to the tail and the turn came off their tips
-    /// on the way; carried with their shift it went past them towards the tail (session 47).
+    /// on the way; carried with their shift it went past them towards the tail.
     #[serde(default)]
     pub right_beside_m: Option<[f64; 3]>,
     /// The left takes the tail square to it: without `as_one_body` it still turns its whole tip
