@@ -9,7 +9,7 @@
 //! opening towards -x (its standing part along y = +1, its free end along y = -1, the bend at x > 1,
 //! in units of `spread_m`); the blue strand comes from +x under the bend, rises through the red
 //! bight, goes once round both of red's legs and goes back down through the bight and out to +x:
-//! a square knot, as [`crate::knot::classify`] confirms (test below).
+//! a square knot, as [`crate::knot::classify()`] confirms (test below).
 
 use knotlab_hw::geometry::segment_distance;
 use nalgebra::Vector3;

@@ -1,5 +1,5 @@
 //! Monte Carlo evaluation: learn once, then per trial draw a scene from the scene file's
-//! `[randomization]` ([`draw`]), synthesize the skill there by each method, run it on the simulated rig
+//! `[randomization]` ([`draw`](mod@draw)), synthesize the skill there by each method, run it on the simulated rig
 //! and evaluate the knot. Trials run on `jobs` threads; each is fully determined by the run's seed and
 //! its index. Every finished trial is appended to `results.jsonl` at once, so an interrupted run
 //! resumes where it stopped (trials already there are skipped); `summary.json` is made from the

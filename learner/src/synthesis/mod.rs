@@ -5,7 +5,7 @@
 //! - [`schedule`]: its clock: pauses and waits between primitives as demonstrated.
 //! - [`track`]: building one instrument's keys.
 //! - [`dmp`]: dynamic movement primitives.
-//! - [`replay`]: the baseline that replays the demonstration, rigidly moved.
+//! - [`replay`](mod@replay): the baseline that replays the demonstration, rigidly moved.
 //! - [`method`]: the methods by name (`fluid`, `dmp`, `replay`).
 //! - [`orientation`]: how keys orient the tip (the jaws' direction, not the roll).
 //! - [`approach`]: the way in from where the instruments are to the skill's first poses.

@@ -4,7 +4,7 @@
 //! The recipe (`shared/reference/knot-topology.md`): close the open thread far from the knot
 //! ([`closure`]), look at it from [`projection::DIRECTIONS`] directions ([`projection`]), find the
 //! crossings ([`crossings`]), write the signed Gauss code ([`gauss_code`]), simplify it ([`reduce`]),
-//! compute the determinant and writhe ([`invariants`]), name the knot and vote ([`classify`]). Then
+//! compute the determinant and writhe ([`invariants`]), name the knot and vote ([`classify`](mod@classify)). Then
 //! where the knot sits ([`tightness`]), how slack the loop's legs lie ([`legs`]), how much each end bends
 //! inside the knot ([`bending`]) and the trial's
 //! outcome ([`verdict`]). Centrelines come from the simulator or from a CSV file ([`csv`]); [`draw_through`]

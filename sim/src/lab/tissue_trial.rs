@@ -1,7 +1,7 @@
 //! [`super::wound`]'s trial with the scene's own tissue: the flaps are Rapier's bodies (each on its
 //! prismatic joint and spring, [`crate::tissue`]), the rope lies on them and on the pad through
-//! [`super::rigid`]'s contacts and passes the stitch through four points fixed in the flaps
-//! ([`super::rigid::Guide`]), and what it does to the flaps is applied to them before each of
+//! [`crate::rope::rigid`]'s contacts and passes the stitch through four points fixed in the flaps
+//! ([`crate::rope::rigid::Guide`]), and what it does to the flaps is applied to them before each of
 //! Rapier's steps. The first step of the rope towards being the scene's thread: the coupling that
 //! the instruments, the needle and the grasps will use, checked against the flaps `wound` integrates
 //! by hand.

@@ -67,7 +67,7 @@ pub struct RopeParams {
     /// Whether each strand's lengths are solved directly (`stretch::project_strand`) instead of
     /// by Gauss-Seidel.
     pub direct_stretch: bool,
-    /// Whether each strand's bending joints are solved at once ([`bend`]: exact for the substep's
+    /// Whether each strand's bending joints are solved at once (`bend`: exact for the substep's
     /// implicit spring) instead of by one Gauss-Seidel pass, which leaves a stiff, finely divided
     /// rope too soft (the joints' compliance small against their particles' inverse masses).
     pub direct_bending: bool,

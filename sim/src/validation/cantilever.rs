@@ -69,7 +69,7 @@ pub struct Deflection {
 }
 
 /// A clamped length of `suture`'s rope, level along x: its first two particles held, its free
-/// length [`FREE_SEGMENTS`] spacings and a half from the clamp (half a spacing before the first
+/// length `FREE_SEGMENTS` spacings and a half from the clamp (half a spacing before the first
 /// free joint). Returns the rope, the clamp's particle, the tip's and the free length, m.
 pub fn clamped(suture: &SutureUnderTest, params: RopeParams) -> (Ropes, usize, usize, f64) {
     let s = suture.spacing_m;

@@ -97,7 +97,7 @@ pub fn law_n(epsilon: f64, h_m: f64, b_n_m2: f64, mu: f64) -> f64 {
 }
 
 /// The loose open trefoil's centreline, m: the polynomial knot scaled so its strands lie
-/// [`CLEARANCE_RADII`] of `radius_m` apart, with straight tails.
+/// `CLEARANCE_RADII` of `radius_m` apart, with straight tails.
 pub fn open_trefoil(radius_m: f64) -> Vec<Vector3<f64>> {
     let scale = CLEARANCE_RADII * radius_m / CLEARANCE_UNITS;
     let p = |t: f64| {
