@@ -2,7 +2,7 @@
 //! thread is laid as a loose square knot or surgeon's knot a few millimetres over the wound, drawn
 //! down by its free ends (ramped up over 1 s, held 1 s more), with or without the flaps held
 //! together meanwhile (as an assistant closes the wound), then let go, and the evaluator's holding
-//! test pulls the flaps apart (`knotlab_sim::laid_knot`). Printed per knot, friction of the thread
+//! test pulls the flaps apart (`knotlab_sim::lab::laid_knot`). Printed per knot, friction of the thread
 //! on itself, spread, closing force and snug: the wound's gap as snugged and after the load (the
 //! evaluator accepts 1.5 mm), the knot after. What no expert's knot can beat in this thread: if a
 //! knot laid by hand does not hold, the expert's will not either. Found (session 41): the square
@@ -17,7 +17,7 @@
 //! `cargo bench -p knotlab-bench --bench laid_knot`
 
 use knotlab_hw::rig::Rig;
-use knotlab_sim::laid_knot::{LaidKnotKind, LaidKnotParams, run_laid_knot};
+use knotlab_sim::lab::laid_knot::{LaidKnotKind, LaidKnotParams, run_laid_knot};
 use knotlab_sim::physics::SolverParams;
 use knotlab_sim::scene::SceneConfig;
 use knotlab_sim::thread::ThreadParams;

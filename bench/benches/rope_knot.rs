@@ -30,10 +30,10 @@
 
 use std::time::Instant;
 
+use knotlab_sim::lab::laid_knot::{LaidKnotKind, LaidKnotParams};
+use knotlab_sim::lab::trials::{Slide, capstan, reef};
 use knotlab_sim::lab::wound::{WoundTrialParams, laid_surgeons_knot_in_wound};
-use knotlab_sim::laid_knot::{LaidKnotKind, LaidKnotParams};
 use knotlab_sim::rope::RopeParams;
-use knotlab_sim::rope::trials::{Slide, capstan, reef};
 
 const FRICTIONS: [f64; 3] = [0.3, 0.5, 1.0];
 const RATIOS: [f64; 4] = [3.0, 10.0, 30.0, 100.0];

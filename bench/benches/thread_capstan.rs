@@ -1,7 +1,7 @@
 //! Benchmark: does friction between simulated strands obey the capstan equation? A strand (B) wound
 //! twice round another (A, both ends held), no gravity, is snugged with 1 N on both ends for 0.5 s;
 //! then one end is pulled with 0.3 N (the holding test's load on a flap) and the other with less, for
-//! 2 s (`knotlab_sim::cinch::run_capstan`). Friction should hold B while the ratio of the two tensions
+//! 2 s (`knotlab_sim::lab::cinch::run_capstan`). Friction should hold B while the ratio of the two tensions
 //! stays below `exp(friction * 4 pi)` (6.6 at the scene's friction of 0.15, 43 at 0.3) and let it slide
 //! beyond. Printed per thread model, friction and tension ratio: how far B slid in the 2 s, "to its
 //! end" where it slid until its held end jammed against A, "off" where it slid off A altogether.
@@ -21,7 +21,7 @@
 //!
 //! `cargo bench -p knotlab-bench --bench thread_capstan`
 
-use knotlab_sim::cinch::{
+use knotlab_sim::lab::cinch::{
     BallCapstanParams, CapstanParams, capstan_ratio, run_capstan, run_capstan_over_ball,
 };
 use knotlab_sim::physics::SolverParams;

@@ -1,7 +1,7 @@
 //! Benchmark: how much tension the simulated thread's contacts hold before one strand passes through
 //! another, the failure that undid the scripted expert's throws when it pulled them tight (issue 6).
 //! A strand is wound twice round another (both ends held), as in a surgeon's throw, and its two ends
-//! are pulled apart with a tension rising from 0 to 10 N over 5 s (`knotlab_sim::cinch`). Printed per
+//! are pulled apart with a tension rising from 0 to 10 N over 5 s (`knotlab_sim::lab::cinch`). Printed per
 //! setting (the chain scene's, scenarios/chain.toml, then one change at a time): the tension at the first pass the
 //! tunnelling monitor saw, and at which the winding had lost half a turn (or "held"), the passes
 //! counted, the deepest overlap of two segments' axes before the first pass as a fraction of the
@@ -17,7 +17,7 @@
 
 use std::time::Instant;
 
-use knotlab_sim::cinch::{CinchParams, run_cinch};
+use knotlab_sim::lab::cinch::{CinchParams, run_cinch};
 use knotlab_sim::physics::SolverParams;
 use knotlab_sim::thread::ThreadParams;
 

@@ -2,7 +2,7 @@
 //! another (A), as in a surgeon's throw, no gravity, is snugged with both of B's ends pulled at 1 N
 //! while A's ends are held; then the loop pulls B's other end with a set tension for 2 s while A's
 //! loop end stays held, and the free ends (A's other end, B's other end) are let go or kept
-//! (`knotlab_sim::cinch::run_holding`). With both let go this is the knot as the instruments leave
+//! (`knotlab_sim::lab::cinch::run_holding`). With both let go this is the knot as the instruments leave
 //! it when the holding test loads it (0.3 N a flap). Printed per thread model, friction and loop
 //! tension, for each choice of free ends let go: how far the loaded end moved in the 2 s (in the last
 //! second), or "off" where the turns came undone. Found (issue 6): with its free ends held the throw
@@ -14,7 +14,7 @@
 //!
 //! `cargo bench -p knotlab-bench --bench thread_holding`
 
-use knotlab_sim::cinch::{HoldingParams, run_holding};
+use knotlab_sim::lab::cinch::{HoldingParams, run_holding};
 use knotlab_sim::physics::SolverParams;
 use knotlab_sim::thread::ThreadParams;
 

@@ -1,7 +1,7 @@
 //! Benchmark: does a square (reef) knot hold in the simulated thread once its free ends are let go?
 //! Two strands laid as a loose square knot (no gravity) are snugged by all four ends at 1 N for 2 s
 //! (their slack drawn in slowly), then red's standing part is held and blue's pulled with a set
-//! tension for 2 s, the free ends held or let go (`knotlab_sim::reef::run_reef`). Whether a knot
+//! tension for 2 s, the free ends held or let go (`knotlab_sim::lab::reef::run_reef`). Whether a knot
 //! near the threshold holds turns on details of its shape, so each cell lays it three ways (features
 //! 5, 6 and 7 mm apart). Printed per thread model, friction of the thread on itself and load, for
 //! each of the three: how far the loaded end moved in the 2 s (in the last second), or "off" where
@@ -20,9 +20,9 @@
 //!
 //! `cargo bench -p knotlab-bench --bench thread_reef`
 
+use knotlab_sim::lab::reef::{ReefOutcome, ReefParams, run_reef};
 use knotlab_sim::physics::HealthError;
 use knotlab_sim::physics::SolverParams;
-use knotlab_sim::reef::{ReefOutcome, ReefParams, run_reef};
 use knotlab_sim::thread::ThreadParams;
 
 /// The loose knots' spreads, m.

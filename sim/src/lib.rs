@@ -13,25 +13,20 @@
 //! - [`hooks`]: the contact filter (thread through the flaps and through the jaws holding it) and
 //!   the thread's friction on itself.
 //! - [`knot`]: which knot a thread's centreline holds, whether it is down, the verdict.
-//! - [`lab`]: experiment rigs the tests and benchmarks run: the rope knotted over a wound.
+//! - [`lab`]: experiment rigs the tests and benchmarks run (the cinch, the reef knot, the laid knot,
+//!   the rope's knot trials and wound, the stress sequence behind `knotlab sim`).
 //! - [`physics`]: the Rapier sets of a scene, its step and health check.
 //! - [`scene`]: the scene file (TOML) and its checks.
 //! - [`snapshot`]: the scene drawn in top, front and side views (PNG).
-//! - [`stress`]: the scripted stress sequence behind `knotlab sim` and its figures.
 //! - [`servo`]: how a joint follows its command (lag, limits, play, calibration).
 //! - [`thread`]: the suture as a chain of capsules.
 //! - [`chords`]: points a fixed chord apart along a polyline, where a thread is laid.
-//! - [`cinch`]: a strand wound twice round another and pulled: how much tension the contacts hold.
-//! - [`reef`]: a square knot of two strands, loaded with its free ends let go: does it hold?
-//! - [`laid_knot`]: a square or surgeon's knot laid over the stitch and snugged: does it pass the
-//!   holding test?
 //! - [`tunnelling`]: detecting one capsule passing through another.
 //! - [`crossing`]: detecting a strand of the thread passing through another, for either model.
 //! - [`validation`]: the suture checked against mechanics (`knotlab validate`).
 
 pub mod backend;
 pub mod chords;
-pub mod cinch;
 pub mod crossing;
 pub mod evaluate;
 pub mod gauge;
@@ -40,18 +35,15 @@ pub mod groups;
 pub mod hooks;
 pub mod knot;
 pub mod lab;
-pub mod laid_knot;
 pub mod layout;
 pub mod needle;
 pub mod physics;
-pub mod reef;
 pub mod rope;
 pub mod scene;
 pub mod servo;
 pub mod shapes;
 pub mod snapshot;
 pub mod stitch;
-pub mod stress;
 pub mod thread;
 pub mod thread_watch;
 pub mod tissue;

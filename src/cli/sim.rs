@@ -10,9 +10,9 @@ use anyhow::Context;
 use clap::Args;
 
 use knotlab_hw::rig::Rig;
+use knotlab_sim::lab::stress::run_stress;
 use knotlab_sim::scene::load_scene;
 use knotlab_sim::snapshot::{View, render_png};
-use knotlab_sim::stress::run_stress;
 use knotlab_sim::thread::ThreadModel;
 use knotlab_sim::world::SimWorld;
 

@@ -1,9 +1,20 @@
-//! Experiment rigs: small scenes built to measure one behaviour of the rope in a wound, which the tests
-//! and the benchmarks run; no trial uses them.
+//! Experiment rigs: small scenes built to measure one behaviour of a suture, which the tests, the
+//! benchmarks, the validation suite and `knotlab sim` run; no trial uses them.
 //!
+//! - [`cinch`]: a strand wound twice round another and pulled: how much tension the contacts hold.
+//! - [`reef`]: a square knot of two strands, loaded with its free ends let go: does it hold?
+//! - [`laid_knot`]: a square or surgeon's knot laid over the stitch and snugged: does it pass the
+//!   holding test?
+//! - [`trials`]: the rope's knot trials (the capstan, the reef knot, the wound pair).
+//! - [`stress`]: the scripted stress sequence behind `knotlab sim` and its figures.
 //! - [`wound`]: a surgeon's knot laid in the rope and tied over a wound whose flaps are integrated by
 //!   hand, snugged, released and loaded.
 //! - [`tissue_trial`]: the same trial with the scene's own tissue (the flaps as Rapier's bodies).
 
+pub mod cinch;
+pub mod laid_knot;
+pub mod reef;
+pub mod stress;
 pub mod tissue_trial;
+pub mod trials;
 pub mod wound;

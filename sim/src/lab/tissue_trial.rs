@@ -10,7 +10,7 @@ use nalgebra::Vector3;
 use rapier3d::prelude::*;
 
 use super::wound::{Moment, SPACING_M, WoundOutcome, WoundTrialParams, length_m, observe, thread_between_m};
-use crate::laid_knot::{LaidKnotParams, surgeons_knot_through};
+use crate::lab::laid_knot::{LaidKnotParams, surgeons_knot_through};
 use crate::physics::Physics;
 use crate::rope::rigid::{Guide, RigidContacts};
 use crate::rope::{RopeParams, Ropes};

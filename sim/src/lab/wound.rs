@@ -1,4 +1,4 @@
-//! The laid-knot trial of [`crate::laid_knot`] in the rope: a surgeon's knot laid over a stitch
+//! The laid-knot trial of [`crate::lab::laid_knot`] in the rope: a surgeon's knot laid over a stitch
 //! through two tissue flaps, snugged by its free ends, then the evaluator's holding test (each flap
 //! pulled open for a while with the free ends let go) — the yardstick for the rope as the scene's
 //! thread. The flaps are as [`crate::tissue`] makes them (each a box sliding across the wound on a
@@ -12,7 +12,7 @@ use nalgebra::{Isometry3, Vector3};
 
 use crate::knot::legs::free_ends;
 use crate::knot::{KnotPlacement, KnotType, TissueSurface, classify};
-use crate::laid_knot::{LaidKnotKind, LaidKnotParams, surgeons_knot_through, surgeons_throw_through};
+use crate::lab::laid_knot::{LaidKnotKind, LaidKnotParams, surgeons_knot_through, surgeons_throw_through};
 use crate::rope::rigid::{nearest_on_rope, thread_through};
 use crate::rope::{RopeParams, Ropes, Surroundings};
 use crate::scene::{StitchParams, TissueParams};
@@ -318,7 +318,7 @@ pub(super) fn length_m(ropes: &Ropes) -> f64 {
 }
 
 /// Lays `knot` (a surgeon's knot, or its first throw alone: [`LaidKnotKind::SurgeonsThrow`]) over the stitch of `tissue` and
-/// `stitch`, snugs it by its free ends as [`crate::laid_knot::lay_and_snug`] does, lets go and
+/// `stitch`, snugs it by its free ends as [`crate::lab::laid_knot::lay_and_snug`] does, lets go and
 /// runs the holding test.
 pub fn laid_surgeons_knot_in_wound(
     rope: RopeParams,

@@ -8,7 +8,7 @@
 //! knot, and a surgeon's knot over the wound within 0.2 mm where a rope without bending stiffness
 //! lets it open 2-7 mm (session 43; `cargo bench -p knotlab-bench --bench rope_knot`). [`rigid`]
 //! couples it to Rapier's bodies, [`grasp`] to jaws; `stretch` and `bend` solve a strand's lengths
-//! and its bending joints at once; [`trials`] are its knot trials ([`crate::lab`] holds those over a wound).
+//! and its bending joints at once; its knot trials are in [`crate::lab`].
 
 mod bend;
 mod broad_phase;
@@ -18,7 +18,6 @@ pub mod rigid;
 pub mod slides;
 mod stretch;
 pub mod suture;
-pub mod trials;
 
 use std::ops::Range;
 

@@ -15,8 +15,8 @@ use nalgebra::Vector3;
 use rapier3d::prelude::*;
 
 use super::{Check, SutureUnderTest, Tolerance};
+use crate::lab::trials::wound_pair;
 use crate::rope::rigid::RigidContacts;
-use crate::rope::trials::wound_pair;
 use crate::rope::{RopeParams, Ropes};
 
 /// The cylinder's radius, m.

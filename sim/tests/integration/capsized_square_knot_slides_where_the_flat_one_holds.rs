@@ -7,7 +7,7 @@
 //! and the layout matters as much. The expert's knots are all capsized (`knot_at_release.bending`).
 
 use knotlab_sim::knot::KnotType;
-use knotlab_sim::reef::{ReefParams, run_reef};
+use knotlab_sim::lab::reef::{ReefParams, run_reef};
 use knotlab_sim::scene::parse_scene;
 use knotlab_sim::thread::ThreadParams;
 

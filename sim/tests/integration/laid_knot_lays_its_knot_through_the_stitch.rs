@@ -1,11 +1,13 @@
-//! The laid-knot trial's layout (`knotlab_sim::laid_knot`, the `laid_knot` benchmark): the scene's
+//! The laid-knot trial's layout (`knotlab_sim::lab::laid_knot`, the `laid_knot` benchmark): the scene's
 //! thread laid as a loose square knot or surgeon's knot over the wound, through both stitch points,
 //! and a clear error where the thread is too short for it.
 
 use knotlab_hw::rig::Rig;
 use knotlab_sim::evaluate::knot_now;
 use knotlab_sim::knot::KnotType;
-use knotlab_sim::laid_knot::{LaidKnotError, LaidKnotKind, LaidKnotParams, laid_knot_layout, lay_and_snug};
+use knotlab_sim::lab::laid_knot::{
+    LaidKnotError, LaidKnotKind, LaidKnotParams, laid_knot_layout, lay_and_snug,
+};
 use knotlab_sim::scene::{SceneConfig, parse_scene};
 use knotlab_sim::world::SimWorld;
 

@@ -9,13 +9,13 @@
 use super::common;
 
 use knotlab_sim::knot::KnotType;
+use knotlab_sim::lab::laid_knot::LaidKnotKind;
 use knotlab_sim::lab::wound::{WoundTrialParams, laid_surgeons_knot_in_wound};
-use knotlab_sim::laid_knot::LaidKnotKind;
 
 #[test]
 fn a_double_throw_alone_lets_the_wound_open_under_the_holding_load() {
     let scene = common::short_suture_friction_0_5();
-    let throw = knotlab_sim::laid_knot::LaidKnotParams {
+    let throw = knotlab_sim::lab::laid_knot::LaidKnotParams {
         kind: LaidKnotKind::SurgeonsThrow,
         ..common::tight_surgeons_knot()
     };

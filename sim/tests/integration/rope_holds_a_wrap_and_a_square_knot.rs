@@ -7,8 +7,8 @@
 //! are solved several times a substep. The same run twice gives the same bits.
 
 use knotlab_sim::knot::KnotType;
+use knotlab_sim::lab::trials::{capstan, reef};
 use knotlab_sim::rope::RopeParams;
-use knotlab_sim::rope::trials::{capstan, reef};
 
 /// The rope without bending stiffness (the capstan equation's string), its lengths solved by two
 /// Gauss-Seidel sweeps as session 42 had it (solved directly, a string's wrap slides either way at

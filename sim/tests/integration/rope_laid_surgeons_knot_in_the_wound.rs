@@ -7,8 +7,8 @@
 //! `string_surgeons_knot_gave_the_wound_its_gap_back.rs`.)
 
 use knotlab_sim::knot::KnotType;
+use knotlab_sim::lab::laid_knot::{LaidKnotKind, LaidKnotParams};
 use knotlab_sim::lab::wound::{WoundTrialParams, laid_surgeons_knot_in_wound};
-use knotlab_sim::laid_knot::{LaidKnotKind, LaidKnotParams};
 use knotlab_sim::rope::RopeParams;
 use knotlab_sim::scene::parse_scene;
 

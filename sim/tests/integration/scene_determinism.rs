@@ -2,8 +2,8 @@
 //! twice leaves every body at the same bits, and the same force readings.
 
 use knotlab_hw::rig::{ArmName, Rig};
+use knotlab_sim::lab::stress::run_stress;
 use knotlab_sim::scene::parse_scene;
-use knotlab_sim::stress::run_stress;
 use knotlab_sim::world::SimWorld;
 
 fn state_after(seed: u64) -> (Vec<u64>, Vec<u64>) {

@@ -7,8 +7,8 @@
 //! thread's friction on itself decides whether they hold.
 
 use knotlab_sim::knot::KnotType;
+use knotlab_sim::lab::reef::{ReefOutcome, ReefParams, run_reef};
 use knotlab_sim::physics::HealthError;
-use knotlab_sim::reef::{ReefOutcome, ReefParams, run_reef};
 use knotlab_sim::scene::parse_scene;
 use knotlab_sim::thread::ThreadParams;
 

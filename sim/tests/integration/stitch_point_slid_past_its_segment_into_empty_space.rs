@@ -9,7 +9,7 @@
 
 use knotlab_hw::rig::Rig;
 use knotlab_sim::evaluate::hold_watched;
-use knotlab_sim::laid_knot::{LaidKnotParams, lay_and_snug};
+use knotlab_sim::lab::laid_knot::{LaidKnotParams, lay_and_snug};
 use knotlab_sim::scene::parse_scene;
 use knotlab_sim::tissue::Flap;
 

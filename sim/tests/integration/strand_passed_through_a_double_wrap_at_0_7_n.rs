@@ -3,7 +3,7 @@
 //! chain's joints drag its segments into the strand they press on a little every step, and the solver
 //! pushed them apart at no more than 0.1 m/s. The shipped scene corrects at 1 m/s.
 
-use knotlab_sim::cinch::{CinchParams, run_cinch};
+use knotlab_sim::lab::cinch::{CinchParams, run_cinch};
 use knotlab_sim::physics::SolverParams;
 use knotlab_sim::scene::parse_scene;
 

@@ -7,11 +7,11 @@
 //! surgeon lays the second throw before letting go. If a change to the thread model makes a lone
 //! throw hold, the second assertion tells: the expert's plan rests on it.
 
-use knotlab_sim::cinch::{HoldingParams, run_holding};
+use knotlab_sim::lab::cinch::{HoldingParams, run_holding};
 use knotlab_sim::scene::parse_scene;
 use knotlab_sim::thread::ThreadParams;
 
-fn loaded(release: bool, friction: f64, loop_n: f64) -> knotlab_sim::cinch::HoldingOutcome {
+fn loaded(release: bool, friction: f64, loop_n: f64) -> knotlab_sim::lab::cinch::HoldingOutcome {
     let scene =
         parse_scene(include_str!("../../../scenarios/chain.toml"), "chain.toml").expect("shipped scene");
     let thread = ThreadParams { friction, friction_on_itself: None, ..scene.thread };

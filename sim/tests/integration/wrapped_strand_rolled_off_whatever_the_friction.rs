@@ -7,7 +7,7 @@
 //! slides to its end. (Laid twisted, before session 29, it held 2; laid untwisted it slides 12 mm at
 //! 2.) `cargo bench -p knotlab-bench --bench thread_capstan` prints the whole table.
 
-use knotlab_sim::cinch::{CapstanParams, run_capstan};
+use knotlab_sim::lab::cinch::{CapstanParams, run_capstan};
 use knotlab_sim::scene::parse_scene;
 use knotlab_sim::thread::ThreadParams;
 

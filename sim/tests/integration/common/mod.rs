@@ -63,9 +63,9 @@ pub fn short_suture_friction_0_5() -> SceneConfig {
 
 /// A tight surgeon's knot for the rope's wound trials: helices of 0.22 mm radius, 1.6 mm either
 /// side of the wound, 1 mm over the tissue, snugged at 2 N.
-pub fn tight_surgeons_knot() -> knotlab_sim::laid_knot::LaidKnotParams {
-    knotlab_sim::laid_knot::LaidKnotParams {
-        kind: knotlab_sim::laid_knot::LaidKnotKind::SurgeonsKnot,
+pub fn tight_surgeons_knot() -> knotlab_sim::lab::laid_knot::LaidKnotParams {
+    knotlab_sim::lab::laid_knot::LaidKnotParams {
+        kind: knotlab_sim::lab::laid_knot::LaidKnotKind::SurgeonsKnot,
         spread_m: 0.0016,
         lift_m: 0.00022,
         height_m: 0.001,

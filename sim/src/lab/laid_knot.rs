@@ -1,6 +1,6 @@
 //! A knot laid by hand over the stitch, snugged by its free ends and put to the evaluator's holding
 //! test: what a well-laid knot does in the scene's thread, apart from any expert. The thread is laid
-//! (no instrument holds it) as [`crate::reef::loose_knot`]'s square knot or as a surgeon's knot (two
+//! (no instrument holds it) as [`crate::lab::reef::loose_knot`]'s square knot or as a surgeon's knot (two
 //! double helices) a few millimetres over the wound, the tail's strand from the entry point and the
 //! long end's from the exit point, the long end's spare thread straight on beyond its free end. Both
 //! free ends are pulled out, each alongside its own standing part (the tail's over its flap, the long
@@ -15,8 +15,8 @@ use rapier3d::prelude::*;
 
 use crate::evaluate::{hold, knot_now};
 use crate::knot::KnotType;
+use crate::lab::reef::loose_knot;
 use crate::physics::Physics;
-use crate::reef::loose_knot;
 use crate::scene::SceneConfig;
 use crate::tissue::{Flap, Tissue};
 use crate::world::{SimWorld, WorldError};
@@ -24,7 +24,7 @@ use crate::world::{SimWorld, WorldError};
 /// Which knot is laid.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum LaidKnotKind {
-    /// [`crate::reef::loose_knot`]'s square knot: two bights collaring each other.
+    /// [`crate::lab::reef::loose_knot`]'s square knot: two bights collaring each other.
     Square,
     /// A surgeon's knot, the knot the evaluator accepts: the tail and the long end wound round each
     /// other twice, then once the other way; laid as two double helices across the wound,

@@ -15,8 +15,8 @@ use knotlab_hw::geometry::segment_distance;
 use nalgebra::Vector3;
 use rapier3d::prelude::*;
 
-use crate::cinch::{step_strands, strand_along};
 use crate::knot::{KnotType, classify};
+use crate::lab::cinch::{step_strands, strand_along};
 use crate::physics::{HealthError, Physics, SolverParams};
 use crate::thread::{Thread, ThreadParams};
 

@@ -1,4 +1,4 @@
-//! The rope's knot trials, as `crate::cinch` and `crate::reef` run them for the capsule chain: a
+//! The rope's knot trials, as `crate::lab::cinch` and `crate::lab::reef` run them for the capsule chain: a
 //! strand wound twice round another and pulled harder at one end (the capstan), and a loose square
 //! knot snugged by its four ends, then loaded by its standing parts with its free ends let go.
 
@@ -6,9 +6,9 @@ use std::f64::consts::{FRAC_PI_2, PI};
 
 use nalgebra::Vector3;
 
-use super::{RopeParams, Ropes};
 use crate::knot::{KnotType, classify};
-use crate::reef::{as_stitch, loose_knot};
+use crate::lab::reef::{as_stitch, loose_knot};
+use crate::rope::{RopeParams, Ropes};
 
 /// Particle spacing of the trials' ropes, m (one and a half radii of the default rope).
 pub const SPACING_M: f64 = 0.0003;
@@ -23,7 +23,7 @@ pub struct Slide {
     /// ... in the last half of that time, m (near zero when friction holds).
     pub late_slip_m: f64,
     /// The knot the strands make at the end (the reef trial's red and blue joined as
-    /// [`crate::reef::as_stitch`] joins them; none for the capstan, or if the classifier failed).
+    /// [`crate::lab::reef::as_stitch`] joins them; none for the capstan, or if the classifier failed).
     pub knot_after: Option<KnotType>,
 }
 
