@@ -1,5 +1,5 @@
 //! knotlab's learner: demonstrations, features, task patterns, segmentation into motion primitives, the
-//! fluid solver, virtual obstacles and (to come) skill synthesis. It never depends on a physics engine.
+//! fluid solver, virtual obstacles and skill synthesis. It never depends on a physics engine.
 //!
 //! - [`demonstration`]: the demonstration files (`demo.toml` + a CSV per instrument), read and written.
 //! - [`features`]: what a demonstration shows: motion starts and stops, accelerations, inflections and

@@ -184,7 +184,7 @@ pub fn evaluate_knot_watched(
         loop_outside_m: None,
         gap_before_m,
         gap_after_m: None,
-        thread_self_crossings: world.thread_watch.crossings.len(),
+        thread_self_crossings: world.suture().self_crossings().len(),
         slid: None,
     };
     let Some(site) = stitch_site(world) else {
@@ -221,7 +221,7 @@ pub fn evaluate_knot_watched(
         result.verdict = Verdict::Failure(FailureMode::ThreadUnstable);
         return result;
     }
-    result.thread_self_crossings = world.thread_watch.crossings.len();
+    result.thread_self_crossings = world.suture().self_crossings().len();
     if result.thread_self_crossings > 0 {
         result.verdict = Verdict::Failure(FailureMode::ThreadUnstable);
         return result;

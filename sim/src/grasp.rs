@@ -8,12 +8,15 @@ use rapier3d::prelude::*;
 use crate::physics::Physics;
 use knotlab_hw::geometry::segment_distance;
 
-use crate::thread::Thread;
+use crate::tunnelling::Capsule;
 
 /// The jaws close on what passes within this distance of their line (hinge to tip), m: about a jaw's
 /// radius, so what lies between them, not a coil wound around them (the thread touching the outside
 /// of closed jaws is a jaw radius plus its own radius, 1.9 mm, from that line).
 pub const GRASP_REACH_M: f64 = 0.0016;
+
+/// The jaws hold what lies this far behind the tip, along the tip's z axis, m.
+pub const JAW_CENTRE_OFFSET_M: f64 = 0.005;
 
 /// What happened to a grasp.
 #[derive(Clone, Debug, PartialEq)]
@@ -108,13 +111,16 @@ impl JawFaces {
 }
 
 impl Grasp {
-    /// Attaches the thread segment or the needle that passes nearest the jaws' line (from their hinge,
-    /// twice `jaw_offset_m` behind the tip, to the tip), if it comes within reach of it: what lies
-    /// between the jaws, not what is wound around them. It is held where it is. `needle_m` are points
-    /// along the needle (world frame), on `needle_body` (the first segment's for the chain).
+    /// Attaches the thread segment (of the chain's `segments`, lying as `capsules`; none for the
+    /// rope) or the needle that passes nearest the jaws' line (from their hinge, twice
+    /// `jaw_offset_m` behind the tip, to the tip), if it comes within reach of it: what lies
+    /// between the jaws, not what is wound around them. It is held where it is. `needle_m` are
+    /// points along the needle (world frame), on `needle_body` (the first segment's for the chain).
+    #[allow(clippy::too_many_arguments)]
     pub fn try_close(
         physics: &mut Physics,
-        thread: &Thread,
+        capsules: &[Capsule],
+        segments: &[RigidBodyHandle],
         needle_m: &[Vector3<f64>],
         needle_body: Option<RigidBodyHandle>,
         jaw_body: RigidBodyHandle,
@@ -124,13 +130,12 @@ impl Grasp {
         let (hinge, tip) = jaw_line_m(world_from_tip, jaw_offset_m);
         let reach_m = GRASP_REACH_M;
         // (segment, on the needle, how far beyond reach of the jaws' line it passes)
-        let segments = thread
-            .capsules(physics, 0.0)
-            .into_iter()
+        let along = capsules
+            .iter()
             .enumerate()
             .map(|(i, c)| (i, false, segment_distance(&c.a_m, &c.b_m, &hinge, &tip) - reach_m));
         let needle = needle_m.iter().map(|p| (0, true, segment_distance(p, p, &hinge, &tip) - reach_m));
-        let (segment, mut on_needle, beyond) = segments.chain(needle).min_by(|a, b| a.2.total_cmp(&b.2))?;
+        let (segment, mut on_needle, beyond) = along.chain(needle).min_by(|a, b| a.2.total_cmp(&b.2))?;
         // The first segment carries the needle, swaged on: jaws that reach the needle too hold it.
         if segment == 0 && needle_m.iter().any(|p| segment_distance(p, p, &hinge, &tip) <= reach_m) {
             on_needle = true;
@@ -141,7 +146,7 @@ impl Grasp {
         // The needle rides on the chain's first segment, or on its own body beside the rope.
         let body = match (on_needle, needle_body) {
             (true, Some(needle)) => needle,
-            _ => *thread.segments.get(segment)?,
+            _ => *segments.get(segment)?,
         };
         let jaw_pose = *physics.bodies[jaw_body].position();
         let segment_pose = *physics.bodies[body].position();
@@ -163,26 +168,13 @@ impl Grasp {
     }
 
     /// Whether jaws opened `jaw_rad` (between them; each turns half of it about the hinge) squeeze
-    /// the thread segment nearest their line, if one is within reach of it: where that segment
-    /// passes, the room between the jaws' faces (capsules of `jaw_radius_m`) is no wider than the
-    /// thread (`thread_radius_m`). Real jaws clamp the thread then, long before they are shut;
-    /// rigid capsules closing on past that point squeeze it along or out sideways instead.
-    pub fn squeezes(
-        physics: &Physics,
-        thread: &Thread,
-        world_from_tip: &IsometryMatrix3<f64>,
-        jaw_offset_m: f64,
-        jaw_rad: f64,
-        jaw_radius_m: f64,
-        thread_radius_m: f64,
-    ) -> bool {
-        let capsules = thread.capsules(physics, 0.0);
-        Self::squeeze(&capsules, world_from_tip, jaw_offset_m, jaw_rad, jaw_radius_m, thread_radius_m)
-    }
-
-    /// [`Self::squeezes`] for the thread as `capsules` (the chain's segments, or the rope's).
+    /// the thread (as `capsules`: the chain's segments, or the rope's) nearest their line, if it
+    /// is within reach of it: where it passes, the room between the jaws' faces (capsules of
+    /// `jaw_radius_m`) is no wider than the thread (`thread_radius_m`). Real jaws clamp the thread
+    /// then, long before they are shut; rigid capsules closing on past that point squeeze it along
+    /// or out sideways instead.
     pub fn squeeze(
-        capsules: &[crate::tunnelling::Capsule],
+        capsules: &[Capsule],
         world_from_tip: &IsometryMatrix3<f64>,
         jaw_offset_m: f64,
         jaw_rad: f64,
@@ -196,7 +188,7 @@ impl Grasp {
         let length_m = axis.norm();
         let along = |p: &Vector3<f64>| (p - hinge).dot(&axis) / length_m;
         // Each capsule's point nearest the jaws' line (of nine along it).
-        let nearest_point = |c: &crate::tunnelling::Capsule| {
+        let nearest_point = |c: &Capsule| {
             let points = (0..=8).map(|i| c.a_m + (c.b_m - c.a_m) * (i as f64 / 8.0));
             points
                 .min_by(|p, q| {

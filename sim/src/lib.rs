@@ -6,7 +6,6 @@
 //! - [`tissue`]: the pad and the two flaps of the wound, pulled open by an elastic load.
 //! - [`stitch`]: the thread passing through the flaps, sliding with friction.
 //! - [`needle`]: the half-circle needle on the thread's first segment.
-//! - [`layout`]: where the thread lies at the start of the task.
 //! - [`evaluate`]: the knot's verdict in the scene, with the holding test.
 //! - [`grasp`]: grasping as a constraint that slips above the grip force.
 //! - [`groups`]: the collision groups: which kinds of body may touch which.
@@ -19,6 +18,9 @@
 //! - [`scene`]: the scene file (TOML) and its checks.
 //! - [`snapshot`]: the scene drawn in top, front and side views (PNG).
 //! - [`servo`]: how a joint follows its command (lag, limits, play, calibration).
+//! - [`suture`]: the suture, one interface over its two models (the rope and the chain): stepping,
+//!   its centreline, the jaws' holds on it, its pull on the instruments, its self-crossing watch.
+//! - [`rope`]: the suture as an XPBD rope (the nominal model).
 //! - [`thread`]: the suture as a chain of capsules.
 //! - [`chords`]: points a fixed chord apart along a polyline, where a thread is laid.
 //! - [`tunnelling`]: detecting one capsule passing through another.
@@ -35,7 +37,6 @@ pub mod groups;
 pub mod hooks;
 pub mod knot;
 pub mod lab;
-pub mod layout;
 pub mod needle;
 pub mod physics;
 pub mod rope;
@@ -44,6 +45,7 @@ pub mod servo;
 pub mod shapes;
 pub mod snapshot;
 pub mod stitch;
+pub mod suture;
 pub mod thread;
 pub mod thread_watch;
 pub mod tissue;

@@ -69,9 +69,10 @@ impl Needle {
         Self { body: Some(body), ..needle }
     }
 
-    /// The arc's points in the world, swage first, m.
-    pub fn world_points_m(&self, physics: &Physics, thread: &Thread) -> Vec<Vector3<f64>> {
-        let Some(body) = self.body.or_else(|| thread.segments.first().copied()) else { return Vec::new() };
+    /// The arc's points in the world, swage first, m: on its own body, or else on `carrier` (the
+    /// chain's first segment).
+    pub fn world_points_m(&self, physics: &Physics, carrier: Option<RigidBodyHandle>) -> Vec<Vector3<f64>> {
+        let Some(body) = self.body.or(carrier) else { return Vec::new() };
         let Some(body) = physics.bodies.get(body) else { return Vec::new() };
         let pose = body.position();
         self.arc_points_m

@@ -7,7 +7,6 @@ use nalgebra::{IsometryMatrix3, Matrix3, Rotation3, Translation3, Vector3};
 use rapier3d::prelude::*;
 
 use crate::groups::{ENVIRONMENT_GROUP, FLAP_GROUP, PAD_GROUP, THREAD_GROUP};
-use crate::needle::Needle;
 use crate::thread::to_na;
 use crate::tissue::Flap;
 use crate::world::SimWorld;
@@ -118,8 +117,8 @@ pub fn scene_shapes(world: &SimWorld) -> SceneShapes {
         solids,
         thread_m: world.thread_centreline(),
         thread_radius_m: world.config.thread.radius_m,
-        needle_m: Needle::world_points_m(&world.needle, physics, &world.thread),
-        needle_radius_m: world.needle.wire_radius_m,
+        needle_m: world.suture().needle_points_m(physics),
+        needle_radius_m: world.suture().needle().wire_radius_m,
         holes_m: Flap::ALONG_THREAD.iter().map(|&flap| world.tissue.hole_m(physics, flap)).collect(),
         wound_gap_m: world.wound_gap_m(),
     }

@@ -20,7 +20,7 @@ pub struct SelfCrossing {
 
 /// The thread's self-crossings so far. Moving the thread by hand between steps (`Thread::lay_straight`,
 /// `lay_along`) looks like passes: experiments that do so should not read the count.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, Default)]
 pub struct ThreadWatch {
     /// The chain's watch.
     swept: CrossingWatch,

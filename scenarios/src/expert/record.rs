@@ -75,7 +75,7 @@ pub struct KnotTracePoint {
 /// [`KnotTracePoint::ends_on_instruments`] for the world as it is, the stitch's points at `arcs_m`
 /// (exit, entry) along the thread: none of an end while the thread is not through its point.
 fn ends_on_instruments(world: &SimWorld, arcs_m: [Option<f64>; 2]) -> [[usize; 2]; 3] {
-    let segment_m = world.thread.segment_length_m;
+    let segment_m = world.suture().spacing_m();
     let contacts = world.thread_contacts();
     [ArmName::Left, ArmName::Right, ArmName::Assist].map(|arm| {
         let prefix = format!("{}_", arm.as_str());
@@ -340,7 +340,7 @@ pub fn record_demonstration(
             loop_outside_m: None,
             gap_before_m: world.wound_gap_m(),
             gap_after_m: None,
-            thread_self_crossings: world.thread_watch.crossings.len(),
+            thread_self_crossings: world.suture().self_crossings().len(),
             slid: None,
         }
     } else {
@@ -369,7 +369,7 @@ pub fn record_demonstration(
         simulated_s,
         wall_s,
         snapshots,
-        self_crossings: world.thread_watch.crossings.clone(),
+        self_crossings: world.suture().self_crossings().to_vec(),
         events,
         force_events,
         final_scene,

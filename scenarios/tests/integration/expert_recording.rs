@@ -652,7 +652,7 @@ fn the_right_runs_down_through_the_points_given_before_its_run_downs_end() {
 fn for_the_second_throw_the_assist_takes_the_tail_near_its_end_and_draws_it_where_told() {
     use knotlab_scenarios::expert::{SecondThrow, plan_second_throw};
     let world = SimWorld::new(scene(), Rig::shipped().expect("the shipped rig")).expect("the scene builds");
-    let line = world.thread.centreline(&world.physics);
+    let line = world.thread_centreline();
     // 6 mm of thread back from the tail's free end (the last point of the centreline).
     let expected = from_tail_end(&line, 0.006).expect("a tail longer than 6 mm");
     let held_to = [0.0, 0.05, 0.04];
@@ -906,7 +906,7 @@ fn a_second_throw_on_the_assists_jaws_begins_with_the_tail_handed_over_and_taken
         plan_tail_hand_over(&world, &with(SecondThrow { left_retakes_from_end_m: None, ..second }), &none)
             .is_none()
     );
-    let line = world.thread.centreline(&world.physics);
+    let line = world.thread_centreline();
     // The hand-over: the assist closes on the tail 4 mm from its end, then the left lets go.
     let hand_over = plan_tail_hand_over(&world, &geometry, &none).expect("a hand-over");
     let assist = hand_over.track(ArmName::Assist).expect("the assist");

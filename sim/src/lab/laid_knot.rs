@@ -258,14 +258,15 @@ pub fn lay_and_snug(
     let mut world = SimWorld::with_thread_laid(config, rig, |config, tissue, physics| {
         laid_knot_layout(config, tissue, physics, params).unwrap_or_else(|| {
             too_short = true;
-            crate::layout::start_layout(config, tissue, physics)
+            crate::suture::layout::start_layout(config, tissue, physics)
         })
     })?;
     if too_short {
         return Err(LaidKnotError::ThreadTooShort);
     }
     let knot_laid = knot_now(&world).map_or(KnotType::Unknown, |k| k.knot);
-    let segments = world.thread.segments.clone();
+    let Some(chain) = world.suture().as_chain() else { return Err(LaidKnotError::NotTheChain) };
+    let segments = chain.thread().segments.clone();
     let (long_end, tail) = (segments[0], segments[segments.len() - 1]);
     // Each free end out alongside its own standing part: the tail over its flap (+y), the long end
     // over the other (-y), level with the tissue.
@@ -337,6 +338,9 @@ pub enum LaidKnotError {
     /// The scene's thread is shorter than the knot's path.
     #[error("thread.length_m: too short for the laid knot's path")]
     ThreadTooShort,
+    /// The scene's suture is not the capsule chain, whose segments the knot is snugged by.
+    #[error("thread.model: the laid knot is snugged in the capsule chain (\"chain\")")]
+    NotTheChain,
     /// The thread went unstable while the knot was snugged.
     #[error("the thread went unstable while the knot was snugged")]
     Unstable,

@@ -93,7 +93,8 @@ fn script(seconds: f64, world: &SimWorld) -> Vec<Move> {
 
 /// Thread capsules and the instrument shafts as capsules (shafts last).
 fn capsules(world: &SimWorld, shafts: &[rapier3d::prelude::ColliderHandle]) -> Vec<Capsule> {
-    let mut caps = world.thread.capsules(&world.physics, world.config.thread.radius_m);
+    let mut caps = chain_thread(world)
+        .map_or_else(Vec::new, |t| t.capsules(&world.physics, world.config.thread.radius_m));
     for h in shafts {
         let collider = &world.physics.colliders[*h];
         if let Some(capsule) = collider.shape().as_capsule() {
@@ -122,6 +123,17 @@ fn shaft_colliders(world: &SimWorld) -> Vec<rapier3d::prelude::ColliderHandle> {
     out
 }
 
+/// The capsule chain's bodies: the stress sequence measures that model.
+fn chain_thread(world: &SimWorld) -> Option<&crate::thread::Thread> {
+    world.suture().as_chain().map(|chain| chain.thread())
+}
+
+/// The length of thread on the needle's side of the exit point, m.
+fn needle_side_length_m(world: &SimWorld) -> Option<f64> {
+    let chain = world.suture().as_chain()?;
+    chain.stitch().needle_side_length_m(&world.physics, chain.thread(), &world.tissue)
+}
+
 /// Runs the stress sequence for `seconds` of simulated time. `at_times_s` and `on_time` let the caller
 /// take pictures as it goes.
 pub fn run_stress(
@@ -140,7 +152,7 @@ pub fn run_stress(
         .flat_map(|a| a.instrument_bodies.iter())
         .flat_map(|b| world.physics.bodies[*b].colliders().iter().copied())
         .collect();
-    let n_thread = world.thread.segments.len();
+    let n_thread = chain_thread(world).map_or(0, |t| t.segments.len());
     let mut monitor = TunnellingMonitor::new(0.002);
     let mut shaft_monitor = TunnellingMonitor::new(0.004);
     let thread_pairs: Vec<(usize, usize)> =
@@ -149,7 +161,7 @@ pub fn run_stress(
         (0..n_thread).flat_map(|i| (0..shafts.len()).map(move |k| (i, n_thread + k))).collect();
     let mut starts: Vec<Option<Vector3<f64>>> = vec![None; moves.len()];
     let gap_start = world.wound_gap_m();
-    let tail_side_start = world.stitch.needle_side_length_m(&world.physics, &world.thread, &world.tissue);
+    let tail_side_start = needle_side_length_m(world);
     let mut pending: Vec<f64> = at_times_s.to_vec();
     pending.sort_by(f64::total_cmp);
     let mut pending = pending.into_iter().peekable();
@@ -174,6 +186,11 @@ pub fn run_stress(
         first_unreachable: None,
         events: Vec::new(),
     };
+    if world.suture().as_chain().is_none() {
+        report.failure =
+            Some("the stress sequence measures the capsule chain (thread.model = \"chain\")".into());
+        return report;
+    }
     let dt = world.config.solver.dt_s;
     let steps = (seconds / dt).round() as u64;
     let clock = Instant::now();
@@ -217,7 +234,7 @@ pub fn run_stress(
             }
         }
         report.steps += 1;
-        let stretch = world.thread.max_stretch_ratio(&world.physics);
+        let stretch = chain_thread(world).map_or(1.0, |t| t.max_stretch_ratio(&world.physics));
         if stretch > report.max_stretch_ratio {
             report.max_stretch_ratio = stretch;
             report.max_stretch_at_s = world.time_s;
@@ -239,14 +256,14 @@ pub fn run_stress(
     report.simulated_s = report.steps as f64 * dt;
     report.realtime_factor = if report.wall_s > 0.0 { report.simulated_s / report.wall_s } else { 0.0 };
     report.wound_gap_m[1] = world.wound_gap_m();
-    let tail_side_end = world.stitch.needle_side_length_m(&world.physics, &world.thread, &world.tissue);
+    let tail_side_end = needle_side_length_m(world);
     if let (Some(a), Some(b)) = (tail_side_start, tail_side_end) {
         report.pulled_through_m = a - b;
     }
     report.slips =
         world.events.iter().filter(|e| matches!(e, crate::grasp::GraspEvent::Slipped { .. })).count();
     report.events = world.events.iter().map(|e| format!("{e:?}")).collect();
-    report.events.extend(world.stitch_events.iter().map(|e| format!("{e:?}")));
+    report.events.extend(world.suture().stitch_events().iter().map(|e| format!("{e:?}")));
     for at in pending {
         if at <= world.time_s + 0.5 * dt {
             on_time(world.time_s, world);

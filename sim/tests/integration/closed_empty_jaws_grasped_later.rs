@@ -2,6 +2,7 @@
 //! expert's left, closed to wind the thread around, caught the needle swinging past), and the thread
 //! passed through them. Jaws that close on nothing now stay empty, and solid, until they reopen.
 
+use crate::common::chain;
 use knotlab_hw::rig::{ArmName, Rig};
 use knotlab_sim::scene::parse_scene;
 use knotlab_sim::world::SimWorld;
@@ -14,7 +15,7 @@ fn world() -> SimWorld {
 }
 
 fn segment_m(w: &SimWorld, i: usize) -> Vector3<f64> {
-    let t = w.physics.bodies[w.thread.segments[i]].translation();
+    let t = w.physics.bodies[chain(&w.suture).thread().segments[i]].translation();
     Vector3::new(t.x, t.y, t.z)
 }
 
@@ -30,16 +31,16 @@ fn go(w: &mut SimWorld, target: &Vector3<f64>, jaw_rad: f64, steps: usize) {
 #[test]
 fn jaws_closed_on_nothing_do_not_grasp_what_comes_later() {
     let mut w = world();
-    let middle = w.thread.segments.len() / 2;
+    let middle = chain(&w.suture).thread().segments.len() / 2;
     let above = segment_m(&w, middle) + Vector3::new(0.0, 0.0, 0.02);
     // Closed 2 cm above the thread: nothing to hold.
     go(&mut w, &above, 0.0, 600);
-    assert!(w.arm(ArmName::Left).grasp.is_none());
-    assert!(w.arm(ArmName::Left).closed_empty, "the jaws closed on nothing");
+    assert!(w.arm(ArmName::Left).hold().is_none());
+    assert!(w.arm(ArmName::Left).closed_empty(), "the jaws closed on nothing");
     // Down onto the thread, still closed: no grasp.
     let on = segment_m(&w, middle);
     go(&mut w, &on, 0.0, 600);
-    assert!(w.arm(ArmName::Left).grasp.is_none(), "closed jaws grasped the thread they came upon");
+    assert!(w.arm(ArmName::Left).hold().is_none(), "closed jaws grasped the thread they came upon");
     assert!(
         !w.events
             .iter()
@@ -47,5 +48,5 @@ fn jaws_closed_on_nothing_do_not_grasp_what_comes_later() {
     );
     // Reopened, the jaws may close on the thread again.
     go(&mut w, &above, SimWorld::JAW_OPEN_RAD, 400);
-    assert!(!w.arm(ArmName::Left).closed_empty, "reopening clears it");
+    assert!(!w.arm(ArmName::Left).closed_empty(), "reopening clears it");
 }

@@ -3,6 +3,7 @@
 //! so the coils slid down the tail past the entry point and round that part. The suture now runs under
 //! the wound at the stitch's depth.
 
+use crate::common::chain;
 use knotlab_hw::rig::Rig;
 use knotlab_sim::scene::parse_scene;
 use knotlab_sim::world::SimWorld;
@@ -18,14 +19,10 @@ fn the_suture_crosses_the_wound_at_the_stitch_depth() {
         w.step().expect("healthy step");
     }
     let tissue_from_world = w.tissue.world_from_tissue.inverse();
-    let line: Vec<_> = w
-        .thread
-        .centreline(&w.physics)
-        .iter()
-        .map(|p| (tissue_from_world * Point3::from(*p)).coords)
-        .collect();
+    let line: Vec<_> =
+        w.thread_centreline().iter().map(|p| (tissue_from_world * Point3::from(*p)).coords).collect();
     // Where the thread crosses the wound's centre plane (y = 0) between the two stitch points.
-    let inside = w.stitch.segments_inside().expect("the thread is through the stitch");
+    let inside = chain(&w.suture).stitch().segments_inside().expect("the thread is through the stitch");
     let crossing_z: Vec<f64> = inside
         .filter_map(|i| {
             let (a, b) = (line.get(i)?, line.get(i + 1)?);

@@ -1,6 +1,7 @@
 //! (d) A grasp holds below its grip force and slips above it; opening the jaws releases.
 
 use super::common;
+use crate::common::chain;
 
 use knotlab_hw::rig::{ArmName, Rig};
 use knotlab_sim::grasp::GraspEvent;
@@ -16,10 +17,11 @@ fn grasp_middle(w: &mut SimWorld) -> usize {
     let tip = w.world_from_tip(ArmName::Left);
     let centre = tip * nalgebra::Point3::new(0.0, 0.0, -0.005);
     let across = tip.rotation * Vector3::x();
-    let half = 0.5 * w.thread.segment_length_m * w.thread.segments.len() as f64;
-    w.thread.lay_straight(&mut w.physics, &(centre.coords - across * half), &across);
+    let half =
+        0.5 * chain(&w.suture).thread().segment_length_m * chain(&w.suture).thread().segments.len() as f64;
+    chain(&w.suture).thread().lay_straight(&mut w.physics, &(centre.coords - across * half), &across);
     common::close_left_weightless(w, open, 200);
-    w.arm(ArmName::Left).grasp.expect("the closed jaws hold a segment").segment
+    w.arm(ArmName::Left).held_at().expect("the closed jaws hold a segment")
 }
 
 /// Pulls the thread's tail along its length with `force_n` for up to 0.5 s, the force rising over the
@@ -27,8 +29,8 @@ fn grasp_middle(w: &mut SimWorld) -> usize {
 /// along the chain several times the force); stops pulling when the grasp slips (an unopposed pull
 /// would fling the thread) and returns whether it did.
 fn pull(w: &mut SimWorld, force_n: f64) -> bool {
-    let tail = *w.thread.segments.last().expect("segments");
-    let line = w.thread.centreline(&w.physics);
+    let tail = *chain(&w.suture).thread().segments.last().expect("segments");
+    let line = chain(&w.suture).thread().centreline(&w.physics);
     let direction = (line[line.len() - 1] - line[0]).normalize();
     for step in 0..500 {
         let along = direction * force_n * (f64::from(step + 1) / 100.0).min(1.0);
@@ -57,12 +59,13 @@ fn an_unreachable_trocar_is_named() {
 fn a_grasp_holds_below_its_grip_force() {
     let mut w = common::chain_world();
     let segment = grasp_middle(&mut w);
-    assert!((w.thread.segments.len() / 2).abs_diff(segment) <= 1, "held segment {segment}");
-    let held_at = w.physics.bodies[w.thread.segments[segment]].translation();
+    assert!((chain(&w.suture).thread().segments.len() / 2).abs_diff(segment) <= 1, "held segment {segment}");
+    let held_at = w.physics.bodies[chain(&w.suture).thread().segments[segment]].translation();
     let grip = w.grip_force_n;
     assert!(!pull(&mut w, 0.5 * grip), "slipped below the grip force: {:?}", w.events);
-    assert!(w.arm(ArmName::Left).grasp.is_some());
-    let moved = (w.physics.bodies[w.thread.segments[segment]].translation() - held_at).length();
+    assert!(w.arm(ArmName::Left).hold().is_some());
+    let moved =
+        (w.physics.bodies[chain(&w.suture).thread().segments[segment]].translation() - held_at).length();
     assert!(moved < 1e-3, "the held segment moved {moved} m");
     // The strain gauge feels the pull.
     let felt = w.arm(ArmName::Left).force_n.norm();
@@ -75,7 +78,7 @@ fn a_grasp_slips_above_its_grip_force() {
     grasp_middle(&mut w);
     let grip = w.grip_force_n;
     assert!(pull(&mut w, 2.0 * grip), "held above the grip force: {:?}", w.events);
-    assert!(w.arm(ArmName::Left).grasp.is_none());
+    assert!(w.arm(ArmName::Left).hold().is_none());
 }
 
 #[test]
@@ -86,6 +89,6 @@ fn opening_the_jaws_releases() {
     open.tool.jaw_rad = 0.6;
     w.command(ArmName::Left, open);
     w.step().unwrap();
-    assert!(w.arm(ArmName::Left).grasp.is_none());
+    assert!(w.arm(ArmName::Left).hold().is_none());
     assert!(w.events.iter().any(|e| matches!(e, GraspEvent::Released { .. })));
 }

@@ -3,6 +3,7 @@
 //! instead of the tail held across them. The jaws now take what passes between them: the thread that
 //! comes within reach of the jaws' line, from their hinge to the tip.
 
+use crate::common::chain;
 use knotlab_hw::rig::{ArmName, Rig};
 use knotlab_sim::scene::parse_scene;
 use knotlab_sim::world::{JAW_CENTRE_OFFSET_M, SimWorld};
@@ -35,15 +36,20 @@ fn close_on(
     }
     let tip = w.world_from_tip(ArmName::Left);
     let (through, direction) = offset_from_jaw_frame(&tip);
-    let half = 0.5 * w.thread.segment_length_m * w.thread.segments.len() as f64;
-    w.thread.lay_straight(&mut w.physics, &(through - direction.normalize() * half), &direction);
+    let half =
+        0.5 * chain(&w.suture).thread().segment_length_m * chain(&w.suture).thread().segments.len() as f64;
+    chain(&w.suture).thread().lay_straight(
+        &mut w.physics,
+        &(through - direction.normalize() * half),
+        &direction,
+    );
     let mut closed = joints;
     closed.tool.jaw_rad = 0.0;
     w.command(ArmName::Left, closed);
     for _ in 0..200 {
         w.step().expect("healthy");
     }
-    w.arm(ArmName::Left).grasp.is_some()
+    w.arm(ArmName::Left).hold().is_some()
 }
 
 #[test]

@@ -7,7 +7,7 @@
 
 use knotlab_hw::rig::{ArmName, Rig};
 use knotlab_sim::scene::parse_scene;
-use knotlab_sim::world::SimWorld;
+use knotlab_sim::world::{JawState, SimWorld};
 
 #[test]
 fn release_all_lets_go_of_a_tail_taken_wider_than_the_usual_opening() {
@@ -17,7 +17,8 @@ fn release_all_lets_go_of_a_tail_taken_wider_than_the_usual_opening() {
     let assist = w.arms.iter().position(|a| a.name == ArmName::Assist).expect("an assist");
     assert!(w.arms[assist].holds(), "the assist holds the tail");
     // As if its jaws had closed on the tail from 0.75 rad, wider than SimWorld::JAW_OPEN_RAD.
-    w.arms[assist].grasped_at_jaw_rad = 0.75;
+    let JawState::Holding { at_jaw_rad, .. } = &mut w.arms[assist].jaws else { panic!("the assist holds") };
+    *at_jaw_rad = 0.75;
     const { assert!(0.75 > SimWorld::JAW_OPEN_RAD) };
     w.release_all();
     for _ in 0..400 {

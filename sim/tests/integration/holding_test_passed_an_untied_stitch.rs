@@ -6,6 +6,7 @@
 //! (`[evaluation] holding_load_n`) pulls each flap open during the settle with more than that
 //! friction, so an untied stitch opens.
 
+use crate::common::chain;
 use knotlab_hw::rig::{ArmName, Rig};
 use knotlab_sim::evaluate::hold;
 use knotlab_sim::scene::parse_scene;
@@ -34,7 +35,10 @@ fn closed_untied_stitch() -> (SimWorld, f64) {
     run(&mut w, 300);
     // Each end drawn up at 2 cm/s by a force of at most 0.4 N (as an instrument would pull it).
     let up = w.tissue.world_from_tissue.rotation * Vector3::new(0.0, 0.0, 1.0);
-    let ends = [w.thread.segments[0], *w.thread.segments.last().expect("segments")];
+    let ends = [
+        chain(&w.suture).thread().segments[0],
+        *chain(&w.suture).thread().segments.last().expect("segments"),
+    ];
     for _ in 0..1500 {
         for &end in &ends {
             let body = &mut w.physics.bodies[end];

@@ -7,6 +7,7 @@
 //! A full turn of the left arm's last joint passes every link beyond it through such a flip: each
 //! link's angular velocity must stay within what the joint's servo can do.
 
+use crate::common::chain;
 use knotlab_hw::rig::{ArmName, Rig};
 use knotlab_sim::scene::parse_scene;
 use knotlab_sim::world::SimWorld;
@@ -30,7 +31,7 @@ fn a_full_turn_of_the_wrist_joint_spins_no_link_faster_than_the_joint() {
     w.free_thread();
     w.physics.gravity = rapier3d::prelude::Vector::ZERO;
     let far = nalgebra::Vector3::new(0.0, 0.0, 3.0);
-    w.thread.lay_straight(&mut w.physics, &far, &nalgebra::Vector3::x());
+    chain(&w.suture).thread().lay_straight(&mut w.physics, &far, &nalgebra::Vector3::x());
 
     let mut command = w.arm(ArmName::Left).command;
     let start_rad = command.arm_rad[5];

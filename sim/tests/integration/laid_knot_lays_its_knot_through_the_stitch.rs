@@ -2,6 +2,7 @@
 //! thread laid as a loose square knot or surgeon's knot over the wound, through both stitch points,
 //! and a clear error where the thread is too short for it.
 
+use crate::common::chain;
 use knotlab_hw::rig::Rig;
 use knotlab_sim::evaluate::knot_now;
 use knotlab_sim::knot::KnotType;
@@ -33,9 +34,16 @@ fn the_thread_is_laid_as_a_square_knot_through_both_stitch_points() {
     let length_m = length_m.expect("laid");
     assert!((length_m - world.config.thread.length_m).abs() < 1e-9, "{length_m} m");
     assert_eq!(knot_now(&world).map(|k| k.knot), Some(KnotType::Square));
-    assert!(world.stitch.holes.iter().chain(&world.stitch.guides).all(|h| h.segment.is_some()));
+    assert!(
+        chain(&world.suture)
+            .stitch()
+            .holes
+            .iter()
+            .chain(&chain(&world.suture).stitch().guides)
+            .all(|h| h.segment.is_some())
+    );
     // No instrument holds it.
-    assert!(world.arms.iter().all(|a| a.grasp.is_none()));
+    assert!(world.arms.iter().all(|a| a.hold().is_none()));
 }
 
 #[test]

@@ -14,9 +14,12 @@ use knotlab_sim::world::SimWorld;
 fn the_rope_scene_holds_the_needle_the_tail_and_the_stitch_standing_still() {
     let mut w = common::rope_world();
     let length_m = w.config.thread.length_m;
-    assert!(w.thread.segments.is_empty(), "no chain beside the rope");
-    assert!(w.arm(ArmName::Right).grasp.as_ref().is_some_and(|g| g.on_needle), "the right holds the needle");
-    assert!(w.arm(ArmName::Assist).rope_grasp.is_some(), "the assist holds the tail");
+    assert!(w.suture().as_chain().is_none(), "no chain beside the rope");
+    assert!(w.arm(ArmName::Right).holds_needle(), "the right holds the needle");
+    assert!(
+        w.arm(ArmName::Assist).hold().is_some_and(|h| h.joint_grasp().is_none()),
+        "the assist grips the tail"
+    );
     let arcs =
         |w: &SimWorld| [w.stitch_arc_at_m(Flap::B), w.stitch_arc_at_m(Flap::A)].map(|a| a.expect("through"));
     let before = arcs(&w);

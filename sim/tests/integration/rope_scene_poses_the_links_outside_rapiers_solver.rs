@@ -62,5 +62,5 @@ fn every_link_stands_where_the_kinematics_put_it_while_an_arm_moves() {
     assert!(moved_m > 0.001, "the left's fourth link did not move ({moved_m} m): the test tests nothing");
     assert!(posed >= 24, "{posed} links posed: the arms' own links are Rapier's kinematic bodies again");
     assert!(kinematic >= 3, "{kinematic} kinematic links: the jaws' carriers must be");
-    assert!(w.arm(ArmName::Right).grasp.as_ref().is_some_and(|g| g.on_needle), "the right lost the needle");
+    assert!(w.arm(ArmName::Right).holds_needle(), "the right lost the needle");
 }

@@ -7,6 +7,7 @@
 //! tied was judged on that (sessions 26-40: the wound 28-34 mm open, "as far as the flaps' springs
 //! let it with no thread at all"). Now a point slides only 0.5 mm past its segment's end.
 
+use crate::common::chain;
 use knotlab_hw::rig::Rig;
 use knotlab_sim::evaluate::hold_watched;
 use knotlab_sim::lab::laid_knot::{LaidKnotParams, lay_and_snug};
@@ -27,7 +28,12 @@ fn the_flaps_part_no_further_than_the_thread_between_the_stitch_points_allows() 
     let evaluation = world.config.evaluation.clone();
     let mut worst_m = f64::NEG_INFINITY;
     let gap_m = hold_watched(&mut world, &evaluation, &mut |w, _| {
-        let arc = |flap| w.stitch.arc_at_m(&w.physics, &w.thread, &w.tissue, flap).expect("threaded");
+        let arc = |flap| {
+            chain(&w.suture)
+                .stitch()
+                .arc_at_m(&w.physics, chain(&w.suture).thread(), &w.tissue, flap)
+                .expect("threaded")
+        };
         let apart_m = (w.tissue.hole_m(&w.physics, Flap::A) - w.tissue.hole_m(&w.physics, Flap::B)).norm();
         worst_m = worst_m.max(apart_m - (arc(Flap::A) - arc(Flap::B)));
     })

@@ -1,6 +1,7 @@
 //! (b) A thread dragged across an instrument shaft never passes through it: the signed side of every
 //! (thread segment, shaft) pair is tracked from step to step.
 
+use crate::common::chain;
 use knotlab_hw::rig::{ArmName, Rig};
 use knotlab_sim::scene::parse_scene;
 use knotlab_sim::thread::to_na;
@@ -34,7 +35,7 @@ fn shaft_capsule(w: &SimWorld, h: ColliderHandle) -> Capsule {
 
 /// Pins a thread end (a segment's end point) to a fixed body where it lies.
 fn pin(w: &mut SimWorld, segment: usize, local_x: f64) {
-    let body = w.thread.segments[segment];
+    let body = chain(&w.suture).thread().segments[segment];
     let local = Vector::new(local_x, 0.0, 0.0);
     let at = w.physics.bodies[body].position().transform_point(local);
     let anchor = w.physics.bodies.insert(RigidBodyBuilder::fixed().translation(at));
@@ -64,19 +65,20 @@ fn drag(speed_m_s: f64) -> (usize, usize, f64) {
     let tip_end = if (s.a_m - from).norm() < (s.b_m - from).norm() { s.a_m } else { s.b_m };
     let up = if (s.a_m - from).norm() < (s.b_m - from).norm() { axis } else { -axis };
     let crossing = tip_end + up * 0.05 + Vector3::new(0.015, 0.0, 0.0);
-    let half = 0.5 * w.thread.segment_length_m * w.thread.segments.len() as f64;
+    let half =
+        0.5 * chain(&w.suture).thread().segment_length_m * chain(&w.suture).thread().segments.len() as f64;
     let across = frame.rotation * Vector3::y();
     let gravity = w.physics.gravity;
     w.physics.gravity = Vector::ZERO;
-    w.thread.lay_straight(&mut w.physics, &(crossing - across * half), &across);
+    chain(&w.suture).thread().lay_straight(&mut w.physics, &(crossing - across * half), &across);
     // Held at the needle end only: the shaft carries the rest along, pivoting about the pin.
-    let seg = w.thread.segment_length_m;
+    let seg = chain(&w.suture).thread().segment_length_m;
     pin(&mut w, 0, -0.5 * seg);
-    let middle = w.thread.segments[w.thread.segments.len() / 2];
+    let middle = chain(&w.suture).thread().segments[chain(&w.suture).thread().segments.len() / 2];
     let middle_start = to_na(w.physics.bodies[middle].translation());
 
     let mut monitor = TunnellingMonitor::new(0.004);
-    let n = w.thread.segments.len();
+    let n = chain(&w.suture).thread().segments.len();
     let steps = ((to - from).norm() / speed_m_s / w.config.solver.dt_s) as usize;
     let mut touching = 0;
     // The sweep, then half a second for the lagging servos to arrive.
@@ -85,7 +87,7 @@ fn drag(speed_m_s: f64) -> (usize, usize, f64) {
         let joints = w.joints_for_jaw_centre(ArmName::Left, &target).expect("reachable sweep");
         w.command(ArmName::Left, joints);
         w.step().expect("healthy drag");
-        let mut caps = w.thread.capsules(&w.physics, w.config.thread.radius_m);
+        let mut caps = chain(&w.suture).thread().capsules(&w.physics, w.config.thread.radius_m);
         caps.push(shaft_capsule(&w, shaft));
         monitor.update(&caps, (0..n).map(|i| (i, n)));
         if w.physics.narrow_phase.contact_pairs_with(shaft).any(|p| p.has_any_active_contact()) {

@@ -2,6 +2,7 @@
 //! stiffness says; (e) the thread slides through the stitch when pulled, and friction holds a pull
 //! below it; the start condition holds the needle in the right jaws and the tail in the assist's.
 
+use crate::common::chain;
 use knotlab_hw::rig::{ArmName, Rig};
 use knotlab_sim::scene::parse_scene;
 use knotlab_sim::tissue::Flap;
@@ -24,15 +25,16 @@ fn run(w: &mut SimWorld, steps: usize) {
 fn the_start_condition_holds_needle_and_tail_through_the_stitch() {
     let mut w = world();
     run(&mut w, 300);
-    assert_eq!(w.arm(ArmName::Right).grasp.map(|g| g.segment), Some(0), "the right jaws hold the needle");
+    assert_eq!(w.arm(ArmName::Right).held_at(), Some(0), "the right jaws hold the needle");
     // The assist's jaws hold the tail within its last centimetre (the segment between the jaws' middle).
-    let last = w.thread.segments.len() - 1;
-    let last_cm = (0.01 / w.thread.segment_length_m).ceil() as usize;
-    let held = w.arm(ArmName::Assist).grasp.map(|g| g.segment).expect("the assist holds the thread");
+    let last = chain(&w.suture).thread().segments.len() - 1;
+    let last_cm = (0.01 / chain(&w.suture).thread().segment_length_m).ceil() as usize;
+    let held = w.arm(ArmName::Assist).held_at().expect("the assist holds the thread");
     assert!(held + last_cm > last, "the assist holds segment {held} of {}, not the tail", last + 1);
-    let [exit, entry] = w.stitch.holes.map(|h| h.segment.expect("the thread is in both flaps"));
+    let [exit, entry] =
+        chain(&w.suture).stitch().holes.map(|h| h.segment.expect("the thread is in both flaps"));
     assert!(exit < entry, "the needle end meets the exit first: {exit} {entry}");
-    assert!(w.thread.max_stretch_ratio(&w.physics) < 0.02);
+    assert!(chain(&w.suture).thread().max_stretch_ratio(&w.physics) < 0.02);
     // The suture runs under the wound in a U: the thread's weight (0.01 kg, far heavier than a real
     // suture, for the solver) hanging from the jaws pulls the U, and with it the wound, a little
     // closed; never open.
@@ -47,7 +49,7 @@ fn the_elastic_load_yields_to_a_pull_by_its_stiffness_and_reopens() {
     // The thread out of the way, floating: only the load acts on the flaps.
     w.physics.gravity = Vector::ZERO;
     let far = w.tissue.world_from_tissue.translation.vector + nalgebra::Vector3::new(0.0, 0.0, 0.5);
-    w.thread.lay_straight(&mut w.physics, &far, &nalgebra::Vector3::x());
+    chain(&w.suture).thread().lay_straight(&mut w.physics, &far, &nalgebra::Vector3::x());
     run(&mut w, 200);
     let rest = w.wound_gap_m();
     assert!((rest - w.config.tissue.rest_gap_m).abs() < 1e-4, "rest gap {rest}");
@@ -81,14 +83,20 @@ fn pull_tail(force_n: f64, steps: usize) -> (f64, [Option<usize>; 2], [Option<us
         w.command(arm, open);
     }
     run(&mut w, 300);
-    let before = w.stitch.needle_side_length_m(&w.physics, &w.thread, &w.tissue).expect("stitched");
-    let holes_before = w.stitch.holes.map(|h| h.segment);
-    let tail = *w.thread.segments.last().expect("segments");
+    let before = chain(&w.suture)
+        .stitch()
+        .needle_side_length_m(&w.physics, chain(&w.suture).thread(), &w.tissue)
+        .expect("stitched");
+    let holes_before = chain(&w.suture).stitch().holes.map(|h| h.segment);
+    let tail = *chain(&w.suture).thread().segments.last().expect("segments");
     let away = w.tissue.world_from_tissue.rotation * nalgebra::Vector3::new(0.0, force_n, 0.0);
     w.physics.bodies[tail].add_force(Vector::new(away.x, away.y, away.z), true);
     run(&mut w, steps);
-    let after = w.stitch.needle_side_length_m(&w.physics, &w.thread, &w.tissue).expect("still stitched");
-    (before - after, holes_before, w.stitch.holes.map(|h| h.segment))
+    let after = chain(&w.suture)
+        .stitch()
+        .needle_side_length_m(&w.physics, chain(&w.suture).thread(), &w.tissue)
+        .expect("still stitched");
+    (before - after, holes_before, chain(&w.suture).stitch().holes.map(|h| h.segment))
 }
 
 #[test]
@@ -128,7 +136,7 @@ fn an_untied_thread_is_no_knot_and_the_wound_stays_open() {
     assert_eq!(result.gap_after_m, None, "no holding test without a knot");
     w.release_all();
     run(&mut w, 1000);
-    assert!(w.arm(ArmName::Right).grasp.is_none() && w.arm(ArmName::Assist).grasp.is_none());
+    assert!(w.arm(ArmName::Right).hold().is_none() && w.arm(ArmName::Assist).hold().is_none());
     assert!(w.wound_gap_m() > params.max_wound_gap_m, "gap {}", w.wound_gap_m());
 }
 
@@ -139,7 +147,7 @@ fn an_untied_thread_is_no_knot_and_the_wound_stays_open() {
 fn the_stitch_points_arc_lengths_lie_at_the_holes_on_the_centreline() {
     let mut w = world();
     run(&mut w, 300);
-    let line = w.thread.centreline(&w.physics);
+    let line = chain(&w.suture).thread().centreline(&w.physics);
     let mut arcs = vec![0.0];
     for pair in line.windows(2) {
         arcs.push(arcs.last().unwrap() + (pair[1] - pair[0]).norm());
@@ -151,7 +159,10 @@ fn the_stitch_points_arc_lengths_lie_at_the_holes_on_the_centreline() {
     };
     let mut previous = f64::NEG_INFINITY;
     for flap in Flap::ALONG_THREAD {
-        let arc_m = w.stitch.arc_at_m(&w.physics, &w.thread, &w.tissue, flap).expect("the thread is through");
+        let arc_m = chain(&w.suture)
+            .stitch()
+            .arc_at_m(&w.physics, chain(&w.suture).thread(), &w.tissue, flap)
+            .expect("the thread is through");
         let hole = w.tissue.hole_m(&w.physics, flap);
         let off_m = (at(arc_m) - hole).norm();
         println!("{flap:?}: {:.1} mm along the thread, {:.3} mm from the hole", arc_m * 1e3, off_m * 1e3);

@@ -118,3 +118,8 @@ pub fn rope_stitch_bench(exit_end_m: [f64; 2], entry_end_m: [f64; 2]) -> StitchB
     path.push(ends[1]);
     StitchBench { scene, physics, tissue, up, across, ends, path }
 }
+
+/// The scene's suture as the capsule chain, for the tests of that model.
+pub fn chain(suture: &knotlab_sim::suture::Suture) -> &knotlab_sim::suture::ChainSuture {
+    suture.as_chain().expect("the scene's suture is the chain")
+}
