@@ -39,7 +39,9 @@ pub struct ThreadParams {
     pub mass_kg: f64,
     /// Bending stiffness of each joint, N m/rad.
     pub bend_stiffness_n_m_per_rad: f64,
-    /// Bending damping of each joint, N m s/rad.
+    /// Bending damping of each joint, N m s/rad (the chain's; a chain scene must give it, a rope
+    /// scene must not).
+    #[serde(default)]
     pub bend_damping_n_m_s_per_rad: f64,
     /// Coulomb friction coefficient of the thread surface (against the instruments, the needle, the
     /// tissue: combined with theirs as Rapier combines coefficients).

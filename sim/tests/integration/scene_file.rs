@@ -38,6 +38,34 @@ fn an_unknown_thread_model_is_named_with_its_path_line_and_the_models() {
     assert!(e.contains("`chain` or `rope`"), "{e}");
 }
 
+/// A key of `[thread]` the chosen suture model does not read is refused, named with its line, not
+/// ignored: a rope scene's `twist_free`, a chain scene's `rope_substeps`.
+#[test]
+fn a_key_of_the_other_suture_model_is_refused_with_its_line() {
+    let text = DEFAULT.replace("segments = 80", "segments = 80\ntwist_free = false");
+    let e = err(&text);
+    let line = text.lines().position(|l| l.starts_with("twist_free")).unwrap() + 1;
+    assert!(
+        e.starts_with(&format!("bad.toml:{line}: thread.twist_free: only the chain model reads it")),
+        "{e}"
+    );
+    let text = CHAIN.replace("segments = 80", "segments = 80\nrope_substeps = 3");
+    let e = err(&text);
+    let line = text.lines().position(|l| l.starts_with("rope_substeps")).unwrap() + 1;
+    assert!(
+        e.starts_with(&format!("bad.toml:{line}: thread.rope_substeps: only the rope model reads it")),
+        "{e}"
+    );
+    let text: String = CHAIN
+        .lines()
+        .filter(|l| !l.starts_with("bend_damping_n_m_s_per_rad"))
+        .map(|l| format!("{l}\n"))
+        .collect();
+    assert!(text.len() < CHAIN.len(), "the chain's scene gives its joints' damping");
+    let e = err(&text);
+    assert!(e.contains("thread.bend_damping_n_m_s_per_rad: missing"), "{e}");
+}
+
 #[test]
 fn a_wrong_type_is_named_with_its_path() {
     let e = err(&DEFAULT.replace("segments = 80", "segments = \"eighty\""));
