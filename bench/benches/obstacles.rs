@@ -59,7 +59,7 @@ fn setup(scene: &SceneConfig) -> Result<(CollisionWorld, GridPlane), Box<dyn Err
         .iter()
         .map(|&name| ArmState { name, trocar_m: Vector3::from(trocar(name)), joints: sim.arm(name).command })
         .collect();
-    let mut world = CollisionWorld::from_rig(&sim.rig, &states)?;
+    let mut world = CollisionWorld::from_rig(sim.rig(), &states)?;
     for (k, o) in scene.obstacles.iter().enumerate() {
         world.add_obstacle(&format!("obstacles[{k}]"), o.centre_m.into(), o.half_extents_m.into())?;
     }

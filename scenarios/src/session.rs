@@ -97,7 +97,7 @@ pub fn run_session(
     real_time: bool,
 ) -> Result<SessionReport, SessionError> {
     let started = std::time::Instant::now();
-    let rate_hz = 1.0 / (world.config.solver.dt_s * 10.0);
+    let rate_hz = 1.0 / (world.config().solver.dt_s * 10.0);
     let mut metadata = expert_metadata(&world, "", None, rate_hz);
     metadata.source = "teleoperation".into();
     metadata.description = "a teleoperated session: manual control, the skill pedal, the skill".into();

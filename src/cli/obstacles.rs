@@ -156,7 +156,7 @@ fn collision_world(scene_file: &Path, scene: &SceneConfig) -> anyhow::Result<Col
         .iter()
         .map(|&name| ArmState { name, trocar_m: trocar(scene, name), joints: sim.arm(name).command })
         .collect();
-    let mut world = CollisionWorld::from_rig(&sim.rig, &states)?;
+    let mut world = CollisionWorld::from_rig(sim.rig(), &states)?;
     for (k, o) in scene.obstacles.iter().enumerate() {
         world
             .add_obstacle(

@@ -78,10 +78,10 @@ impl<'a> TrialLogger<'a> {
         if record.cycle.is_multiple_of(self.robots_every) {
             log_robots(rec, &scene)?;
         }
-        for event in &world.events[self.events_logged.min(world.events.len())..] {
+        for event in &world.events()[self.events_logged.min(world.events().len())..] {
             rec.log("events", &sdk::TextLog::new(format!("{event:?}")))?;
         }
-        self.events_logged = world.events.len();
+        self.events_logged = world.events().len();
         Ok(())
     }
 

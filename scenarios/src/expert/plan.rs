@@ -84,7 +84,7 @@ fn take_tail(
     d: &impl Fn(f64) -> f64,
     pause: &[f64],
 ) {
-    let jaws = (tail_m - trocar_of(&world.config, track.arm())).normalize();
+    let jaws = (tail_m - trocar_of(world.config(), track.arm())).normalize();
     let hinge = Unit::new_normalize(tail_dir - jaws * tail_dir.dot(&jaws));
     let frame = nalgebra::Rotation3::from_basis_unchecked(&[hinge.cross(&jaws), hinge.into_inner(), jaws]);
     track.go_framing(Path::To(tail_m - jaws * TAKE_APPROACH_M), d(1.5), frame);
@@ -101,7 +101,7 @@ fn jaw_centre_m(world: &SimWorld, arm: ArmName) -> Vector3<f64> {
 
 /// The radius of the left's wrist link, m (`None` if the robot model has no capsule for it).
 fn wrist_radius_m(world: &SimWorld) -> Option<f64> {
-    world.rig.link_radius_m(ArmName::Left, "wrist")
+    world.rig().link_radius_m(ArmName::Left, "wrist")
 }
 
 /// Which throw a plan ties, and what the instruments hold when it starts.
@@ -225,18 +225,18 @@ pub fn plan_tail_hand_over(world: &SimWorld, geometry: &TieGeometry, variation: 
 }
 
 fn plan_throw(world: &SimWorld, geometry: &TieGeometry, variation: &Variation, stage: Stage) -> Skill {
-    let world_from_stitch: Isometry3<f64> = world.tissue.world_from_tissue;
+    let world_from_stitch: Isometry3<f64> = world.tissue().world_from_tissue;
     let at = |p: [f64; 3]| (world_from_stitch * Point3::from(Vector3::from(p))).coords;
     let dir = |d: [f64; 3]| world_from_stitch.rotation * Vector3::from(d);
     let open = SimWorld::JAW_OPEN_RAD;
     let key_period_s = 0.01;
     let d = |s: f64| s * variation.slowness;
     let builder = |arm: ArmName, jaw: f64, tremor: &Tremor| {
-        let trocar_m = trocar_of(&world.config, arm);
+        let trocar_m = trocar_of(world.config(), arm);
         let mut b =
             TrackBuilder::new(arm, jaw_centre_m(world, arm), jaw, key_period_s, tremor.clone(), trocar_m);
         b.follow(Follow {
-            model: world.rig.arm(arm).model,
+            model: world.rig().arm(arm).model,
             trocar_m,
             joints: world.arm(arm).command,
             speed_fraction: geometry.speed_fraction,
@@ -377,7 +377,7 @@ fn plan_throw(world: &SimWorld, geometry: &TieGeometry, variation: &Variation, s
                     // less of it: drawn to a fixed point, a short tail tore the assist's grip).
                     let mut to = at(to_m);
                     if let Some(share) = taut {
-                        let entry = world.tissue.hole_m(&world.physics, Flap::A);
+                        let entry = world.tissue().hole_m(world.physics(), Flap::A);
                         if let Some(length_m) = tail_length_to(world, from_end_m) {
                             let out = to - entry;
                             to = entry + out * (share * length_m / out.norm()).min(1.0);
@@ -393,7 +393,7 @@ fn plan_throw(world: &SimWorld, geometry: &TieGeometry, variation: &Variation, s
                 // come down the tail onto the assist's jaws) and its hinge along it; the assist lets
                 // go; and from here on the assist winds and takes the tail, the left presents it.
                 if let Some((retake, along)) = tail_from_its_end(world, from_end_m) {
-                    let shaft = (retake - trocar_of(&world.config, left.arm())).normalize();
+                    let shaft = (retake - trocar_of(world.config(), left.arm())).normalize();
                     let jaws = (shaft - along * shaft.dot(&along)).try_normalize(1e-6).unwrap_or(-up);
                     let hinge = Unit::try_new(along - jaws * along.dot(&jaws), 1e-9)
                         .unwrap_or_else(|| Unit::new_normalize(world_from_stitch.rotation * Vector3::x()));
@@ -425,13 +425,13 @@ fn plan_throw(world: &SimWorld, geometry: &TieGeometry, variation: &Variation, s
     // The left's jaws point at the right's trocar: the right's shaft then circles them at a distance.
     let jaws = match geometry.left_jaw_direction {
         Some(d) => Unit::new_normalize(dir(d)),
-        None => Unit::new_normalize(trocar_of(&world.config, ArmName::Right) - winding_point),
+        None => Unit::new_normalize(trocar_of(world.config(), ArmName::Right) - winding_point),
     };
     let axis = jaws;
     let across = |d: Vector3<f64>| Unit::try_new(d - axis.into_inner() * d.dot(&axis), 1e-9);
     // The winding starts opposite the exit point, so that the long end already lies across the
     // left's jaws, a little before the point where it would run straight over them.
-    let exit = world.tissue.hole_m(&world.physics, Flap::B);
+    let exit = world.tissue().hole_m(world.physics(), Flap::B);
     // (With the exit on the jaw axis, any side will do: the one at right angles to `towards`.)
     let towards = across(dir(geometry.winding_towards))
         .or_else(|| across(Vector3::x()))
@@ -445,7 +445,7 @@ fn plan_throw(world: &SimWorld, geometry: &TieGeometry, variation: &Variation, s
     let centre = winding_point - jaws.into_inner() * geometry.winding_behind_m;
     // The jaws' hinge lies across the line from the entry point to where the tail will be held, so
     // that the tail then runs between the open jaws.
-    let entry = world.tissue.hole_m(&world.physics, Flap::A);
+    let entry = world.tissue().hole_m(world.physics(), Flap::A);
     let tail_point = winding_point + jaws.into_inner() * geometry.tail_ahead_m;
     let hinge = across(tail_point - entry).unwrap_or(towards);
     let left_frame = nalgebra::Rotation3::from_basis_unchecked(&[
@@ -465,15 +465,15 @@ fn plan_throw(world: &SimWorld, geometry: &TieGeometry, variation: &Variation, s
     let planned = Circle { centre_m: centre, axis, start_m: winding_start, turns, pitch_m: advance_m };
     let circle = match (left.wrist_m(), wrist_radius_m(world)) {
         (Some((pitch_m, yaw_m)), Some(radius_m)) => {
-            let trocar_m = trocar_of(&world.config, ArmName::Left);
+            let trocar_m = trocar_of(world.config(), ArmName::Left);
             let wrist = Wrist { pitch_m, yaw_m, trocar_m, radius_m };
-            let thread_m = world.config.thread.radius_m;
+            let thread_m = world.config().thread.radius_m;
             clear_of_wrist(&planned, &wrist, thread_m, &jaws, geometry.winding_behind_m.max(0.0)).0
         }
         _ => planned,
     };
     let (centre, winding_start) = (circle.centre_m, circle.start_m);
-    let shaft = (centre - trocar_of(&world.config, ArmName::Right)).normalize();
+    let shaft = (centre - trocar_of(world.config(), ArmName::Right)).normalize();
     match across(shaft).filter(|_| geometry.right_jaws_across_winding > 0.0) {
         Some(jaws_across) => {
             let jaws = shaft.lerp(&jaws_across, geometry.right_jaws_across_winding);
@@ -511,7 +511,7 @@ fn plan_throw(world: &SimWorld, geometry: &TieGeometry, variation: &Variation, s
         // Its wrist straightening on the way (held as they took the tail far out, the jaws needed
         // the wrist at its limits on the way back: the move slowed and jerked, and the tail was lost).
         let to = at(to_m);
-        assist.go_pointing(Path::To(to), d(1.5), to - trocar_of(&world.config, ArmName::Assist));
+        assist.go_pointing(Path::To(to), d(1.5), to - trocar_of(world.config(), ArmName::Assist));
     }
 
     if left_keeps_tail {
@@ -643,7 +643,7 @@ fn plan_throw(world: &SimWorld, geometry: &TieGeometry, variation: &Variation, s
                 -hinge.into_inner()
             };
             let offer_m = tail_point + side * offered_m;
-            let shaft = (offer_m - trocar_of(&world.config, assist.arm())).normalize();
+            let shaft = (offer_m - trocar_of(world.config(), assist.arm())).normalize();
             let assist_jaws = (shaft - side * shaft.dot(&side)).try_normalize(1e-9).unwrap_or(shaft);
             let frame =
                 nalgebra::Rotation3::from_basis_unchecked(&[side.cross(&assist_jaws), side, assist_jaws]);
@@ -693,7 +693,7 @@ fn finish_throw(
     stage: Stage,
     [mut left, mut right, mut assist]: [TrackBuilder; 3],
 ) -> Skill {
-    let world_from_stitch: Isometry3<f64> = world.tissue.world_from_tissue;
+    let world_from_stitch: Isometry3<f64> = world.tissue().world_from_tissue;
     let at = |p: [f64; 3]| (world_from_stitch * Point3::from(Vector3::from(p))).coords;
     let open = SimWorld::JAW_OPEN_RAD;
     let d = |s: f64| s * variation.slowness;
@@ -725,7 +725,7 @@ fn finish_throw(
     let draw = -left.jaw_direction() * geometry.draw_back_m;
     // The wrist straightens a little on the way (a bent wrist drawn back runs into its limit).
     let drawn_to = left.position_m() + draw;
-    let shaft = (drawn_to - trocar_of(&world.config, left.arm())).normalize();
+    let shaft = (drawn_to - trocar_of(world.config(), left.arm())).normalize();
     let relaxed = left.jaw_direction().lerp(&shaft, geometry.draw_relax);
     if geometry.fetch().is_some_and(LeftFetch::holds_frame) {
         // The left holds a whole frame since the fetch: it turns that frame, the roll going with it

@@ -197,7 +197,7 @@ fn grasp_state(world: &SimWorld, arm: ArmName) -> GraspState {
     let a = world.arm(arm);
     if a.holds() {
         GraspState::Holding
-    } else if a.actual().tool.jaw_rad < world.jaw_closed_rad {
+    } else if a.actual().tool.jaw_rad < world.jaw_closed_rad() {
         GraspState::ClosedEmpty
     } else {
         GraspState::Open
@@ -344,7 +344,7 @@ pub fn record_demonstration(
             slid: None,
         }
     } else {
-        let params = world.config.evaluation.clone();
+        let params = world.config().evaluation.clone();
         // Snapshots past the skill's end show the holding test, on the same clock.
         evaluate_knot_watched(&mut world, &params, &mut |world, held_s| {
             while snapshot_times.first().is_some_and(|t| *t <= simulated_s + held_s) {
@@ -356,7 +356,7 @@ pub fn record_demonstration(
     for t in snapshot_times {
         snapshots.extend(snapshot(&world, options, t));
     }
-    let events = world.events.iter().map(|e| format!("{e:?}")).collect();
+    let events = world.events().iter().map(|e| format!("{e:?}")).collect();
     let final_scene = scene_shapes(&world);
     let demonstration = Demonstration { metadata, instruments: records };
     let wall_s = started.elapsed().as_secs_f64();
@@ -385,7 +385,7 @@ pub fn expert_metadata(world: &SimWorld, scene: &str, seed: Option<u64>, sample_
         scene: scene.into(),
         seed,
         sample_rate_hz,
-        stitch: StitchPose::from_isometry(&world.tissue.world_from_tissue),
+        stitch: StitchPose::from_isometry(&world.tissue().world_from_tissue),
         description: "instrument tie of a surgeon's knot (knotlab's scripted expert)".into(),
     }
 }
@@ -446,7 +446,7 @@ pub fn demonstrate_with(
     world.reseed(seed);
     let variation = if human { super::Variation::human(seed) } else { super::Variation::none() };
     let skill = super::plan_instrument_tie(&world, geometry, &variation);
-    let rate_hz = 1.0 / (world.config.solver.dt_s * options.cycles_per_sample.max(1) as f64);
+    let rate_hz = 1.0 / (world.config().solver.dt_s * options.cycles_per_sample.max(1) as f64);
     let metadata = expert_metadata(&world, scene_name, Some(seed), rate_hz);
     // After the first plan, each of these in turn, planned from the world as it stands then, those
     // a geometry does not ask for skipped: the rest of the first throw once the left's jaws are over

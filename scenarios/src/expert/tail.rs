@@ -35,8 +35,8 @@ pub fn tail_ahead_of_jaws(
         (ahead >= 0.0).then(|| (p - jaw_centre_m - jaws * ahead).norm())
     };
     // The tissue's surface: the plane through the entry point, square to the stitch frame's z.
-    let up = world.tissue.world_from_tissue.rotation * Vector3::z();
-    let surface = world.tissue.hole_m(&world.physics, Flap::A);
+    let up = world.tissue().world_from_tissue.rotation * Vector3::z();
+    let surface = world.tissue().hole_m(world.physics(), Flap::A);
     let clear = |p: &Vector3<f64>| (p - surface).dot(&up) >= TAKE_CLEARANCE_M;
     // (nearest of the clear points, nearest of all), each with the segment it lies on
     let mut best: [Option<(f64, Vector3<f64>, usize)>; 2] = [None, None];

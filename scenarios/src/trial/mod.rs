@@ -118,8 +118,8 @@ fn preview_arms(world: &SimWorld) -> (Vec<ArmSetup>, Vec<(ArmName, ArmJoints)>) 
         .iter()
         .map(|&a| ArmSetup {
             arm: a,
-            model: world.rig.arm(a).model,
-            world_trocar_m: trocar_of(&world.config, a),
+            model: world.rig().arm(a).model,
+            world_trocar_m: trocar_of(world.config(), a),
         })
         .collect();
     (setups, current)
@@ -166,13 +166,13 @@ pub fn synthesize_for(
     learned: &Learned,
     method: Method,
 ) -> Result<Synthesized, SynthesisError> {
-    let new_world_from_stitch = world.tissue.world_from_tissue;
+    let new_world_from_stitch = world.tissue().world_from_tissue;
     let demo_world_from_stitch = learned.demonstration.metadata.stitch.world_from_stitch();
     let moved = relocation(&demo_world_from_stitch, &new_world_from_stitch);
     let trocars = Trocars(
         [ArmName::Left, ArmName::Right, ArmName::Assist]
             .into_iter()
-            .map(|a| (a, trocar_of(&world.config, a)))
+            .map(|a| (a, trocar_of(world.config(), a)))
             .collect(),
     );
     let starts: Vec<StartPose> = [ArmName::Left, ArmName::Right, ArmName::Assist]
@@ -240,7 +240,7 @@ pub fn run_trial(
             .map_err(|reason| TrialError::Synthesis { method: setup.method, reason })?,
         Err(_) => None,
     };
-    let rate_hz = 1.0 / (world.config.solver.dt_s * options.cycles_per_sample.max(1) as f64);
+    let rate_hz = 1.0 / (world.config().solver.dt_s * options.cycles_per_sample.max(1) as f64);
     let mut metadata = expert_metadata(&world, &setup.scene_name, Some(setup.seed), rate_hz);
     metadata.source = format!("knotlab run ({})", setup.method);
     metadata.description = format!("{} at a moved stitch", learned.knowledge.task);

@@ -29,13 +29,13 @@ pub fn collision_world(world: &SimWorld) -> Result<CollisionWorld, SynthesisErro
         .iter()
         .map(|&name| ArmState {
             name,
-            trocar_m: trocar_of(&world.config, name),
+            trocar_m: trocar_of(world.config(), name),
             joints: world.arm(name).command,
         })
         .collect();
-    let rig: &Rig = &world.rig;
+    let rig: &Rig = world.rig();
     let mut collision = CollisionWorld::from_rig(rig, &states).map_err(|e| problem(e.to_string()))?;
-    for (k, o) in world.config.obstacles.iter().enumerate() {
+    for (k, o) in world.config().obstacles.iter().enumerate() {
         collision
             .add_obstacle(
                 &format!("obstacles[{k}]"),

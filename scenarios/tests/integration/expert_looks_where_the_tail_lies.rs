@@ -34,9 +34,9 @@ fn the_point_ahead_of_the_jaws_is_on_the_tail_where_their_line_meets_it() {
     let inside = world.thread_inside().expect("through the stitch");
     let held = world.arm(ArmName::Assist).held_at().expect("the assist holds the tail");
     let tail_point = line[(*inside.end() + held) / 2];
-    let up = world.tissue.world_from_tissue.rotation * nalgebra::Vector3::z();
+    let up = world.tissue().world_from_tissue.rotation * nalgebra::Vector3::z();
     // Jaws 12 mm over the tail, pointing down at it, and a little to one side.
-    let side = world.tissue.world_from_tissue.rotation * nalgebra::Vector3::x() * 0.0005;
+    let side = world.tissue().world_from_tissue.rotation * nalgebra::Vector3::x() * 0.0005;
     let jaw_centre = tail_point + up * 0.012 + side;
     let (found, along) = tail_ahead_of_jaws(&world, &jaw_centre, &-up).expect("a tail ahead");
     // ... with the way the tail runs there, towards its end.
@@ -51,7 +51,7 @@ fn the_point_ahead_of_the_jaws_is_on_the_tail_where_their_line_meets_it() {
     assert!((found - tail_point).norm() < 0.005, "{found:?} is not near {tail_point:?}");
     // Over the tail where it leaves the tissue (under 3 mm up), the jaws take it where it is clear
     // of the tissue: a jaw under it would press into the tissue.
-    let surface = world.tissue.hole_m(&world.physics, knotlab_sim::tissue::Flap::A);
+    let surface = world.tissue().hole_m(world.physics(), knotlab_sim::tissue::Flap::A);
     let height = |p: &nalgebra::Vector3<f64>| (p - surface).dot(&up);
     let low = (*inside.end() + 1..held).map(|i| line[i]).find(|p| height(p) < 0.002).expect("a low point");
     let (over_low, _) = tail_ahead_of_jaws(&world, &(low + up * 0.012), &-up).expect("a tail ahead");

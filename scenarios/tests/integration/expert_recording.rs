@@ -23,7 +23,7 @@ fn coils_on_the_left() -> TieGeometry {
 /// Whether the arm reaches every key of `track` in turn, each solved from the last; else which not.
 fn reaches_every_key(world: &SimWorld, rig: &Rig, track: &knotlab_hw::skill::Track) -> Result<(), String> {
     let model = &rig.arm(track.arm).model;
-    let trocar = trocar_of(&world.config, track.arm);
+    let trocar = trocar_of(world.config(), track.arm);
     let mut joints = world.arm(track.arm).command;
     for key in &track.poses {
         let target = track.target_at(key.time_s).expect("a target");
@@ -166,7 +166,7 @@ fn pulls_told_to_go_on_pass_their_targets_level_at_the_same_speed_and_stop_toget
     let shipped = TieGeometry::default();
     let on = TieGeometry { pull_on_m: 0.03, pulls_stop_together: true, ..TieGeometry::default() };
     let world = SimWorld::new(scene(), Rig::shipped().expect("the shipped rig")).expect("the scene builds");
-    let stitch = world.tissue.world_from_tissue;
+    let stitch = world.tissue().world_from_tissue;
     // Where each pull starts and ends, and its speed: it starts 0.5 s before its set force may fire
     // and ends where its target stops moving, at the latest 1 s before its hold runs out (these plans
     // have no variation; the pull that ends sooner holds still until both let go).
@@ -257,7 +257,8 @@ fn pulls_told_to_go_on_out_of_reach_stop_within_it() {
             .unwrap()
             .world_position_m;
         let shipped = if track.arm == ArmName::Left { far.left_pull_to_m } else { far.right_pull_to_m };
-        let asked = (world.tissue.world_from_tissue * nalgebra::Point3::from(Vector3::from(shipped))).coords;
+        let asked =
+            (world.tissue().world_from_tissue * nalgebra::Point3::from(Vector3::from(shipped))).coords;
         if (end - start).norm() < (asked - start).norm() + 0.2 - 0.01 {
             cut_short += 1;
         }
@@ -333,7 +334,7 @@ fn jaws_at(
     let jaws = match target.orientation {
         TipOrientation::Frame(r) => r * Vector3::z(),
         TipOrientation::JawDirection(d) => d.normalize(),
-        TipOrientation::AlongShaft => (tip - trocar_of(&world.config, arm)).normalize(),
+        TipOrientation::AlongShaft => (tip - trocar_of(world.config(), arm)).normalize(),
     };
     (tip - jaws * JAW_CENTRE_OFFSET_M, jaws)
 }
@@ -449,11 +450,11 @@ fn fetching_the_tail_the_right_follows_as_told_and_the_hinge_can_lie_along_the_t
                     * Vector3::z()
             }
             Orientation::JawDirection { direction } => Vector3::from(direction).normalize(),
-            Orientation::AlongShaft => (tip - trocar_of(&world.config, arm)).normalize(),
+            Orientation::AlongShaft => (tip - trocar_of(world.config(), arm)).normalize(),
         };
         tip - along * knotlab_sim::world::JAW_CENTRE_OFFSET_M
     };
-    let asked = world.tissue.world_from_tissue.rotation * Vector3::from(offset_m);
+    let asked = world.tissue().world_from_tissue.rotation * Vector3::from(offset_m);
     for time_s in [closed - 1.25, closed - 0.8, closed] {
         let apart = centre_at(ArmName::Right, time_s) - centre_at(ArmName::Left, time_s);
         assert!(
@@ -465,8 +466,8 @@ fn fetching_the_tail_the_right_follows_as_told_and_the_hinge_can_lie_along_the_t
     // The hinge along the tail: the left holds a whole frame to the tail, its hinge (the frame's y)
     // across the jaws along the line from the entry point to the assist's jaws; without it the left
     // only points its jaws.
-    let entry = world.tissue.hole_m(&world.physics, knotlab_sim::tissue::Flap::A);
-    let jaws = world.tissue.world_from_tissue.rotation * Vector3::from(fetch.jaw_direction).normalize();
+    let entry = world.tissue().hole_m(world.physics(), knotlab_sim::tissue::Flap::A);
+    let jaws = world.tissue().world_from_tissue.rotation * Vector3::from(fetch.jaw_direction).normalize();
     let offset_m = knotlab_sim::world::JAW_CENTRE_OFFSET_M;
     let assist = (world.world_from_tip(ArmName::Assist) * nalgebra::Point3::new(0.0, 0.0, -offset_m)).coords;
     let tail = assist - entry;
@@ -521,7 +522,7 @@ fn the_draw_and_the_run_down_go_as_the_geometry_says() {
     // The right drawing to a point of the stitch frame: its jaw centre goes there (its tip within the
     // jaw-centre offset of it); the shipped right stays where it wound.
     let point = [0.02, -0.02, 0.012];
-    let world_point = world.tissue.world_from_tissue * nalgebra::Point3::from(Vector3::from(point));
+    let world_point = world.tissue().world_from_tissue * nalgebra::Point3::from(Vector3::from(point));
     let nearest_m = |skill: &knotlab_hw::skill::Skill| {
         let right = skill.track(ArmName::Right).expect("the right");
         right
@@ -571,7 +572,7 @@ fn before_the_draw_the_right_carries_the_long_end_through_the_points_given() {
     let shipped = plan_instrument_tie(&world, &TieGeometry::default(), &Variation::none());
     // When the right's jaw centre first comes within 1 mm of a route point.
     let reached_s = |skill: &knotlab_hw::skill::Skill, p: [f64; 3]| {
-        let world_point = world.tissue.world_from_tissue * nalgebra::Point3::from(Vector3::from(p));
+        let world_point = world.tissue().world_from_tissue * nalgebra::Point3::from(Vector3::from(p));
         first_reaches(skill.track(ArmName::Right).expect("the right"), &world_point.coords)
     };
     let first_s = reached_s(&skill, route[0]).expect("the right goes to the first point");
@@ -594,7 +595,7 @@ fn the_left_runs_down_through_the_points_given_after_the_right_has_run_down() {
     let skill = plan_instrument_tie(&world, &geometry, &Variation::none());
     let shipped = plan_instrument_tie(&world, &TieGeometry::default(), &Variation::none());
     let reached_s = |skill: &knotlab_hw::skill::Skill, arm: ArmName, p: [f64; 3]| {
-        let world_point = world.tissue.world_from_tissue * nalgebra::Point3::from(Vector3::from(p));
+        let world_point = world.tissue().world_from_tissue * nalgebra::Point3::from(Vector3::from(p));
         first_reaches(skill.track(arm).expect("the arm runs down"), &world_point.coords)
     };
     let first_s = reached_s(&skill, ArmName::Left, via[0]).expect("the left goes to the first point");
@@ -630,7 +631,7 @@ fn the_right_runs_down_through_the_points_given_before_its_run_downs_end() {
     let skill = plan_instrument_tie(&world, &geometry, &Variation::none());
     let shipped = plan_instrument_tie(&world, &TieGeometry::default(), &Variation::none());
     let reached_s = |skill: &knotlab_hw::skill::Skill, p: [f64; 3]| {
-        let world_point = world.tissue.world_from_tissue * nalgebra::Point3::from(Vector3::from(p));
+        let world_point = world.tissue().world_from_tissue * nalgebra::Point3::from(Vector3::from(p));
         first_reaches(skill.track(ArmName::Right).expect("the right runs down"), &world_point.coords)
     };
     let first_s = reached_s(&skill, via[0]).expect("the right goes to the first point");
@@ -656,7 +657,7 @@ fn for_the_second_throw_the_assist_takes_the_tail_near_its_end_and_draws_it_wher
     // 6 mm of thread back from the tail's free end (the last point of the centreline).
     let expected = from_tail_end(&line, 0.006).expect("a tail longer than 6 mm");
     let held_to = [0.0, 0.05, 0.04];
-    let held_to_world = world.tissue.world_from_tissue * nalgebra::Point3::from(Vector3::from(held_to));
+    let held_to_world = world.tissue().world_from_tissue * nalgebra::Point3::from(Vector3::from(held_to));
     let second = SecondThrow {
         tail_hold_from_end_m: Some(0.006),
         tail_held_to_m: Some(held_to),
@@ -717,10 +718,10 @@ fn the_assist_draws_the_tail_no_further_than_its_share_of_the_tail_when_told() {
     use knotlab_scenarios::expert::tail::tail_length_to;
     use knotlab_scenarios::expert::{SecondThrow, plan_second_throw};
     let world = SimWorld::new(scene(), Rig::shipped().expect("the shipped rig")).expect("the scene builds");
-    let entry = world.tissue.hole_m(&world.physics, knotlab_sim::tissue::Flap::A);
+    let entry = world.tissue().hole_m(world.physics(), knotlab_sim::tissue::Flap::A);
     let held_to = [0.0, 0.08, 0.06];
     let held_to_world =
-        (world.tissue.world_from_tissue * nalgebra::Point3::from(Vector3::from(held_to))).coords;
+        (world.tissue().world_from_tissue * nalgebra::Point3::from(Vector3::from(held_to))).coords;
     let length_m = tail_length_to(&world, 0.006).expect("a tail longer than 6 mm");
     let out = held_to_world - entry;
     assert!(out.norm() > 0.5 * length_m, "the point is within half the tail: {} m, {length_m} m", out.norm());
@@ -771,7 +772,7 @@ fn the_assist_offers_the_tail_end_beside_the_left_jaws_along_their_hinge() {
     let geometry = TieGeometry { second_throw: Some(second), ..TieGeometry::default() };
     let skill = plan_second_throw(&world, &geometry, &Variation::none()).expect("a second throw");
     // The point ahead of the left's jaws where the tail is to be taken.
-    let world_from_stitch = world.tissue.world_from_tissue;
+    let world_from_stitch = world.tissue().world_from_tissue;
     let jaws = world_from_stitch.rotation * Vector3::x();
     let tail_point = (world_from_stitch * nalgebra::Point3::from(Vector3::from(winding_point))).coords
         + jaws * geometry.tail_ahead_m;
@@ -830,7 +831,7 @@ fn once_wound_the_assist_brings_the_tail_where_told_before_the_left_fetches_it()
     let geometry = TieGeometry { tail_brought_to_m: Some(to_m), ..TieGeometry::default() };
     let skill = plan_instrument_tie(&world, &geometry, &Variation::none());
     let track = |arm| skill.track(arm).expect("the arm");
-    let point = (world.tissue.world_from_tissue * nalgebra::Point3::from(Vector3::from(to_m))).coords;
+    let point = (world.tissue().world_from_tissue * nalgebra::Point3::from(Vector3::from(to_m))).coords;
     let brought_s = first_reaches(track(ArmName::Assist), &point).expect("the assist brings the tail");
     let opened_s = track(ArmName::Left)
         .jaw
@@ -840,7 +841,7 @@ fn once_wound_the_assist_brings_the_tail_where_told_before_the_left_fetches_it()
         .time_s;
     assert!(brought_s <= opened_s, "brought at {brought_s} s, the left opened at {opened_s} s");
     // ... and the left fetches it there: its share of the way from the entry to the tail brought.
-    let entry = world.tissue.hole_m(&world.physics, knotlab_sim::tissue::Flap::A);
+    let entry = world.tissue().hole_m(world.physics(), knotlab_sim::tissue::Flap::A);
     let along = geometry.left_fetches.as_ref().expect("the shipped fetch").along_tail;
     let on_tail = entry + (point - entry) * along;
     assert!(first_reaches(track(ArmName::Left), &on_tail).is_some_and(|t| t > opened_s));
@@ -866,8 +867,8 @@ fn the_winding_advances_along_the_jaws_by_its_pitch() {
     // The two plans part only in the winding: the right ends it `pitch * turns` further along the
     // left's jaws (they point at the right's trocar), and goes on from there.
     let winding_point =
-        world.tissue.world_from_tissue * nalgebra::Point3::from(Vector3::from(flat.winding_point_m));
-    let jaws = (trocar_of(&world.config, ArmName::Right) - winding_point.coords).normalize();
+        world.tissue().world_from_tissue * nalgebra::Point3::from(Vector3::from(flat.winding_point_m));
+    let jaws = (trocar_of(world.config(), ArmName::Right) - winding_point.coords).normalize();
     let apart = |t: f64| at(&helix_right, t) - at(&flat_right, t);
     let widest = flat_right
         .poses
@@ -931,7 +932,8 @@ fn a_second_throw_on_the_assists_jaws_begins_with_the_tail_handed_over_and_taken
         retake_s < left_closed_s && left_closed_s < assist_opened_s,
         "{retake_s} s, {left_closed_s} s, {assist_opened_s} s"
     );
-    let winding_world = world.tissue.world_from_tissue * nalgebra::Point3::from(Vector3::from(winding_point));
+    let winding_world =
+        world.tissue().world_from_tissue * nalgebra::Point3::from(Vector3::from(winding_point));
     let wound_s = first_reaches(assist, &winding_world.coords).expect("the assist goes to the winding point");
     assert!(wound_s > assist_opened_s, "{wound_s} s after {assist_opened_s} s");
     assert!(first_reaches(left, &winding_world.coords).is_none(), "the left stays away");
@@ -971,8 +973,8 @@ fn the_second_throw_presents_the_tail_as_far_ahead_of_the_left_jaws_as_told() {
         let closing_s = jaw[opened..].iter().rev().find(|k| k.time_s < closed.time_s).expect("a key").time_s;
         let (centre, _) = jaws_at(&skill, &world, ArmName::Left, closing_s);
         let wound_at =
-            (world.tissue.world_from_tissue * nalgebra::Point3::from(Vector3::from(winding_point))).coords;
-        world.tissue.world_from_tissue.rotation.inverse() * (centre - wound_at)
+            (world.tissue().world_from_tissue * nalgebra::Point3::from(Vector3::from(winding_point))).coords;
+        world.tissue().world_from_tissue.rotation.inverse() * (centre - wound_at)
     };
     // Presented 4 mm ahead of the jaw centre and taken 4 mm short of it: the left closes where it
     // wound, without moving on to the tail.

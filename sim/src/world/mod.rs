@@ -63,30 +63,30 @@ pub enum WorldError {
 /// The simulated scene.
 pub struct SimWorld {
     /// The Rapier sets.
-    pub physics: Physics,
+    pub(crate) physics: Physics,
     /// The robots.
-    pub rig: Rig,
+    pub(crate) rig: Rig,
     /// The four arms, in [`ArmName::ALL`] order.
-    pub arms: Vec<SimArm>,
+    pub(crate) arms: Vec<SimArm>,
     /// The suture (the rope or the chain), its needle and its self-crossing watch.
-    pub suture: Suture,
+    pub(crate) suture: Suture,
     /// The pad and the two flaps of the wound.
-    pub tissue: Tissue,
+    pub(crate) tissue: Tissue,
     /// Body of each URDF link with collision geometry (indexed like the rig's tree links).
-    pub link_bodies: Vec<Option<RigidBodyHandle>>,
+    pub(crate) link_bodies: Vec<Option<RigidBodyHandle>>,
     /// The moving links that are fixed bodies, posed after each step (with the rope: the arms'
     /// links before the flange), with their indices in the rig's tree.
     posed_links: Vec<(usize, RigidBodyHandle)>,
     /// Simulated time, s.
-    pub time_s: f64,
+    pub(crate) time_s: f64,
     /// Grasp events so far.
-    pub events: Vec<GraspEvent>,
+    pub(crate) events: Vec<GraspEvent>,
     /// The scene it was built from.
-    pub config: SceneConfig,
+    pub(crate) config: SceneConfig,
     /// Jaw openings below this count as closed, rad.
-    pub jaw_closed_rad: f64,
+    pub(crate) jaw_closed_rad: f64,
     /// Pull at which a grasp slips, N.
-    pub grip_force_n: f64,
+    pub(crate) grip_force_n: f64,
     /// The strain gauges' noise source.
     noise: ChaCha8Rng,
 }
@@ -193,6 +193,78 @@ impl SimWorld {
     /// The suture (the rope or the chain), its needle and its self-crossing watch.
     pub fn suture(&self) -> &Suture {
         &self.suture
+    }
+
+    /// The Rapier sets.
+    pub fn physics(&self) -> &Physics {
+        &self.physics
+    }
+
+    /// The Rapier sets, to change by hand (experiments that move bodies or turn gravity off).
+    pub fn physics_mut(&mut self) -> &mut Physics {
+        &mut self.physics
+    }
+
+    /// The suture and the Rapier sets to change, together (experiments that lay the chain by hand).
+    pub fn suture_and_physics_mut(&mut self) -> (&Suture, &mut Physics) {
+        (&self.suture, &mut self.physics)
+    }
+
+    /// The robots.
+    pub fn rig(&self) -> &Rig {
+        &self.rig
+    }
+
+    /// The four arms, in [`ArmName::ALL`] order.
+    pub fn arms(&self) -> &[SimArm] {
+        &self.arms
+    }
+
+    /// One arm, to change by hand (an experiment setting its jaws' state).
+    pub fn arm_mut(&mut self, name: ArmName) -> &mut SimArm {
+        let i = ArmName::ALL.iter().position(|a| *a == name).unwrap_or(0);
+        &mut self.arms[i]
+    }
+
+    /// The pad and the two flaps of the wound.
+    pub fn tissue(&self) -> &Tissue {
+        &self.tissue
+    }
+
+    /// Where `flap`'s stitch point is now, world frame, m.
+    pub fn hole_m(&self, flap: crate::tissue::Flap) -> Vector3<f64> {
+        self.tissue.hole_m(&self.physics, flap)
+    }
+
+    /// The body of the rig's link `link` (an index into its tree's links), if it has collision
+    /// geometry.
+    pub fn link_body(&self, link: usize) -> Option<RigidBodyHandle> {
+        self.link_bodies.get(link).copied().flatten()
+    }
+
+    /// Simulated time, s.
+    pub fn time_s(&self) -> f64 {
+        self.time_s
+    }
+
+    /// What the jaws did so far, in order.
+    pub fn events(&self) -> &[GraspEvent] {
+        &self.events
+    }
+
+    /// The scene it was built from.
+    pub fn config(&self) -> &SceneConfig {
+        &self.config
+    }
+
+    /// Jaw openings below this count as closed, rad.
+    pub fn jaw_closed_rad(&self) -> f64 {
+        self.jaw_closed_rad
+    }
+
+    /// The pull at which the jaws' grip on the thread slips, N.
+    pub fn grip_force_n(&self) -> f64 {
+        self.grip_force_n
     }
 
     /// The suture's centreline, needle end first, m: the chain's segment ends or the rope's

@@ -27,11 +27,11 @@ fn the_shipped_sim_rig_drives_the_scene() {
     let built = build_rig(&config, &rig, Some(&mut backend)).expect("builds on the scene");
     assert_eq!(built.params, ControllerParams::default());
     assert_eq!(built.setups.len(), 4);
-    let trocar = Vector3::from(backend.world().config.trocars.right);
+    let trocar = Vector3::from(backend.world().config().trocars.right);
     assert_eq!(built.setups[1].world_trocar_m, trocar, "trocars come from the scene");
     let (mut controller, _) = built.into_controller().expect("starts");
-    assert_eq!(controller.period_s(), backend.world().config.solver.dt_s);
-    let time_before = backend.world().time_s;
+    assert_eq!(controller.period_s(), backend.world().config().solver.dt_s);
+    let time_before = backend.world().time_s();
     for _ in 0..19 {
         controller.step().expect("a healthy cycle");
     }
@@ -43,7 +43,7 @@ fn the_shipped_sim_rig_drives_the_scene() {
     let record = controller.step().expect("a healthy cycle").clone();
     let world = backend.world();
     assert!(
-        (world.time_s - time_before - 20.0 * world.config.solver.dt_s).abs() < 1e-12,
+        (world.time_s() - time_before - 20.0 * world.config().solver.dt_s).abs() < 1e-12,
         "one step per cycle"
     );
     for (i, arm) in ArmName::ALL.into_iter().enumerate() {

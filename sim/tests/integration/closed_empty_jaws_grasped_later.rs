@@ -15,7 +15,7 @@ fn world() -> SimWorld {
 }
 
 fn segment_m(w: &SimWorld, i: usize) -> Vector3<f64> {
-    let t = w.physics.bodies[chain(&w.suture).thread().segments[i]].translation();
+    let t = w.physics().bodies[chain(w.suture()).thread().segments[i]].translation();
     Vector3::new(t.x, t.y, t.z)
 }
 
@@ -31,7 +31,7 @@ fn go(w: &mut SimWorld, target: &Vector3<f64>, jaw_rad: f64, steps: usize) {
 #[test]
 fn jaws_closed_on_nothing_do_not_grasp_what_comes_later() {
     let mut w = world();
-    let middle = chain(&w.suture).thread().segments.len() / 2;
+    let middle = chain(w.suture()).thread().segments.len() / 2;
     let above = segment_m(&w, middle) + Vector3::new(0.0, 0.0, 0.02);
     // Closed 2 cm above the thread: nothing to hold.
     go(&mut w, &above, 0.0, 600);
@@ -42,7 +42,7 @@ fn jaws_closed_on_nothing_do_not_grasp_what_comes_later() {
     go(&mut w, &on, 0.0, 600);
     assert!(w.arm(ArmName::Left).hold().is_none(), "closed jaws grasped the thread they came upon");
     assert!(
-        !w.events
+        !w.events()
             .iter()
             .any(|e| matches!(e, knotlab_sim::grasp::GraspEvent::Grasped { arm: ArmName::Left, .. }))
     );

@@ -30,13 +30,14 @@ fn close_on_tilted(jaw_rad: f64, from_hinge_m: f64, off_m: f64, tilt_rad: f64) -
     // across its x, turning about its y.
     let at = tip * Point3::new(off_m, 0.0, from_hinge_m - 2.0 * JAW_CENTRE_OFFSET_M);
     let along = tip.rotation * Vector3::new(0.0, tilt_rad.cos(), tilt_rad.sin());
-    let n = chain(&w.suture).thread().segments.len();
+    let n = chain(w.suture()).thread().segments.len();
     // The middle segment's centre on the point.
     let start = at.coords
         - along
-            * (chain(&w.suture).thread().segment_length_m * (n / 2) as f64
-                + 0.5 * chain(&w.suture).thread().segment_length_m);
-    chain(&w.suture).thread().lay_straight(&mut w.physics, &start, &along);
+            * (chain(w.suture()).thread().segment_length_m * (n / 2) as f64
+                + 0.5 * chain(w.suture()).thread().segment_length_m);
+    let (suture, physics) = w.suture_and_physics_mut();
+    chain(suture).thread().lay_straight(physics, &start, &along);
     common::close_left_weightless(&mut w, open, 300);
     (w, n / 2)
 }
@@ -45,14 +46,13 @@ fn close_on_tilted(jaw_rad: f64, from_hinge_m: f64, off_m: f64, tilt_rad: f64) -
 fn closing_jaws_hold_a_thread_lying_across_them_near_their_tips() {
     for (from_hinge_m, off_m) in [(0.008, 0.0), (0.008, 0.0005), (0.009, -0.0005)] {
         let (w, middle) = close_on_thread(0.6, from_hinge_m, off_m);
-        let segment = w
-            .arm(ArmName::Left)
-            .held_at()
-            .unwrap_or_else(|| panic!("{from_hinge_m} m out, {off_m} m off: closed empty ({:?})", w.events));
+        let segment = w.arm(ArmName::Left).held_at().unwrap_or_else(|| {
+            panic!("{from_hinge_m} m out, {off_m} m off: closed empty ({:?})", w.events())
+        });
         assert!(segment.abs_diff(middle) <= 1, "held segment {segment} of middle {middle}");
         // Held between the faces: its centre on the jaws' line across the opening.
         let tip = w.world_from_tip(ArmName::Left);
-        let t = w.physics.bodies[chain(&w.suture).thread().segments[segment]].translation();
+        let t = w.physics().bodies[chain(w.suture()).thread().segments[segment]].translation();
         let local = tip.inverse() * Point3::new(t.x, t.y, t.z);
         assert!(local.x.abs() < 3e-4, "{from_hinge_m} m out, {off_m} m off: held {} m across", local.x);
     }
@@ -63,10 +63,9 @@ fn closing_jaws_hold_a_thread_lying_aslant_where_they_meet_it() {
     // Before: the jaws took the segment 2-4 from the middle (the thread squeezed along them).
     for (from_hinge_m, off_m) in [(0.007, 0.0), (0.008, 0.001), (0.009, 0.0)] {
         let (w, middle) = close_on_tilted(0.6, from_hinge_m, off_m, 0.4);
-        let segment = w
-            .arm(ArmName::Left)
-            .held_at()
-            .unwrap_or_else(|| panic!("{from_hinge_m} m out, {off_m} m off: closed empty ({:?})", w.events));
+        let segment = w.arm(ArmName::Left).held_at().unwrap_or_else(|| {
+            panic!("{from_hinge_m} m out, {off_m} m off: closed empty ({:?})", w.events())
+        });
         assert!(segment.abs_diff(middle) <= 1, "held segment {segment} of middle {middle}");
     }
 }
@@ -75,5 +74,5 @@ fn closing_jaws_hold_a_thread_lying_aslant_where_they_meet_it() {
 fn jaws_closing_on_nothing_between_them_hold_nothing() {
     // The thread 6 mm across the opening from the jaws' line: outside the open jaws.
     let (w, _) = close_on_thread(0.6, 0.008, 0.006);
-    assert!(w.arm(ArmName::Left).hold().is_none(), "{:?}", w.events);
+    assert!(w.arm(ArmName::Left).hold().is_none(), "{:?}", w.events());
 }

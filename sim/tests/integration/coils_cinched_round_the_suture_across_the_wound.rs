@@ -18,11 +18,11 @@ fn the_suture_crosses_the_wound_at_the_stitch_depth() {
     for _ in 0..300 {
         w.step().expect("healthy step");
     }
-    let tissue_from_world = w.tissue.world_from_tissue.inverse();
+    let tissue_from_world = w.tissue().world_from_tissue.inverse();
     let line: Vec<_> =
         w.thread_centreline().iter().map(|p| (tissue_from_world * Point3::from(*p)).coords).collect();
     // Where the thread crosses the wound's centre plane (y = 0) between the two stitch points.
-    let inside = chain(&w.suture).stitch().segments_inside().expect("the thread is through the stitch");
+    let inside = chain(w.suture()).stitch().segments_inside().expect("the thread is through the stitch");
     let crossing_z: Vec<f64> = inside
         .filter_map(|i| {
             let (a, b) = (line.get(i)?, line.get(i + 1)?);

@@ -18,8 +18,9 @@ fn grasp_middle(w: &mut SimWorld) -> usize {
     let centre = tip * nalgebra::Point3::new(0.0, 0.0, -0.005);
     let across = tip.rotation * Vector3::x();
     let half =
-        0.5 * chain(&w.suture).thread().segment_length_m * chain(&w.suture).thread().segments.len() as f64;
-    chain(&w.suture).thread().lay_straight(&mut w.physics, &(centre.coords - across * half), &across);
+        0.5 * chain(w.suture()).thread().segment_length_m * chain(w.suture()).thread().segments.len() as f64;
+    let (suture, physics) = w.suture_and_physics_mut();
+    chain(suture).thread().lay_straight(physics, &(centre.coords - across * half), &across);
     common::close_left_weightless(w, open, 200);
     w.arm(ArmName::Left).held_at().expect("the closed jaws hold a segment")
 }
@@ -29,16 +30,16 @@ fn grasp_middle(w: &mut SimWorld) -> usize {
 /// along the chain several times the force); stops pulling when the grasp slips (an unopposed pull
 /// would fling the thread) and returns whether it did.
 fn pull(w: &mut SimWorld, force_n: f64) -> bool {
-    let tail = *chain(&w.suture).thread().segments.last().expect("segments");
-    let line = chain(&w.suture).thread().centreline(&w.physics);
+    let tail = *chain(w.suture()).thread().segments.last().expect("segments");
+    let line = chain(w.suture()).thread().centreline(w.physics());
     let direction = (line[line.len() - 1] - line[0]).normalize();
     for step in 0..500 {
         let along = direction * force_n * (f64::from(step + 1) / 100.0).min(1.0);
-        w.physics.bodies[tail].reset_forces(true);
-        w.physics.bodies[tail].add_force(Vector::new(along.x, along.y, along.z), true);
+        w.physics_mut().bodies[tail].reset_forces(true);
+        w.physics_mut().bodies[tail].add_force(Vector::new(along.x, along.y, along.z), true);
         w.step().expect("healthy step");
-        if w.events.iter().any(|e| matches!(e, GraspEvent::Slipped { .. })) {
-            w.physics.bodies[tail].reset_forces(true);
+        if w.events().iter().any(|e| matches!(e, GraspEvent::Slipped { .. })) {
+            w.physics_mut().bodies[tail].reset_forces(true);
             return true;
         }
     }
@@ -59,25 +60,25 @@ fn an_unreachable_trocar_is_named() {
 fn a_grasp_holds_below_its_grip_force() {
     let mut w = common::chain_world();
     let segment = grasp_middle(&mut w);
-    assert!((chain(&w.suture).thread().segments.len() / 2).abs_diff(segment) <= 1, "held segment {segment}");
-    let held_at = w.physics.bodies[chain(&w.suture).thread().segments[segment]].translation();
-    let grip = w.grip_force_n;
-    assert!(!pull(&mut w, 0.5 * grip), "slipped below the grip force: {:?}", w.events);
+    assert!((chain(w.suture()).thread().segments.len() / 2).abs_diff(segment) <= 1, "held segment {segment}");
+    let held_at = w.physics().bodies[chain(w.suture()).thread().segments[segment]].translation();
+    let grip = w.grip_force_n();
+    assert!(!pull(&mut w, 0.5 * grip), "slipped below the grip force: {:?}", w.events());
     assert!(w.arm(ArmName::Left).hold().is_some());
     let moved =
-        (w.physics.bodies[chain(&w.suture).thread().segments[segment]].translation() - held_at).length();
+        (w.physics().bodies[chain(w.suture()).thread().segments[segment]].translation() - held_at).length();
     assert!(moved < 1e-3, "the held segment moved {moved} m");
     // The strain gauge feels the pull.
     let felt = w.arm(ArmName::Left).force_n.norm();
-    assert!((felt - 0.5 * w.grip_force_n).abs() < 0.3 * w.grip_force_n, "force reading {felt} N");
+    assert!((felt - 0.5 * w.grip_force_n()).abs() < 0.3 * w.grip_force_n(), "force reading {felt} N");
 }
 
 #[test]
 fn a_grasp_slips_above_its_grip_force() {
     let mut w = common::chain_world();
     grasp_middle(&mut w);
-    let grip = w.grip_force_n;
-    assert!(pull(&mut w, 2.0 * grip), "held above the grip force: {:?}", w.events);
+    let grip = w.grip_force_n();
+    assert!(pull(&mut w, 2.0 * grip), "held above the grip force: {:?}", w.events());
     assert!(w.arm(ArmName::Left).hold().is_none());
 }
 
@@ -90,5 +91,5 @@ fn opening_the_jaws_releases() {
     w.command(ArmName::Left, open);
     w.step().unwrap();
     assert!(w.arm(ArmName::Left).hold().is_none());
-    assert!(w.events.iter().any(|e| matches!(e, GraspEvent::Released { .. })));
+    assert!(w.events().iter().any(|e| matches!(e, GraspEvent::Released { .. })));
 }

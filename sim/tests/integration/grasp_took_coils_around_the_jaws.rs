@@ -19,16 +19,16 @@ fn close_on(
         parse_scene(include_str!("../../../scenarios/chain.toml"), "chain.toml").expect("the shipped scene");
     let mut w = SimWorld::new(scene, Rig::shipped().expect("the shipped rig")).expect("the scene builds");
     w.free_thread();
-    w.physics.gravity = Vector::ZERO;
+    w.physics_mut().gravity = Vector::ZERO;
     // Nothing else for the thread to touch: laid straight, its 25 cm would run through the tissue pad
     // (an 80-segment thread laid 8 mm deep in it is thrown out at over 20 m/s).
-    let [flap_a, flap_b] = w.tissue.flaps;
-    for body in [w.tissue.pad, flap_a, flap_b] {
-        for c in w.physics.bodies[body].colliders().to_vec() {
-            w.physics.colliders[c].set_enabled(false);
+    let [flap_a, flap_b] = w.tissue().flaps;
+    for body in [w.tissue().pad, flap_a, flap_b] {
+        for c in w.physics().bodies[body].colliders().to_vec() {
+            w.physics_mut().colliders[c].set_enabled(false);
         }
     }
-    let centre = (w.tissue.world_from_tissue * Point3::new(0.02, 0.0, 0.03)).coords;
+    let centre = (w.tissue().world_from_tissue * Point3::new(0.02, 0.0, 0.03)).coords;
     let joints = w.joints_for_jaw_centre(ArmName::Left, &centre).expect("reachable");
     w.command(ArmName::Left, joints);
     for _ in 0..500 {
@@ -37,12 +37,9 @@ fn close_on(
     let tip = w.world_from_tip(ArmName::Left);
     let (through, direction) = offset_from_jaw_frame(&tip);
     let half =
-        0.5 * chain(&w.suture).thread().segment_length_m * chain(&w.suture).thread().segments.len() as f64;
-    chain(&w.suture).thread().lay_straight(
-        &mut w.physics,
-        &(through - direction.normalize() * half),
-        &direction,
-    );
+        0.5 * chain(w.suture()).thread().segment_length_m * chain(w.suture()).thread().segments.len() as f64;
+    let (suture, physics) = w.suture_and_physics_mut();
+    chain(suture).thread().lay_straight(physics, &(through - direction.normalize() * half), &direction);
     let mut closed = joints;
     closed.tool.jaw_rad = 0.0;
     w.command(ArmName::Left, closed);

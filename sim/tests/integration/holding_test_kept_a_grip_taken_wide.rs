@@ -14,16 +14,18 @@ fn release_all_lets_go_of_a_tail_taken_wider_than_the_usual_opening() {
     let scene = parse_scene(include_str!("../../../scenarios/default.toml"), "default.toml")
         .expect("the shipped scene");
     let mut w = SimWorld::new(scene, Rig::shipped().expect("the rig")).expect("the rope scene builds");
-    let assist = w.arms.iter().position(|a| a.name == ArmName::Assist).expect("an assist");
-    assert!(w.arms[assist].holds(), "the assist holds the tail");
+    let assist = w.arms().iter().position(|a| a.name == ArmName::Assist).expect("an assist");
+    assert!(w.arms()[assist].holds(), "the assist holds the tail");
     // As if its jaws had closed on the tail from 0.75 rad, wider than SimWorld::JAW_OPEN_RAD.
-    let JawState::Holding { at_jaw_rad, .. } = &mut w.arms[assist].jaws else { panic!("the assist holds") };
+    let JawState::Holding { at_jaw_rad, .. } = &mut w.arm_mut(ArmName::Assist).jaws else {
+        panic!("the assist holds")
+    };
     *at_jaw_rad = 0.75;
     const { assert!(0.75 > SimWorld::JAW_OPEN_RAD) };
     w.release_all();
     for _ in 0..400 {
         w.step().expect("healthy");
     }
-    assert!(!w.arm(ArmName::Assist).holds(), "the assist still holds the tail: {:?}", w.events);
-    assert!(!w.arm(ArmName::Right).holds(), "the right still holds the needle: {:?}", w.events);
+    assert!(!w.arm(ArmName::Assist).holds(), "the assist still holds the tail: {:?}", w.events());
+    assert!(!w.arm(ArmName::Right).holds(), "the right still holds the needle: {:?}", w.events());
 }

@@ -34,14 +34,14 @@ fn closed_untied_stitch() -> (SimWorld, f64) {
     }
     run(&mut w, 300);
     // Each end drawn up at 2 cm/s by a force of at most 0.4 N (as an instrument would pull it).
-    let up = w.tissue.world_from_tissue.rotation * Vector3::new(0.0, 0.0, 1.0);
+    let up = w.tissue().world_from_tissue.rotation * Vector3::new(0.0, 0.0, 1.0);
     let ends = [
-        chain(&w.suture).thread().segments[0],
-        *chain(&w.suture).thread().segments.last().expect("segments"),
+        chain(w.suture()).thread().segments[0],
+        *chain(w.suture()).thread().segments.last().expect("segments"),
     ];
     for _ in 0..1500 {
         for &end in &ends {
-            let body = &mut w.physics.bodies[end];
+            let body = &mut w.physics_mut().bodies[end];
             let v = body.linvel();
             let rising_m_s = Vector3::new(v.x, v.y, v.z).dot(&up);
             let pull_n = (20.0 * (0.02 - rising_m_s)).clamp(0.0, 0.4);
@@ -52,7 +52,7 @@ fn closed_untied_stitch() -> (SimWorld, f64) {
     }
     let closed = w.wound_gap_m();
     for &end in &ends {
-        w.physics.bodies[end].reset_forces(true);
+        w.physics_mut().bodies[end].reset_forces(true);
     }
     (w, closed)
 }
@@ -60,7 +60,7 @@ fn closed_untied_stitch() -> (SimWorld, f64) {
 #[test]
 fn the_holding_load_opens_a_stitch_with_no_knot() {
     let (mut unloaded, closed) = closed_untied_stitch();
-    let mut params = unloaded.config.evaluation.clone();
+    let mut params = unloaded.config().evaluation.clone();
     params.holding_load_n = 0.0;
     let without_load = hold(&mut unloaded, &params).expect("stable");
     let (mut loaded, _) = closed_untied_stitch();

@@ -29,9 +29,10 @@ fn a_full_turn_of_the_wrist_joint_spins_no_link_faster_than_the_joint() {
     let mut w = SimWorld::new(scene, rig).expect("the shipped scene builds");
     // Nothing for the turning instrument to hit: the thread is freed and floats out of the way.
     w.free_thread();
-    w.physics.gravity = rapier3d::prelude::Vector::ZERO;
+    w.physics_mut().gravity = rapier3d::prelude::Vector::ZERO;
     let far = nalgebra::Vector3::new(0.0, 0.0, 3.0);
-    chain(&w.suture).thread().lay_straight(&mut w.physics, &far, &nalgebra::Vector3::x());
+    let (suture, physics) = w.suture_and_physics_mut();
+    chain(suture).thread().lay_straight(physics, &far, &nalgebra::Vector3::x());
 
     let mut command = w.arm(ArmName::Left).command;
     let start_rad = command.arm_rad[5];
@@ -40,21 +41,21 @@ fn a_full_turn_of_the_wrist_joint_spins_no_link_faster_than_the_joint() {
     w.command(ArmName::Left, command);
 
     let links: Vec<_> = w
-        .rig
+        .rig()
         .tree
         .links
         .iter()
         .enumerate()
         .filter(|(_, l)| l.name.starts_with("left_"))
-        .filter_map(|(i, _)| w.link_bodies[i])
-        .filter(|h| w.physics.bodies[*h].is_kinematic())
+        .filter_map(|(i, _)| w.link_body(i))
+        .filter(|h| w.physics().bodies[*h].is_kinematic())
         .collect();
     assert!(links.len() > 3, "the left arm has {} moving link bodies", links.len());
     let mut fastest_rad_s: f64 = 0.0;
     for _ in 0..1500 {
         w.step().expect("a healthy step");
         for h in &links {
-            fastest_rad_s = fastest_rad_s.max(w.physics.bodies[*h].angvel().length());
+            fastest_rad_s = fastest_rad_s.max(w.physics().bodies[*h].angvel().length());
         }
     }
     let reached_rad = w.arm(ArmName::Left).actual().arm_rad[5];

@@ -32,18 +32,18 @@ fn the_thread_is_laid_as_a_square_knot_through_both_stitch_points() {
     .expect("the scene builds");
     // The path is as long as the thread, the knot a square knot, the stitch's points on the thread.
     let length_m = length_m.expect("laid");
-    assert!((length_m - world.config.thread.length_m).abs() < 1e-9, "{length_m} m");
+    assert!((length_m - world.config().thread.length_m).abs() < 1e-9, "{length_m} m");
     assert_eq!(knot_now(&world).map(|k| k.knot), Some(KnotType::Square));
     assert!(
-        chain(&world.suture)
+        chain(world.suture())
             .stitch()
             .holes
             .iter()
-            .chain(&chain(&world.suture).stitch().guides)
+            .chain(&chain(world.suture()).stitch().guides)
             .all(|h| h.segment.is_some())
     );
     // No instrument holds it.
-    assert!(world.arms.iter().all(|a| a.hold().is_none()));
+    assert!(world.arms().iter().all(|a| a.hold().is_none()));
 }
 
 #[test]

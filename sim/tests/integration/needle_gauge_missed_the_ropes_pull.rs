@@ -25,10 +25,10 @@ fn drawn_taut(own_rope: bool) -> (Vec<(f64, f64, f64)>, Option<f64>) {
         scene.thread.rope_spacing_radii = None;
     }
     let mut w = SimWorld::new(scene, Rig::shipped().expect("the rig")).expect("the rope scene builds");
-    let across = w.tissue.world_from_tissue.rotation * Vector3::y();
+    let across = w.tissue().world_from_tissue.rotation * Vector3::y();
     let tip = w.world_from_tip(ArmName::Right);
     let start = (tip * Point3::new(0.0, 0.0, -JAW_CENTRE_OFFSET_M)).coords;
-    let dt_s = w.config.solver.dt_s;
+    let dt_s = w.config().solver.dt_s;
     let mut gauges = Vec::new();
     for k in 1..=(2.0 / dt_s) as usize {
         let to = start - across * (0.02 * k as f64 * dt_s);
@@ -36,12 +36,12 @@ fn drawn_taut(own_rope: bool) -> (Vec<(f64, f64, f64)>, Option<f64>) {
         w.command(ArmName::Right, joints);
         w.step().expect("healthy");
         gauges.push((
-            w.time_s,
+            w.time_s(),
             w.arm(ArmName::Right).filtered_force_n.norm(),
             w.arm(ArmName::Assist).filtered_force_n.norm(),
         ));
     }
-    let slipped = w.events.iter().find_map(|e| match e {
+    let slipped = w.events().iter().find_map(|e| match e {
         GraspEvent::Slipped { arm: ArmName::Assist, time_s, .. } => Some(*time_s),
         _ => None,
     });

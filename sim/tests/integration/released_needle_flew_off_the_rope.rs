@@ -20,13 +20,13 @@ fn a_released_needle_stays_on_the_ropes_end() {
     for _ in 0..500 {
         w.step().expect("healthy after the release");
         let needle = w.suture().needle().body.expect("the needle's body");
-        let v = w.physics.bodies[needle].linvel();
+        let v = w.physics().bodies[needle].linvel();
         fastest_m_s = fastest_m_s.max(Vector3::new(v.x, v.y, v.z).norm());
     }
     let rope = w.suture().as_rope().expect("the rope");
     assert!(rope.needle_free, "no jaws hold the needle: it rides on the rope");
     let needle = w.suture().needle().body.expect("the needle's body");
-    let swage = w.physics.bodies[needle].translation();
+    let swage = w.physics().bodies[needle].translation();
     let off = (Vector3::new(swage.x, swage.y, swage.z) - rope.ropes.x[0]).norm();
     println!("fastest {fastest_m_s:.3} m/s; swage {:.3} mm off the rope's end", off * 1e3);
     // No faster than it would fall freely for the half second (4.9 m/s); measured 2.7 m/s.

@@ -13,7 +13,7 @@ use knotlab_sim::world::SimWorld;
 #[test]
 fn the_rope_scene_holds_the_needle_the_tail_and_the_stitch_standing_still() {
     let mut w = common::rope_world();
-    let length_m = w.config.thread.length_m;
+    let length_m = w.config().thread.length_m;
     assert!(w.suture().as_chain().is_none(), "no chain beside the rope");
     assert!(w.arm(ArmName::Right).holds_needle(), "the right holds the needle");
     assert!(
@@ -37,10 +37,10 @@ fn the_rope_scene_holds_the_needle_the_tail_and_the_stitch_standing_still() {
     let after = arcs(&w);
     println!(
         "events {:?}; stitch at {before:?} -> {settled:?} (0.1 s) -> {after:?} m; gap {:.2} mm; largest gauge {largest_force_n:.2} N",
-        w.events,
+        w.events(),
         w.wound_gap_m() * 1e3
     );
-    assert!(w.arm(ArmName::Right).holds() && w.arm(ArmName::Assist).holds(), "{:?}", w.events);
+    assert!(w.arm(ArmName::Right).holds() && w.arm(ArmName::Assist).holds(), "{:?}", w.events());
     // The thread settles by a few millimetres as the scene starts (the assist's grip slides at the
     // first step), and the stitch's friction then holds it where it is (without it, it swung on by
     // 1.8-2.6 mm: session 47).

@@ -12,9 +12,10 @@ use knotlab_hw::rig::ArmName;
 #[test]
 fn every_link_stands_where_the_kinematics_put_it_while_an_arm_moves() {
     let mut w = common::rope_world();
-    let link4 = w.rig.tree.links.iter().position(|l| l.name == "left_link4").expect("the left's fourth link");
-    let body4 = w.link_bodies[link4].expect("the left's fourth link has a body");
-    let start_m = w.physics.bodies[body4].position().translation;
+    let link4 =
+        w.rig().tree.links.iter().position(|l| l.name == "left_link4").expect("the left's fourth link");
+    let body4 = w.link_body(link4).expect("the left's fourth link has a body");
+    let start_m = w.physics().bodies[body4].position().translation;
     // The left holds nothing: turn its shoulder 0.05 rad and its wrist 0.1 rad.
     let mut command = w.arm(ArmName::Left).command;
     command.arm_rad[0] += 0.05;
@@ -23,20 +24,20 @@ fn every_link_stands_where_the_kinematics_put_it_while_an_arm_moves() {
     for _ in 0..300 {
         w.step().expect("a healthy step");
     }
-    let mut positions = vec![0.0; w.rig.tree.joints.len()];
+    let mut positions = vec![0.0; w.rig().tree.joints.len()];
     for arm in ArmName::ALL {
-        w.rig.arm(arm).write_tree_positions(&w.arm(arm).actual(), &mut positions);
+        w.rig().arm(arm).write_tree_positions(&w.arm(arm).actual(), &mut positions);
     }
-    let poses = w.rig.tree.root_from_links(&positions);
+    let poses = w.rig().tree.root_from_links(&positions);
     let (mut posed, mut kinematic) = (0, 0);
-    for (i, body) in w.link_bodies.iter().enumerate() {
-        let Some(h) = body else { continue };
-        let b = &w.physics.bodies[*h];
-        let moving = w.rig.tree.path_to(i).iter().any(|&j| w.rig.tree.joints[j].limit.is_some());
+    for i in 0..w.rig().tree.links.len() {
+        let Some(h) = w.link_body(i) else { continue };
+        let b = &w.physics().bodies[h];
+        let moving = w.rig().tree.path_to(i).iter().any(|&j| w.rig().tree.joints[j].limit.is_some());
         if !moving {
             continue;
         }
-        let name = &w.rig.tree.links[i].name;
+        let name = &w.rig().tree.links[i].name;
         if b.is_fixed() {
             posed += 1;
         } else if b.is_kinematic() {
@@ -51,10 +52,10 @@ fn every_link_stands_where_the_kinematics_put_it_while_an_arm_moves() {
         let turn = (z_axis.x * want.x + z_axis.y * want.y + z_axis.z * want.z).clamp(-1.0, 1.0).acos();
         assert!(turn < 1e-6, "{name} is turned {turn:.2e} rad from its kinematic pose");
         for c in b.colliders() {
-            assert!(!w.physics.colliders[*c].is_enabled(), "{name}'s collider is in Rapier's broad phase");
+            assert!(!w.physics().colliders[*c].is_enabled(), "{name}'s collider is in Rapier's broad phase");
         }
     }
-    let moved_m = (w.physics.bodies[body4].position().translation - start_m).length();
+    let moved_m = (w.physics().bodies[body4].position().translation - start_m).length();
     println!(
         "{posed} links posed, {kinematic} kinematic; the left's fourth link moved {:.1} mm",
         moved_m * 1e3

@@ -14,7 +14,7 @@ fn state_after(seed: u64) -> (Vec<u64>, Vec<u64>) {
     let report = run_stress(&mut w, 1.0, &[], &mut |_, _| {});
     assert_eq!(report.nan_events, 0, "{:?}", report.failure);
     let mut bits = Vec::new();
-    for (_, body) in w.physics.bodies.iter() {
+    for (_, body) in w.physics().bodies.iter() {
         let p = body.position();
         for v in [
             p.translation.x,

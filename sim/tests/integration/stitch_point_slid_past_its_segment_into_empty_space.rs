@@ -25,16 +25,17 @@ fn the_flaps_part_no_further_than_the_thread_between_the_stitch_points_allows() 
     let params = LaidKnotParams::default();
     let (mut world, _) =
         lay_and_snug(scene, Rig::shipped().expect("shipped rig"), &params).expect("laid and snugged");
-    let evaluation = world.config.evaluation.clone();
+    let evaluation = world.config().evaluation.clone();
     let mut worst_m = f64::NEG_INFINITY;
     let gap_m = hold_watched(&mut world, &evaluation, &mut |w, _| {
         let arc = |flap| {
-            chain(&w.suture)
+            chain(w.suture())
                 .stitch()
-                .arc_at_m(&w.physics, chain(&w.suture).thread(), &w.tissue, flap)
+                .arc_at_m(w.physics(), chain(w.suture()).thread(), w.tissue(), flap)
                 .expect("threaded")
         };
-        let apart_m = (w.tissue.hole_m(&w.physics, Flap::A) - w.tissue.hole_m(&w.physics, Flap::B)).norm();
+        let apart_m =
+            (w.tissue().hole_m(w.physics(), Flap::A) - w.tissue().hole_m(w.physics(), Flap::B)).norm();
         worst_m = worst_m.max(apart_m - (arc(Flap::A) - arc(Flap::B)));
     })
     .expect("stable");

@@ -18,13 +18,13 @@ fn world() -> SimWorld {
 
 /// The left instrument's shaft collider.
 fn left_shaft(w: &SimWorld) -> ColliderHandle {
-    let i = w.rig.tree.links.iter().position(|l| l.name == "left_shaft").expect("a left_shaft link");
-    let body = w.link_bodies[i].expect("the shaft has a body");
-    w.physics.bodies[body].colliders()[0]
+    let i = w.rig().tree.links.iter().position(|l| l.name == "left_shaft").expect("a left_shaft link");
+    let body = w.link_body(i).expect("the shaft has a body");
+    w.physics().bodies[body].colliders()[0]
 }
 
 fn shaft_capsule(w: &SimWorld, h: ColliderHandle) -> Capsule {
-    let c = &w.physics.colliders[h];
+    let c = &w.physics().colliders[h];
     let cap = c.shape().as_capsule().expect("the shaft is a capsule");
     Capsule {
         a_m: to_na(c.position().transform_point(cap.segment.a)),
@@ -35,11 +35,16 @@ fn shaft_capsule(w: &SimWorld, h: ColliderHandle) -> Capsule {
 
 /// Pins a thread end (a segment's end point) to a fixed body where it lies.
 fn pin(w: &mut SimWorld, segment: usize, local_x: f64) {
-    let body = chain(&w.suture).thread().segments[segment];
+    let body = chain(w.suture()).thread().segments[segment];
     let local = Vector::new(local_x, 0.0, 0.0);
-    let at = w.physics.bodies[body].position().transform_point(local);
-    let anchor = w.physics.bodies.insert(RigidBodyBuilder::fixed().translation(at));
-    w.physics.impulse_joints.insert(anchor, body, SphericalJointBuilder::new().local_anchor2(local), true);
+    let at = w.physics().bodies[body].position().transform_point(local);
+    let anchor = w.physics_mut().bodies.insert(RigidBodyBuilder::fixed().translation(at));
+    w.physics_mut().impulse_joints.insert(
+        anchor,
+        body,
+        SphericalJointBuilder::new().local_anchor2(local),
+        true,
+    );
 }
 
 /// Lays a free thread across the left shaft's path, pins its needle end, then sweeps the shaft through
@@ -47,7 +52,7 @@ fn pin(w: &mut SimWorld, segment: usize, local_x: f64) {
 fn drag(speed_m_s: f64) -> (usize, usize, f64) {
     let mut w = world();
     w.free_thread();
-    let frame = w.tissue.world_from_tissue;
+    let frame = w.tissue().world_from_tissue;
     let at = |p: [f64; 3]| (frame * Point3::from(Vector3::from(p))).coords;
     // The left jaws start beside the thread's line and sweep across it along +x, 2 cm above the flaps.
     let (from, to) = (at([-0.03, -0.01, 0.02]), at([0.05, -0.01, 0.02]));
@@ -66,20 +71,21 @@ fn drag(speed_m_s: f64) -> (usize, usize, f64) {
     let up = if (s.a_m - from).norm() < (s.b_m - from).norm() { axis } else { -axis };
     let crossing = tip_end + up * 0.05 + Vector3::new(0.015, 0.0, 0.0);
     let half =
-        0.5 * chain(&w.suture).thread().segment_length_m * chain(&w.suture).thread().segments.len() as f64;
+        0.5 * chain(w.suture()).thread().segment_length_m * chain(w.suture()).thread().segments.len() as f64;
     let across = frame.rotation * Vector3::y();
-    let gravity = w.physics.gravity;
-    w.physics.gravity = Vector::ZERO;
-    chain(&w.suture).thread().lay_straight(&mut w.physics, &(crossing - across * half), &across);
+    let gravity = w.physics_mut().gravity;
+    w.physics_mut().gravity = Vector::ZERO;
+    let (suture, physics) = w.suture_and_physics_mut();
+    chain(suture).thread().lay_straight(physics, &(crossing - across * half), &across);
     // Held at the needle end only: the shaft carries the rest along, pivoting about the pin.
-    let seg = chain(&w.suture).thread().segment_length_m;
+    let seg = chain(w.suture()).thread().segment_length_m;
     pin(&mut w, 0, -0.5 * seg);
-    let middle = chain(&w.suture).thread().segments[chain(&w.suture).thread().segments.len() / 2];
-    let middle_start = to_na(w.physics.bodies[middle].translation());
+    let middle = chain(w.suture()).thread().segments[chain(w.suture()).thread().segments.len() / 2];
+    let middle_start = to_na(w.physics().bodies[middle].translation());
 
     let mut monitor = TunnellingMonitor::new(0.004);
-    let n = chain(&w.suture).thread().segments.len();
-    let steps = ((to - from).norm() / speed_m_s / w.config.solver.dt_s) as usize;
+    let n = chain(w.suture()).thread().segments.len();
+    let steps = ((to - from).norm() / speed_m_s / w.config().solver.dt_s) as usize;
     let mut touching = 0;
     // The sweep, then half a second for the lagging servos to arrive.
     for k in 0..steps + 500 {
@@ -87,15 +93,15 @@ fn drag(speed_m_s: f64) -> (usize, usize, f64) {
         let joints = w.joints_for_jaw_centre(ArmName::Left, &target).expect("reachable sweep");
         w.command(ArmName::Left, joints);
         w.step().expect("healthy drag");
-        let mut caps = chain(&w.suture).thread().capsules(&w.physics, w.config.thread.radius_m);
+        let mut caps = chain(w.suture()).thread().capsules(w.physics(), w.config().thread.radius_m);
         caps.push(shaft_capsule(&w, shaft));
         monitor.update(&caps, (0..n).map(|i| (i, n)));
-        if w.physics.narrow_phase.contact_pairs_with(shaft).any(|p| p.has_any_active_contact()) {
+        if w.physics().narrow_phase.contact_pairs_with(shaft).any(|p| p.has_any_active_contact()) {
             touching += 1;
         }
     }
-    w.physics.gravity = gravity;
-    let moved = (to_na(w.physics.bodies[middle].translation()) - middle_start).norm();
+    w.physics_mut().gravity = gravity;
+    let moved = (to_na(w.physics().bodies[middle].translation()) - middle_start).norm();
     (monitor.events, touching, moved)
 }
 

@@ -31,7 +31,7 @@ fn the_shipped_start_layout_has_no_twist_between_neighbours() {
     let scene =
         parse_scene(include_str!("../../../scenarios/chain.toml"), "chain.toml").expect("the shipped scene");
     let world = SimWorld::new(scene, Rig::shipped().expect("the shipped rig")).expect("the scene builds");
-    let worst = twists(&world.physics, chain(&world.suture).thread())
+    let worst = twists(world.physics(), chain(world.suture()).thread())
         .into_iter()
         .fold(0.0, |m: f64, t| m.max(t.abs()));
     assert!(worst < 1e-6, "neighbours twisted by up to {worst} rad");

@@ -27,18 +27,18 @@ fn the_start_condition_holds_needle_and_tail_through_the_stitch() {
     run(&mut w, 300);
     assert_eq!(w.arm(ArmName::Right).held_at(), Some(0), "the right jaws hold the needle");
     // The assist's jaws hold the tail within its last centimetre (the segment between the jaws' middle).
-    let last = chain(&w.suture).thread().segments.len() - 1;
-    let last_cm = (0.01 / chain(&w.suture).thread().segment_length_m).ceil() as usize;
+    let last = chain(w.suture()).thread().segments.len() - 1;
+    let last_cm = (0.01 / chain(w.suture()).thread().segment_length_m).ceil() as usize;
     let held = w.arm(ArmName::Assist).held_at().expect("the assist holds the thread");
     assert!(held + last_cm > last, "the assist holds segment {held} of {}, not the tail", last + 1);
     let [exit, entry] =
-        chain(&w.suture).stitch().holes.map(|h| h.segment.expect("the thread is in both flaps"));
+        chain(w.suture()).stitch().holes.map(|h| h.segment.expect("the thread is in both flaps"));
     assert!(exit < entry, "the needle end meets the exit first: {exit} {entry}");
-    assert!(chain(&w.suture).thread().max_stretch_ratio(&w.physics) < 0.02);
+    assert!(chain(w.suture()).thread().max_stretch_ratio(w.physics()) < 0.02);
     // The suture runs under the wound in a U: the thread's weight (0.01 kg, far heavier than a real
     // suture, for the solver) hanging from the jaws pulls the U, and with it the wound, a little
     // closed; never open.
-    let closed_by = w.config.tissue.rest_gap_m - w.wound_gap_m();
+    let closed_by = w.config().tissue.rest_gap_m - w.wound_gap_m();
     assert!((-5e-4..1.2e-3).contains(&closed_by), "closed by {closed_by} m");
 }
 
@@ -47,20 +47,21 @@ fn the_elastic_load_yields_to_a_pull_by_its_stiffness_and_reopens() {
     let mut w = world();
     w.free_thread();
     // The thread out of the way, floating: only the load acts on the flaps.
-    w.physics.gravity = Vector::ZERO;
-    let far = w.tissue.world_from_tissue.translation.vector + nalgebra::Vector3::new(0.0, 0.0, 0.5);
-    chain(&w.suture).thread().lay_straight(&mut w.physics, &far, &nalgebra::Vector3::x());
+    w.physics_mut().gravity = Vector::ZERO;
+    let far = w.tissue().world_from_tissue.translation.vector + nalgebra::Vector3::new(0.0, 0.0, 0.5);
+    let (suture, physics) = w.suture_and_physics_mut();
+    chain(suture).thread().lay_straight(physics, &far, &nalgebra::Vector3::x());
     run(&mut w, 200);
     let rest = w.wound_gap_m();
-    assert!((rest - w.config.tissue.rest_gap_m).abs() < 1e-4, "rest gap {rest}");
+    assert!((rest - w.config().tissue.rest_gap_m).abs() < 1e-4, "rest gap {rest}");
     // Push flap A towards B with 0.04 N: the gap closes by F / k (k = 20 N/m: 2 mm).
     let push_n = 0.04;
-    let towards_b = w.tissue.world_from_tissue.rotation * nalgebra::Vector3::new(0.0, -push_n, 0.0);
-    let flap = w.tissue.flap(Flap::A);
-    w.physics.bodies[flap].add_force(Vector::new(towards_b.x, towards_b.y, towards_b.z), true);
+    let towards_b = w.tissue().world_from_tissue.rotation * nalgebra::Vector3::new(0.0, -push_n, 0.0);
+    let flap = w.tissue().flap(Flap::A);
+    w.physics_mut().bodies[flap].add_force(Vector::new(towards_b.x, towards_b.y, towards_b.z), true);
     run(&mut w, 1500);
     let pushed = w.wound_gap_m();
-    let expected = push_n / w.config.tissue.opening_stiffness_n_per_m;
+    let expected = push_n / w.config().tissue.opening_stiffness_n_per_m;
     println!(
         "rest gap {:.3} mm, pushed {:.3} mm, expected closing {:.3} mm",
         rest * 1e3,
@@ -68,7 +69,7 @@ fn the_elastic_load_yields_to_a_pull_by_its_stiffness_and_reopens() {
         expected * 1e3
     );
     assert!(((rest - pushed) - expected).abs() < 0.15 * expected, "closed by {} m", rest - pushed);
-    w.physics.bodies[flap].reset_forces(true);
+    w.physics_mut().bodies[flap].reset_forces(true);
     run(&mut w, 1500);
     assert!((w.wound_gap_m() - rest).abs() < 2e-4, "reopened to {}", w.wound_gap_m());
 }
@@ -83,20 +84,20 @@ fn pull_tail(force_n: f64, steps: usize) -> (f64, [Option<usize>; 2], [Option<us
         w.command(arm, open);
     }
     run(&mut w, 300);
-    let before = chain(&w.suture)
+    let before = chain(w.suture())
         .stitch()
-        .needle_side_length_m(&w.physics, chain(&w.suture).thread(), &w.tissue)
+        .needle_side_length_m(w.physics(), chain(w.suture()).thread(), w.tissue())
         .expect("stitched");
-    let holes_before = chain(&w.suture).stitch().holes.map(|h| h.segment);
-    let tail = *chain(&w.suture).thread().segments.last().expect("segments");
-    let away = w.tissue.world_from_tissue.rotation * nalgebra::Vector3::new(0.0, force_n, 0.0);
-    w.physics.bodies[tail].add_force(Vector::new(away.x, away.y, away.z), true);
+    let holes_before = chain(w.suture()).stitch().holes.map(|h| h.segment);
+    let tail = *chain(w.suture()).thread().segments.last().expect("segments");
+    let away = w.tissue().world_from_tissue.rotation * nalgebra::Vector3::new(0.0, force_n, 0.0);
+    w.physics_mut().bodies[tail].add_force(Vector::new(away.x, away.y, away.z), true);
     run(&mut w, steps);
-    let after = chain(&w.suture)
+    let after = chain(w.suture())
         .stitch()
-        .needle_side_length_m(&w.physics, chain(&w.suture).thread(), &w.tissue)
+        .needle_side_length_m(w.physics(), chain(w.suture()).thread(), w.tissue())
         .expect("still stitched");
-    (before - after, holes_before, chain(&w.suture).stitch().holes.map(|h| h.segment))
+    (before - after, holes_before, chain(w.suture()).stitch().holes.map(|h| h.segment))
 }
 
 #[test]
@@ -129,7 +130,7 @@ fn an_untied_thread_is_no_knot_and_the_wound_stays_open() {
     use knotlab_sim::knot::{FailureMode, KnotType, Verdict};
     let mut w = world();
     run(&mut w, 200);
-    let params = w.config.evaluation.clone();
+    let params = w.config().evaluation.clone();
     let result = evaluate_knot(&mut w, &params);
     assert_eq!(result.knot_before, Some(KnotType::Unknot));
     assert_eq!(result.verdict, Verdict::Failure(FailureMode::NoKnot));
@@ -147,7 +148,7 @@ fn an_untied_thread_is_no_knot_and_the_wound_stays_open() {
 fn the_stitch_points_arc_lengths_lie_at_the_holes_on_the_centreline() {
     let mut w = world();
     run(&mut w, 300);
-    let line = chain(&w.suture).thread().centreline(&w.physics);
+    let line = chain(w.suture()).thread().centreline(w.physics());
     let mut arcs = vec![0.0];
     for pair in line.windows(2) {
         arcs.push(arcs.last().unwrap() + (pair[1] - pair[0]).norm());
@@ -159,11 +160,11 @@ fn the_stitch_points_arc_lengths_lie_at_the_holes_on_the_centreline() {
     };
     let mut previous = f64::NEG_INFINITY;
     for flap in Flap::ALONG_THREAD {
-        let arc_m = chain(&w.suture)
+        let arc_m = chain(w.suture())
             .stitch()
-            .arc_at_m(&w.physics, chain(&w.suture).thread(), &w.tissue, flap)
+            .arc_at_m(w.physics(), chain(w.suture()).thread(), w.tissue(), flap)
             .expect("the thread is through");
-        let hole = w.tissue.hole_m(&w.physics, flap);
+        let hole = w.tissue().hole_m(w.physics(), flap);
         let off_m = (at(arc_m) - hole).norm();
         println!("{flap:?}: {:.1} mm along the thread, {:.3} mm from the hole", arc_m * 1e3, off_m * 1e3);
         assert!(off_m < 5e-4, "{flap:?}: the centreline at that arc length is {off_m} m from the hole");

@@ -41,15 +41,15 @@ pub fn open_left_jaws(w: &mut SimWorld, jaw_rad: f64) -> ArmJoints {
 /// Closes the left's jaws from `open` over `steps` steps with gravity off, so the thread laid across
 /// them floats while they close (about 75 ms; it would fall 3 cm meanwhile), then turns gravity back on.
 pub fn close_left_weightless(w: &mut SimWorld, open: ArmJoints, steps: usize) {
-    let gravity = w.physics.gravity;
-    w.physics.gravity = Vector::ZERO;
+    let gravity = w.physics_mut().gravity;
+    w.physics_mut().gravity = Vector::ZERO;
     let mut closed = open;
     closed.tool.jaw_rad = 0.0;
     w.command(ArmName::Left, closed);
     for _ in 0..steps {
         w.step().expect("healthy step");
     }
-    w.physics.gravity = gravity;
+    w.physics_mut().gravity = gravity;
 }
 
 /// `scenarios/short-suture-friction-0.5.toml`, the scene the rope's knot trials use.
