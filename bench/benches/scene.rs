@@ -7,7 +7,7 @@
 //! `cargo bench -p knotlab-bench --bench scene`
 
 use knotlab_hw::rig::Rig;
-use knotlab_sim::lab::stress::run_stress;
+use knotlab_scenarios::stress::run_stress;
 use knotlab_sim::world::SimWorld;
 
 const SECONDS: f64 = 6.0;

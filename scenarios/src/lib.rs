@@ -3,8 +3,10 @@
 //!
 //! - [`expert`]: the scripted surgeon who ties the knot in the simulator and leaves a demonstration.
 //! - [`session`]: the lab's workflow: teleoperation, the skill pedal, preview, execution, manual again.
+//! - [`stress`]: the scripted stress sequence behind `knotlab sim`, on either suture model.
 //! - [`trial`]: one trial end to end: a learned skill synthesized at a moved stitch, run, evaluated.
 
 pub mod expert;
 pub mod session;
+pub mod stress;
 pub mod trial;

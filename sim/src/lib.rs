@@ -12,8 +12,6 @@
 //! - [`hooks`]: the contact filter (thread through the flaps and through the jaws holding it) and
 //!   the thread's friction on itself.
 //! - [`knot`]: which knot a thread's centreline holds, whether it is down, the verdict.
-//! - [`lab`]: experiment rigs the tests and benchmarks run (the cinch, the reef knot, the laid knot,
-//!   the rope's knot trials and wound, the stress sequence behind `knotlab sim`).
 //! - [`physics`]: the Rapier sets of a scene, its step and health check.
 //! - [`scene`]: the scene file (TOML) and its checks.
 //! - [`snapshot`]: the scene drawn in top, front and side views (PNG).
@@ -36,7 +34,6 @@ pub mod grasp;
 pub mod groups;
 pub mod hooks;
 pub mod knot;
-pub mod lab;
 pub mod needle;
 pub mod physics;
 pub mod rope;

@@ -10,10 +10,9 @@ use anyhow::Context;
 use clap::Args;
 
 use knotlab_hw::rig::Rig;
-use knotlab_sim::lab::stress::run_stress;
+use knotlab_scenarios::stress::run_stress;
 use knotlab_sim::scene::load_scene;
 use knotlab_sim::snapshot::{View, render_png};
-use knotlab_sim::thread::ThreadModel;
 use knotlab_sim::world::SimWorld;
 
 use super::numbers::{Numbers, parse_list};
@@ -56,13 +55,6 @@ pub fn run(args: SimArgs, out: &mut Output) -> anyhow::Result<ExitCode> {
         anyhow::bail!("--seconds: must be within 0..3600, got {}", args.seconds);
     }
     let scene = load_scene(&args.scene)?;
-    if scene.thread.model == ThreadModel::Rope {
-        anyhow::bail!(
-            "{}: thread.model: the stress sequence measures the capsule chain (\"chain\"), not the rope \
-             (try scenarios/chain.toml)",
-            args.scene.display()
-        );
-    }
     let rig = Rig::shipped().context("the shipped rig")?;
     let mut world = SimWorld::new(scene, rig).with_context(|| args.scene.display().to_string())?;
     world.reseed(args.seed);

@@ -9,6 +9,7 @@
 //! - The shipped scenes: [`scene_variants_differ_from_the_nominal_only_in_the_suture`],
 //!   [`short_suture_scene_is_the_chain_one_with_less_thread`].
 //! - The lab's workflow: [`lab_session`].
+//! - The stress sequence, the same twice: [`scene_determinism`].
 //! - [`common`]: the expert runs the second-throw tests share.
 
 mod common;
@@ -25,5 +26,6 @@ mod expert_second_throw_takes_the_tail_by_its_end;
 mod expert_ties_a_knot;
 mod jaws_turned_the_opposite_way_gave_poses_with_nan;
 mod lab_session;
+mod scene_determinism;
 mod scene_variants_differ_from_the_nominal_only_in_the_suture;
 mod short_suture_scene_is_the_chain_one_with_less_thread;

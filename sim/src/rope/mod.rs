@@ -440,6 +440,16 @@ impl Ropes {
         self.crossing.crossed()
     }
 
+    /// How far the most stretched segment reaches beyond its rest length, as a fraction of it (0
+    /// when none is stretched).
+    pub fn max_stretch_ratio(&self) -> f64 {
+        self.segments
+            .iter()
+            .zip(&self.rest_m)
+            .map(|([a, b], rest)| ((self.x[*b] - self.x[*a]).norm() - rest) / rest)
+            .fold(0.0, f64::max)
+    }
+
     /// The strand's polyline, m.
     pub fn polyline(&self, strand: usize) -> Vec<Vector3<f64>> {
         self.x[self.strands[strand].clone()].to_vec()

@@ -484,11 +484,7 @@ pub(super) type ParticleMoves = [(usize, Vector3<f64>); 2];
 /// Moves the rope's point at `at` (a particle's index plus a fraction) onto `target` across the
 /// rope, its two particles sharing the move by their masses; returns each particle's move and where
 /// the rope now passes nearest `target` (searched two segments either way).
-pub(crate) fn thread_through(
-    ropes: &mut Ropes,
-    at: f64,
-    target: &Vector3<f64>,
-) -> Option<(ParticleMoves, f64)> {
+pub fn thread_through(ropes: &mut Ropes, at: f64, target: &Vector3<f64>) -> Option<(ParticleMoves, f64)> {
     thread_through_held(ropes, at, target, 0.0, 1.0)
 }
 
@@ -535,7 +531,7 @@ pub(super) fn thread_through_held(
 
 /// The place on the rope (particle index plus fraction) nearest `target`, searched over the
 /// segments within two of segment `near`.
-pub(crate) fn nearest_on_rope(ropes: &Ropes, target: &Vector3<f64>, near: usize, last: usize) -> f64 {
+pub fn nearest_on_rope(ropes: &Ropes, target: &Vector3<f64>, near: usize, last: usize) -> f64 {
     let mut best = (f64::INFINITY, near as f64);
     for i in near.saturating_sub(2)..(near + 3).min(last) {
         let (a, b) = (ropes.x[i], ropes.x[i + 1]);

@@ -1,6 +1,6 @@
 //! The stitch of the scene's rope, solved with the flaps in it: each flap's slide across the wound
 //! (its spring back to the rest gap, its damping, its stops and any load pulling it open) is
-//! integrated inside the rope's substeps, as [`crate::lab::wound`] integrates its flaps, and the thread
+//! integrated inside the rope's substeps, as the lab's wound trial (`knotlab_lab::wound`) integrates its flaps, and the thread
 //! slides through the four stitch points the flaps carry. Rapier only shows the flaps where the
 //! slides put them (kinematic bodies). Exchanging impulses with dynamic flaps once a step was not
 //! stable: the rope is inextensible and held at both ends, as heavy as the world to a flap, and at

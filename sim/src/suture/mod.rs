@@ -216,6 +216,31 @@ impl Suture {
         }
     }
 
+    /// The suture as capsules of `radius_m`, needle end first: the chain's segments, or the rope's
+    /// centreline from particle to particle.
+    pub fn capsules(&self, physics: &Physics, radius_m: f64) -> Vec<Capsule> {
+        match &self.model {
+            Model::Chain(chain) => chain.thread().capsules(physics, radius_m),
+            Model::Rope(rope) => {
+                let mut capsules = centreline_capsules(&rope.rope.centreline());
+                for c in &mut capsules {
+                    c.radius_m = radius_m;
+                }
+                capsules
+            }
+        }
+    }
+
+    /// How far the suture is stretched where it is stretched most, as a fraction of its length
+    /// there: the widest gap in a joint of the chain over a segment's length, or the rope's most
+    /// stretched segment beyond its rest length.
+    pub fn max_stretch_ratio(&self, physics: &Physics) -> f64 {
+        match &self.model {
+            Model::Chain(chain) => chain.thread().max_stretch_ratio(physics),
+            Model::Rope(rope) => rope.rope.ropes.max_stretch_ratio(),
+        }
+    }
+
     /// Every time the suture passed through itself, in order.
     pub fn self_crossings(&self) -> &[SelfCrossing] {
         &self.watch.crossings

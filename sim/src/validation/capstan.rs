@@ -15,9 +15,32 @@ use nalgebra::Vector3;
 use rapier3d::prelude::*;
 
 use super::{Check, SutureUnderTest, Tolerance};
-use crate::lab::trials::wound_pair;
 use crate::rope::rigid::RigidContacts;
 use crate::rope::{RopeParams, Ropes};
+
+/// Particle spacing of the wound pair's ropes, m (one and a half radii of the default rope).
+pub const WOUND_SPACING_M: f64 = 0.0003;
+
+/// Strand A (30 mm, both ends pinned) and B wound twice round it in a helix touching it, B's ends
+/// leading off along -z and +z.
+pub fn wound_pair(params: RopeParams) -> (Ropes, std::ops::Range<usize>) {
+    let mut ropes = Ropes::new(params);
+    let a = ropes
+        .add_strand_along(&[Vector3::new(-0.015, 0.0, 0.0), Vector3::new(0.015, 0.0, 0.0)], WOUND_SPACING_M);
+    ropes.w[a.start] = 0.0;
+    ropes.w[a.end - 1] = 0.0;
+    let r = 2.04 * params.radius_m;
+    let mut path = vec![Vector3::new(-0.003, 0.0, -0.03), Vector3::new(-0.003, 0.0, -r)];
+    let n = 200;
+    path.extend((0..=n).map(|k| {
+        let f = k as f64 / n as f64;
+        let angle = -FRAC_PI_2 + f * 4.0 * PI;
+        Vector3::new(-0.003 + 0.006 * f, r * angle.cos(), r * angle.sin())
+    }));
+    path.push(Vector3::new(0.003, 0.0, 0.03));
+    let b = ropes.add_strand_along(&path, WOUND_SPACING_M);
+    (ropes, b)
+}
 
 /// The cylinder's radius, m.
 pub const CYLINDER_RADIUS_M: f64 = 0.02;

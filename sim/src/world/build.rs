@@ -21,7 +21,7 @@ impl SimWorld {
     /// Builds the scene with the thread laid along the path `layout` gives (world frame, needle end
     /// first, from the scene, its tissue and its physics as built), through the stitch where the path
     /// passes its points, and held by no instrument; the instruments stand as in [`Self::new`]. For
-    /// trials of a thread placed by hand, such as a knot laid over the stitch (`crate::lab::laid_knot`).
+    /// trials of a thread placed by hand, such as a knot laid over the stitch (`knotlab_lab::laid_knot`).
     pub fn with_thread_laid(
         config: SceneConfig,
         rig: Rig,

@@ -52,38 +52,6 @@ pub fn close_left_weightless(w: &mut SimWorld, open: ArmJoints, steps: usize) {
     w.physics_mut().gravity = gravity;
 }
 
-/// `scenarios/short-suture-friction-0.5.toml`, the scene the rope's knot trials use.
-pub fn short_suture_friction_0_5() -> SceneConfig {
-    parse_scene(
-        include_str!("../../../../scenarios/short-suture-friction-0.5.toml"),
-        "short-suture-friction-0.5.toml",
-    )
-    .expect("shipped scene")
-}
-
-/// A tight surgeon's knot for the rope's wound trials: helices of 0.22 mm radius, 1.6 mm either
-/// side of the wound, 1 mm over the tissue, snugged at 2 N.
-pub fn tight_surgeons_knot() -> knotlab_sim::lab::laid_knot::LaidKnotParams {
-    knotlab_sim::lab::laid_knot::LaidKnotParams {
-        kind: knotlab_sim::lab::laid_knot::LaidKnotKind::SurgeonsKnot,
-        spread_m: 0.0016,
-        lift_m: 0.00022,
-        height_m: 0.001,
-        snug_n: 2.0,
-        ..Default::default()
-    }
-}
-
-/// The rope at friction 0.5 on itself (kinetic 0.4), damped lightly (10/s).
-pub fn rope_at_friction_0_5() -> knotlab_sim::rope::RopeParams {
-    knotlab_sim::rope::RopeParams {
-        static_friction: 0.5,
-        kinetic_friction: 0.4,
-        damping_per_s: 10.0,
-        ..Default::default()
-    }
-}
-
 /// The rope scene's tissue in a physics world of its own, and a way for a rope through its stitch.
 pub struct StitchBench {
     pub scene: SceneConfig,

@@ -1,0 +1,110 @@
+//! The XPBD rope (`knotlab_sim::rope`) holds by friction what the capsule chain lets slip: a string
+//! (no bending stiffness) wound twice round another holds a tension ratio of 30 at friction 1.0
+//! (the chain slides 10 mm at 5 and to its end at 10: `cargo bench -p knotlab-bench --bench
+//! thread_capstan`), the default stiff rope a ratio of 10, and both lose it all without friction; a
+//! square knot loaded by its standing parts with its free ends let go holds within 2 mm (the
+//! chain's: 5-25 mm or apart, `thread_reef`); at friction 0.5 a string's creeps unless the contacts
+//! are solved several times a substep. The same run twice gives the same bits.
+
+use knotlab_lab::trials::{capstan, reef};
+use knotlab_sim::knot::KnotType;
+use knotlab_sim::rope::RopeParams;
+
+/// The rope without bending stiffness (the capstan equation's string), its lengths solved by two
+/// Gauss-Seidel sweeps as session 42 had it (solved directly, a string's wrap slides either way at
+/// a ratio of 3: `docs/knot-tying-notes.md`, session 43).
+fn string() -> RopeParams {
+    RopeParams {
+        bending_stiffness_n_m2: 0.0,
+        direct_stretch: false,
+        stretch_iterations: 2,
+        ..RopeParams::default()
+    }
+}
+
+#[test]
+fn a_double_wrap_of_the_stiff_rope_holds_a_tension_ratio_of_10_at_friction_1() {
+    let slide = capstan(RopeParams::default(), 0.3, 10.0);
+    // Measured: -0.20 mm, 0.00 mm in the last second (at 30 it slides: 2.37 mm, 1.67 late).
+    assert!(slide.slip_m.abs() < 0.001, "slid {:.2} mm", slide.slip_m * 1e3);
+    assert!(
+        slide.late_slip_m.abs() < 0.0002,
+        "still sliding: {:.3} mm in the last second",
+        slide.late_slip_m * 1e3
+    );
+}
+
+#[test]
+fn a_double_wrap_of_string_holds_a_tension_ratio_of_30_at_friction_1() {
+    let slide = capstan(string(), 0.3, 30.0);
+    // Measured: 2.9 mm of settling, then 0.02 mm in the last second.
+    assert!(slide.slip_m < 0.005, "slid {:.2} mm", slide.slip_m * 1e3);
+    assert!(
+        slide.late_slip_m.abs() < 0.0005,
+        "still sliding: {:.3} mm in the last second",
+        slide.late_slip_m * 1e3
+    );
+}
+
+#[test]
+fn without_friction_the_wrap_lets_go_at_a_ratio_of_1_5() {
+    let params = RopeParams { static_friction: 0.0, kinetic_friction: 0.0, ..string() };
+    let slide = capstan(params, 0.3, 1.5);
+    assert!(slide.slip_m > 0.02, "slid only {:.2} mm", slide.slip_m * 1e3);
+}
+
+#[test]
+fn a_square_knot_holds_its_standing_parts_with_its_free_ends_let_go() {
+    let slide = reef(RopeParams::default(), 0.003, 0.001, 1.0, 0.3, 1.0);
+    assert_eq!(slide.knot_after, Some(KnotType::Square));
+    // Measured (2 s hold): 0.8 mm, 0.01 mm in the last second.
+    assert!(slide.slip_m.abs() < 0.002, "the standing parts drew {:.2} mm apart", slide.slip_m * 1e3);
+    assert!(
+        slide.late_slip_m.abs() < 0.0005,
+        "still sliding: {:.3} mm in the last half",
+        slide.late_slip_m * 1e3
+    );
+}
+
+#[test]
+fn without_friction_the_square_knot_comes_apart() {
+    let params = RopeParams { static_friction: 0.0, kinetic_friction: 0.0, ..RopeParams::default() };
+    let slide = reef(params, 0.003, 0.001, 1.0, 0.3, 1.0);
+    assert!(slide.slip_m > 0.01, "the standing parts drew only {:.2} mm apart", slide.slip_m * 1e3);
+}
+
+#[test]
+fn more_contact_passes_stop_a_string_square_knot_creeping_at_friction_0_5() {
+    let params = |contact_passes| RopeParams {
+        static_friction: 0.5,
+        kinetic_friction: 0.4,
+        contact_passes,
+        ..string()
+    };
+    let (one, four) =
+        (reef(params(1), 0.003, 0.001, 1.0, 0.3, 1.0), reef(params(4), 0.003, 0.001, 1.0, 0.3, 1.0));
+    assert!(
+        one.late_slip_m > 0.0005,
+        "with one pass it crept only {:.3} mm in the last half",
+        one.late_slip_m * 1e3
+    );
+    assert!(
+        four.late_slip_m.abs() < 0.0003,
+        "with four it crept {:.3} mm in the last half",
+        four.late_slip_m * 1e3
+    );
+    assert!(
+        four.slip_m.abs() < 0.0015,
+        "with four the standing parts drew {:.2} mm apart",
+        four.slip_m * 1e3
+    );
+    assert_eq!(four.knot_after, Some(KnotType::Square));
+}
+
+#[test]
+fn the_same_trial_twice_gives_the_same_bits() {
+    let params = RopeParams::default();
+    let (a, b) = (capstan(params, 0.3, 5.0), capstan(params, 0.3, 5.0));
+    assert_eq!(a.slip_m.to_bits(), b.slip_m.to_bits());
+    assert_eq!(a.late_slip_m.to_bits(), b.late_slip_m.to_bits());
+}
