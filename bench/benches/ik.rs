@@ -1,11 +1,9 @@
 //! Benchmark: one trocar-constrained IK call on the shipped rig (target: at most 1 microsecond).
 //!
-//! `cargo bench -p knotlab-bench --bench ik` prints, per arm and target kind, the median time of one
-//! call: batches of calls over 1,000 seeded reachable targets, each batch timed whole, the median taken
-//! over batches (robust to the odd preempted batch on a shared 2-core machine).
+//! `cargo bench -p knotlab-bench --bench ik` times `ArmModel::solve_tip`, per arm and target kind,
+//! with divan: each call on the next of 1,000 seeded reachable targets.
 
 use std::hint::black_box;
-use std::time::Instant;
 
 use knotlab_hw::kinematics::{ArmJoints, ArmModel, TipOrientation, TipTarget, Tool, ToolJoints};
 use knotlab_hw::rig::{ArmName, Rig};
@@ -14,7 +12,6 @@ use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
 const TARGETS: usize = 1_000;
-const BATCHES: usize = 301;
 
 struct Case {
     target: TipTarget,
@@ -63,56 +60,43 @@ fn cases(model: &ArmModel, name: ArmName, jaw_only: bool, rng: &mut ChaCha8Rng) 
         .collect()
 }
 
-/// Median nanoseconds per call, and the 10th and 90th percentiles, over batches of all cases.
-fn time(model: &ArmModel, cases: &[Case]) -> (f64, f64, f64, usize) {
-    let mut solved = 0;
-    for c in cases {
-        solved += usize::from(model.solve_tip(&c.target, &c.trocar, &c.seed).is_ok());
-    }
-    let mut per_call_ns: Vec<f64> = (0..BATCHES)
-        .map(|_| {
-            let start = Instant::now();
-            for c in cases {
-                let _ = black_box(model.solve_tip(
-                    black_box(&c.target),
-                    black_box(&c.trocar),
-                    black_box(&c.seed),
-                ));
-            }
-            start.elapsed().as_nanos() as f64 / cases.len() as f64
-        })
-        .collect();
-    per_call_ns.sort_by(f64::total_cmp);
-    let at = |q: f64| per_call_ns[((per_call_ns.len() - 1) as f64 * q).round() as usize];
-    (at(0.5), at(0.1), at(0.9), solved)
+fn main() {
+    divan::main();
 }
 
-fn main() -> Result<(), Box<dyn std::error::Error>> {
-    let rig = Rig::shipped()?;
+/// The arms and target kinds timed: the instruments' tip frame and jaw direction, the endoscope's
+/// tip position.
+const KINDS: [&str; 7] = [
+    "left tip frame",
+    "left jaw direction",
+    "right tip frame",
+    "right jaw direction",
+    "assist tip frame",
+    "assist jaw direction",
+    "camera tip position",
+];
+
+/// One IK call on the next of the arm's targets.
+#[divan::bench(args = KINDS)]
+fn solve_tip(bencher: divan::Bencher, kind: &str) {
+    let rig = Rig::shipped().expect("the shipped rig");
+    let Some(name) = ArmName::ALL.into_iter().find(|a| kind.starts_with(&a.to_string())) else { return };
+    let model = rig.arm(name).model;
     let mut rng = ChaCha8Rng::seed_from_u64(20_261_122);
-    println!("trocar-constrained IK, {TARGETS} reachable targets per row, median over {BATCHES} batches");
-    for name in ArmName::ALL {
-        let model = rig.arm(name).model;
-        let kinds: &[(&str, bool)] = if name.carries_instrument() {
-            &[("tip frame", false), ("jaw direction", true)]
-        } else {
-            &[("tip position", true)]
-        };
-        for (kind, jaw_only) in kinds {
-            let mut cs = cases(&model, name, *jaw_only, &mut rng);
-            if !name.carries_instrument() {
-                for c in &mut cs {
-                    c.target.orientation = TipOrientation::AlongShaft;
-                }
-            }
-            let (median, p10, p90, solved) = time(&model, &cs);
-            println!(
-                "ik {name:<6} {kind:<13}: median {:.3} us/call (p10 {:.3}, p90 {:.3}); {solved}/{TARGETS} solved",
-                median / 1e3,
-                p10 / 1e3,
-                p90 / 1e3
-            );
+    let mut cs = cases(&model, name, !kind.ends_with("tip frame"), &mut rng);
+    if !name.carries_instrument() {
+        for c in &mut cs {
+            c.target.orientation = TipOrientation::AlongShaft;
         }
     }
-    Ok(())
+    let mut next = 0;
+    bencher
+        .with_inputs(|| {
+            next = (next + 1) % cs.len();
+            next
+        })
+        .bench_local_values(|i| {
+            let c = &cs[i];
+            model.solve_tip(black_box(&c.target), black_box(&c.trocar), black_box(&c.seed))
+        });
 }

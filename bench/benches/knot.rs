@@ -1,15 +1,13 @@
 //! Benchmark: classifying a 200-point thread's centreline (target: at most 1 ms).
 //!
-//! `cargo bench -p knotlab-bench --bench knot` prints, per thread shape, the median time of one
-//! `classify` call (13 projection directions, closure, crossings, reduction, determinant, vote):
-//! batches over 32 seeded perturbations of the thread, each batch timed whole, the median taken over
-//! batches (robust to the odd preempted batch on a shared 2-core machine).
+//! `cargo bench -p knotlab-bench --bench knot` times one `classify` call (13 projection directions,
+//! closure, crossings, reduction, determinant, vote) per thread shape with divan, each call on the
+//! next of 32 seeded perturbations of the thread.
 
 use std::f64::consts::{PI, TAU};
 use std::hint::black_box;
-use std::time::Instant;
 
-use knotlab_sim::knot::{KnotType, classify};
+use knotlab_sim::knot::classify;
 use nalgebra::Vector3;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
@@ -18,7 +16,6 @@ type V = Vector3<f64>;
 
 const POINTS: usize = 200;
 const VARIANTS: usize = 32;
-const BATCHES: usize = 101;
 
 /// Resamples a polyline to `n` points evenly spaced along its length.
 fn resample(points: &[V], n: usize) -> Vec<V> {
@@ -91,41 +88,30 @@ fn untied() -> Vec<V> {
         .collect()
 }
 
-fn main() -> Result<(), Box<dyn std::error::Error>> {
+fn main() {
+    divan::main();
+}
+
+/// The shapes timed.
+const SHAPES: [&str; 3] = ["trefoil", "square suture", "untied thread"];
+
+/// One `classify` call on the next perturbation of `shape`.
+#[divan::bench(args = SHAPES)]
+fn classify_centreline(bencher: divan::Bencher, shape: &str) {
+    let points = match shape {
+        "trefoil" => trefoil(),
+        "square suture" => square_suture(),
+        _ => untied(),
+    };
     let mut rng = ChaCha8Rng::seed_from_u64(20_261_124);
-    println!(
-        "knot classify, {POINTS}-point threads, {VARIANTS} seeded perturbations each, median over {BATCHES} batches"
-    );
-    let shapes: [(&str, Vec<V>, KnotType); 3] = [
-        ("trefoil", trefoil(), KnotType::Trefoil),
-        ("square suture", square_suture(), KnotType::Square),
-        ("untied thread", untied(), KnotType::Unknot),
-    ];
-    for (name, shape, want) in shapes {
-        let variants: Vec<Vec<V>> = (0..VARIANTS)
-            .map(|_| shape.iter().map(|p| p + V::from_fn(|_, _| rng.random_range(-1e-5..1e-5))).collect())
-            .collect();
-        let mut right = 0;
-        for v in &variants {
-            right += usize::from(classify(v)?.knot == want);
-        }
-        let mut per_call_us: Vec<f64> = (0..BATCHES)
-            .map(|_| {
-                let start = Instant::now();
-                for v in &variants {
-                    let _ = black_box(classify(black_box(v)));
-                }
-                start.elapsed().as_secs_f64() * 1e6 / VARIANTS as f64
-            })
-            .collect();
-        per_call_us.sort_by(f64::total_cmp);
-        let at = |q: f64| per_call_us[((per_call_us.len() - 1) as f64 * q).round() as usize];
-        println!(
-            "classify {name:<14}: median {:.3} ms/call (p10 {:.3}, p90 {:.3}); {right}/{VARIANTS} classified {want}",
-            at(0.5) / 1e3,
-            at(0.1) / 1e3,
-            at(0.9) / 1e3
-        );
-    }
-    Ok(())
+    let variants: Vec<Vec<V>> = (0..VARIANTS)
+        .map(|_| points.iter().map(|p| p + V::from_fn(|_, _| rng.random_range(-1e-5..1e-5))).collect())
+        .collect();
+    let mut next = 0;
+    bencher
+        .with_inputs(|| {
+            next = (next + 1) % variants.len();
+            next
+        })
+        .bench_local_values(|i| classify(black_box(&variants[i])));
 }
