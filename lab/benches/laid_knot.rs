@@ -14,7 +14,7 @@
 //! (session 42): converged, the knots slip further (median 26 and 19 mm against 16), none within
 //! 3 mm: the holds the default solver shows now and then are the solver's stiction, not friction.
 //!
-//! `cargo bench -p knotlab-bench --bench laid_knot`
+//! `cargo bench -p knotlab-lab --bench laid_knot`
 
 use knotlab_hw::rig::Rig;
 use knotlab_lab::laid_knot::{LaidKnotKind, LaidKnotParams, run_laid_knot};

@@ -26,7 +26,7 @@
 //! Printed: how far each slid, in all and (in brackets) in the last half of the load, the reef's
 //! knot after, the wound's gap, and the wall time of each trial on one core.
 //!
-//! `cargo bench -p knotlab-bench --bench rope_knot` (about 9 minutes)
+//! `cargo bench -p knotlab-lab --bench rope_knot` (about 9 minutes)
 
 use std::time::Instant;
 

@@ -19,7 +19,7 @@
 //! scene's friction, so what the strand-on-strand wrap falls short by is the wrap's geometry: 3.1 mm
 //! segments cannot lie round a strand 0.8 mm thick.
 //!
-//! `cargo bench -p knotlab-bench --bench thread_capstan`
+//! `cargo bench -p knotlab-lab --bench thread_capstan`
 
 use knotlab_lab::cinch::{
     BallCapstanParams, CapstanParams, capstan_ratio, run_capstan, run_capstan_over_ball,

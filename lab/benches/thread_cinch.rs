@@ -13,7 +13,7 @@
 //! scene's wrap loses a turn at 6.0 N (6.4 N laid twisted between segments, until session 29; 5.9 N
 //! with the twist free).
 //!
-//! `cargo bench -p knotlab-bench --bench thread_cinch`
+//! `cargo bench -p knotlab-lab --bench thread_cinch`
 
 use std::time::Instant;
 

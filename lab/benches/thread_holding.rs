@@ -12,7 +12,7 @@
 //! untwisted (session 29) it also holds with only A's free end let go (B's held, 0.2-0.8 mm, 4.6 mm
 //! at 0.78 mm segments and friction 1.0); with B's let go it comes off, as with both.
 //!
-//! `cargo bench -p knotlab-bench --bench thread_holding`
+//! `cargo bench -p knotlab-lab --bench thread_holding`
 
 use knotlab_lab::cinch::{HoldingParams, run_holding};
 use knotlab_sim::physics::SolverParams;

@@ -18,7 +18,7 @@
 //! in one, less in two; at 0.5, 0.5/4.1/13.7 mm flat against 7.5/19.3/11.4 mm capsized. Flat, the
 //! knots settle 0.5-25 mm before they hold.
 //!
-//! `cargo bench -p knotlab-bench --bench thread_reef`
+//! `cargo bench -p knotlab-lab --bench thread_reef`
 
 use knotlab_lab::reef::{ReefOutcome, ReefParams, run_reef};
 use knotlab_sim::physics::HealthError;

@@ -2,7 +2,7 @@
 //! between segments free or locked ([`ThreadParams::twist_free`]), friction, and collisions between all
 //! non-adjacent segments.
 //!
-//! Discretisation chosen by measurement (`cargo bench -p knotlab-bench --bench thread` prints the full
+//! Discretisation chosen by measurement (`cargo bench -p knotlab-lab --bench thread` prints the full
 //! curve). Rapier's impulse joints are solved by projected Gauss-Seidel, whose error along a chain grows
 //! about as segments^2 / (substeps x sweeps): a 0.25 m thread held at one end and pulled with 2 N, dt
 //! 1 ms, on one core of the 2-core reference machine (worst joint gap / segment length, ms per step):
@@ -56,7 +56,7 @@ pub struct ThreadParams {
     /// twist locked, a torsion-stiff thread). A capsule 0.4 mm round spins at the slightest torque (its
     /// inertia about its axis is 1e-11 kg m^2, so no twist spring the solver can hold resists it), and
     /// strands that spin roll over each other instead of sliding: friction then holds almost nothing
-    /// (`cargo bench -p knotlab-bench --bench thread_capstan`).
+    /// (`cargo bench -p knotlab-lab --bench thread_capstan`).
     #[serde(default = "twist_free")]
     pub twist_free: bool,
     /// How the suture is simulated: Rapier's capsule chain (the default) or the XPBD rope

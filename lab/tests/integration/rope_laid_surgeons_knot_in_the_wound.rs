@@ -2,7 +2,7 @@
 //! (`knotlab_lab::wound`): snugged at 2 N by its free ends, it draws the wound closed, the
 //! thread sliding through the four stitch points, and stays a surgeon's knot through the holding
 //! test; the wound opens only by the thread the knot gives up to the loop. (How far the load opens
-//! the wound is printed by `cargo bench -p knotlab-bench --bench rope_knot`; that a stiff rope's
+//! the wound is printed by `cargo bench -p knotlab-lab --bench rope_knot`; that a stiff rope's
 //! knot holds it closed where a string's does not is
 //! `string_surgeons_knot_gave_the_wound_its_gap_back.rs`.)
 

@@ -4,7 +4,7 @@
 //! presses on itself only as hard as the loop pulls it, so friction holds too little. A rope as stiff
 //! as suture (EI = 1e-7 N m², below a 3-0 monofilament's) keeps its bends pressed together with no
 //! tension at all, and the same knot holds the wound within 0.2 mm (0.01-0.17 mm over the six
-//! layouts). `cargo bench -p knotlab-bench --bench rope_knot` prints the table.
+//! layouts). `cargo bench -p knotlab-lab --bench rope_knot` prints the table.
 
 use super::common;
 

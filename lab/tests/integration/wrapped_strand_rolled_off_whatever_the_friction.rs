@@ -5,7 +5,7 @@
 //! The shipped thread locks the twist; with the ends held as jaws hold them the wrap then holds a
 //! ratio of 1.5 at the scene's friction (0.15: the equation allows 6.6), where the twist-free strand
 //! slides to its end. (Laid twisted, before session 29, it held 2; laid untwisted it slides 12 mm at
-//! 2.) `cargo bench -p knotlab-bench --bench thread_capstan` prints the whole table.
+//! 2.) `cargo bench -p knotlab-lab --bench thread_capstan` prints the whole table.
 
 use knotlab_lab::cinch::{CapstanParams, run_capstan};
 use knotlab_sim::scene::parse_scene;

@@ -3,7 +3,7 @@
 //! the other for 1 s of simulated time (dt 1 ms); printed: the worst joint gap over the last half second
 //! as a fraction of a segment, milliseconds per step and the real-time factor, on one core.
 //!
-//! `cargo bench -p knotlab-bench --bench thread`
+//! `cargo bench -p knotlab-lab --bench thread`
 
 use std::time::Instant;
 
