@@ -1,17 +1,11 @@
 //! Benchmark: the controller's per-cycle cost per arm (target: at most 50 microseconds).
 //!
-//! `cargo bench -p knotlab-bench --bench controller` runs a 10 s skill on three instrument arms and
-//! times every `Controller::step`: reading the devices, events, interpolation, trocar-constrained IK,
-//! step shaping, the limit decorators (position and velocity, as a rig config wraps every driver) and
-//! the writes. Two rigs:
-//! - "encoding": each arm servo encodes its MOVE into a 196-byte MXT packet and decodes a reply, as the
-//!   MELFA driver does, without a socket: the controller's own cost;
-//! - "udp": one arm through the real MELFA driver to the emulator on loopback (unpaced, on a thread of
-//!   its own): adds two system calls a side and the emulator's work, which share the machine's cores.
-//!
-//! It prints the median, 10th and 90th percentile of the per-cycle time divided by the arms.
-
-use std::time::Instant;
+//! `cargo bench -p knotlab-bench --bench controller` times `Controller::step` with divan over 1,000
+//! cycles of a 10 s skill (a slow circle with a rocking tip frame): reading the devices, events,
+//! interpolation, trocar-constrained IK, step shaping, the limit decorators (position and velocity,
+//! as a rig config wraps every driver) and the writes. Two rigs: three arms whose servos encode MXT
+//! in memory (the controller's own cost, shown per arm), and one arm through the MELFA driver to the
+//! emulator on loopback UDP.
 
 use knotlab_hw::controller::{ArmSetup, Controller, ControllerParams, Status};
 use knotlab_hw::device::dummy::{DummyForceSensor, DummyInstrumentDrive, DummyPedals, VirtualClock};
@@ -120,27 +114,6 @@ fn decorated(servo: Box<dyn ArmServo>, arm: ArmName, model: &ArmModel, period_s:
     Box::new(PositionLimit::arm(servo, id, model.limits))
 }
 
-/// Per-cycle microseconds per arm: (median, p10, p90, cycles).
-fn time_run(
-    controller: &mut Controller,
-    skill: Skill,
-    arms: usize,
-) -> Result<(f64, f64, f64, usize), Box<dyn std::error::Error>> {
-    controller.load_skill(skill)?;
-    let mut per_cycle_us = Vec::new();
-    loop {
-        let start = Instant::now();
-        let status = controller.step()?.status;
-        per_cycle_us.push(start.elapsed().as_secs_f64() * 1e6 / arms as f64);
-        if status != Status::Running {
-            break;
-        }
-    }
-    per_cycle_us.sort_by(f64::total_cmp);
-    let at = |q: f64| per_cycle_us[((per_cycle_us.len() - 1) as f64 * q).round() as usize];
-    Ok((at(0.5), at(0.1), at(0.9), per_cycle_us.len()))
-}
-
 /// Three instrument arms whose servos speak MXT in memory, with their setups and the skill.
 fn encoding_rig(
     rig: &Rig,
@@ -180,26 +153,40 @@ fn encoding_rig(
     Ok((controller, setups, Skill { name: "circles".into(), tracks }))
 }
 
-fn main() -> Result<(), Box<dyn std::error::Error>> {
-    let rig = Rig::shipped()?;
+fn main() {
+    divan::main();
+}
+
+/// Cycles timed per run: within the skill's 10 s (1,408 cycles at the CR750's 7.1 ms).
+const SAMPLES: u32 = 10;
+const CYCLES_PER_SAMPLE: u32 = 100;
+
+/// One controller cycle of three instrument arms whose servos encode their MOVE into an MXT packet
+/// and decode a reply in memory, as the MELFA driver does without a socket: the controller's own
+/// cost, counted per arm.
+#[divan::bench(sample_count = SAMPLES, sample_size = CYCLES_PER_SAMPLE)]
+fn cycle_three_arms_mxt_in_memory(bencher: divan::Bencher) {
+    let rig = Rig::shipped().expect("the shipped rig");
     let names = [ArmName::Left, ArmName::Right, ArmName::Assist];
-    let period_s = CR750_CYCLE_S;
+    let (mut controller, _, skill) = encoding_rig(&rig, &names, CR750_CYCLE_S).expect("the rig builds");
+    controller.load_skill(skill).expect("the skill loads");
+    bencher.counter(divan::counter::ItemsCount::new(names.len())).bench_local(|| {
+        let report = controller.step().expect("a healthy cycle");
+        assert_eq!(report.status, Status::Running, "the skill runs through every timed cycle");
+    });
+}
 
-    // A first run warms the caches; the second is timed.
-    let (mut controller, _, skill) = encoding_rig(&rig, &names, period_s)?;
-    time_run(&mut controller, skill, names.len())?;
-    let (mut controller, setups, skill) = encoding_rig(&rig, &names, period_s)?;
-    let (median, p10, p90, cycles) = time_run(&mut controller, skill.clone(), names.len())?;
-    println!(
-        "controller cycle, 3 arms, MXT encoding in memory: median {median:.2} us/arm (p10 {p10:.2}, p90 {p90:.2}) over {cycles} cycles; target <= 50 us"
-    );
-
-    // One arm through the MELFA driver and the emulator over loopback UDP.
-    let name = ArmName::Left;
+/// One controller cycle of one arm through the real MELFA driver to the emulator on loopback UDP
+/// (unpaced, on a thread of its own): adds two system calls a side and the emulator's work, which
+/// share the machine's cores.
+#[divan::bench(sample_count = SAMPLES, sample_size = CYCLES_PER_SAMPLE)]
+fn cycle_one_arm_melfa_over_udp(bencher: divan::Bencher) {
+    let rig = Rig::shipped().expect("the shipped rig");
+    let (name, period_s) = (ArmName::Left, CR750_CYCLE_S);
     let model = rig.arm(name).model;
-    let start = parked(&model, name)?;
+    let start = parked(&model, name).expect("the arm parks");
     let emulator = Emulator::bind(
-        "127.0.0.1:0".parse()?,
+        "127.0.0.1:0".parse().expect("an address"),
         false,
         EmulatorConfig {
             layout: Layout::H7,
@@ -211,10 +198,11 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             pace: false,
             idle_timeout_s: Some(10.0),
         },
-    )?;
-    let addr = emulator.local_addr()?;
+    )
+    .expect("the emulator binds");
+    let addr = emulator.local_addr().expect("its address");
     let thread = emulator.spawn();
-    let melfa = MelfaArm::connect(MelfaConfig::new(name, addr, &model.limits))?;
+    let melfa = MelfaArm::connect(MelfaConfig::new(name, addr, &model.limits)).expect("the driver connects");
     let devices = DeviceSet {
         arms: vec![(
             name,
@@ -228,14 +216,14 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         masters: Vec::new(),
         clock: Box::new(VirtualClock::new(period_s)),
     };
-    let mut controller = Controller::new(devices, &setups[..1], ControllerParams::default())?;
-    let one = Skill { name: "circle".into(), tracks: vec![skill.tracks[0].clone()] };
-    let (median, p10, p90, cycles) = time_run(&mut controller, one, 1)?;
-    controller.shutdown()?;
-    let report = thread.join().map_err(|_| "the emulator thread panicked")??;
-    println!(
-        "controller cycle, 1 arm, MELFA driver over loopback UDP to the emulator: median {median:.2} us (p10 {p10:.2}, p90 {p90:.2}) over {cycles} cycles ({} MOVEs served)",
-        report.moves
-    );
-    Ok(())
+    let setups = [ArmSetup { arm: name, model, world_trocar_m: trocar(name) }];
+    let mut controller = Controller::new(devices, &setups, ControllerParams::default()).expect("a controller");
+    let skill = Skill { name: "circle".into(), tracks: vec![track(&model, name, &start)] };
+    controller.load_skill(skill).expect("the skill loads");
+    bencher.bench_local(|| {
+        let report = controller.step().expect("a healthy cycle");
+        assert_eq!(report.status, Status::Running, "the skill runs through every timed cycle");
+    });
+    controller.shutdown().expect("a clean shutdown");
+    thread.join().expect("the emulator thread").expect("the emulator");
 }
