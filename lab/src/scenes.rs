@@ -1,5 +1,11 @@
 //! The scenes the experiments start from, compiled in, and the chain made finer.
 
+/// The shipped nominal scene (`scenarios/default.toml`, compiled in); exits with the scene's error
+/// if it does not parse.
+pub fn shipped_scene() -> knotlab_sim::scene::SceneConfig {
+    scene_or_exit(include_str!("../../scenarios/default.toml"), "scenarios/default.toml")
+}
+
 /// The capsule chain's scene (`scenarios/chain.toml`, compiled in: the nominal scene with Rapier's
 /// chain as the suture, and Rapier's solver at the 8 substeps of 4 sweeps its joints need) for the
 /// chain's benchmarks; exits with the scene's error if it does not parse.

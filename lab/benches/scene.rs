@@ -4,7 +4,8 @@
 //! the real-time factor (simulated seconds per wall second), ms per step, the worst joint gap as a
 //! fraction of a segment, tunnelling events and health failures. Target: 5x real time.
 //!
-//! `cargo bench -p knotlab-bench --bench scene`
+//! `cargo bench -p knotlab-lab --bench scene` (the shipped scene's speed alone: `cargo bench -p
+//! knotlab-bench --bench scene_step`)
 
 use knotlab_hw::rig::Rig;
 use knotlab_scenarios::stress::run_stress;
@@ -37,7 +38,7 @@ fn main() {
         (60, 1.0, 16, 4),
     ];
     for (segments, dt_ms, iterations, sweeps) in points {
-        let mut scene = knotlab_bench::shipped_scene();
+        let mut scene = knotlab_lab::scenes::shipped_scene();
         scene.thread.segments = segments;
         scene.solver.dt_s = dt_ms * 1e-3;
         scene.solver.solver_iterations = iterations;

@@ -1,0 +1,31 @@
+//! Benchmark: the shipped scene (four arms through their servos, the rope through the stitch, the
+//! flaps on their slides, the needle, the grasps) stepping through the `knotlab sim` stress sequence,
+//! on one core. Target: faster than real time (a step of 1 ms in under 1 ms).
+//!
+//! `cargo bench -p knotlab-bench --bench scene_step` times the sequence played over one simulated
+//! second (1,000 steps) with divan, counted per step. (How the chain's and the solver's discretisation trade speed for
+//! stretch and tunnelling: `cargo bench -p knotlab-lab --bench scene`.)
+
+use knotlab_hw::rig::Rig;
+use knotlab_scenarios::stress::run_stress;
+use knotlab_sim::world::SimWorld;
+
+fn main() {
+    divan::main();
+}
+
+/// The stress sequence over one second, from the task's start condition.
+#[divan::bench(sample_count = 5, sample_size = 1)]
+fn stress_sequence_in_one_second(bencher: divan::Bencher) {
+    let rig = Rig::shipped().expect("the shipped rig");
+    let scene = knotlab_bench::shipped_scene();
+    let steps = (1.0 / scene.solver.dt_s).round() as usize;
+    bencher
+        .counter(divan::counter::ItemsCount::new(steps))
+        .with_inputs(|| SimWorld::new(scene.clone(), rig.clone()).expect("the shipped scene builds"))
+        .bench_local_values(|mut world| {
+            let report = run_stress(&mut world, 1.0, &[], &mut |_, _| {});
+            assert!(report.failure.is_none(), "a healthy second: {:?}", report.failure);
+            world
+        });
+}
