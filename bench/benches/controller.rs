@@ -217,7 +217,8 @@ fn cycle_one_arm_melfa_over_udp(bencher: divan::Bencher) {
         clock: Box::new(VirtualClock::new(period_s)),
     };
     let setups = [ArmSetup { arm: name, model, world_trocar_m: trocar(name) }];
-    let mut controller = Controller::new(devices, &setups, ControllerParams::default()).expect("a controller");
+    let mut controller =
+        Controller::new(devices, &setups, ControllerParams::default()).expect("a controller");
     let skill = Skill { name: "circle".into(), tracks: vec![track(&model, name, &start)] };
     controller.load_skill(skill).expect("the skill loads");
     bencher.bench_local(|| {

@@ -77,7 +77,8 @@ fn instantiate_double_wrap(bencher: divan::Bencher, mask: &str) {
     if mask != "free space" {
         region.block_box(&mut obstacles, Vector2::new(-0.003, -0.03), Vector2::new(0.003, -0.008));
     }
-    let settings = InstantiateSettings { solver: PressureSolverKind::Direct, ..InstantiateSettings::default() };
+    let settings =
+        InstantiateSettings { solver: PressureSolverKind::Direct, ..InstantiateSettings::default() };
     bencher.bench_local(|| {
         black_box(instantiate(&demo, &site, &region, &obstacles, &settings).expect("an instantiation"))
     });
