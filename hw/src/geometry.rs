@@ -60,6 +60,7 @@ pub fn arc_lengths(points: &[Vector3<f64>]) -> Vec<f64> {
 mod tests {
     use super::*;
 
+    /// Arc lengths sum a polyline's pieces from zero at its first point; an empty polyline has none.
     #[test]
     fn arc_lengths_accumulate_the_pieces() {
         let points = [Vector3::zeros(), Vector3::new(3.0, 4.0, 0.0), Vector3::new(3.0, 4.0, 2.0)];
@@ -67,6 +68,8 @@ mod tests {
         assert!(arc_lengths(&[]).is_empty());
     }
 
+    /// Segment distances are right for crossing segments, parallel ones offset past an end, and a segment
+    /// shrunk to a point.
     #[test]
     fn distances_of_crossing_parallel_and_degenerate_segments() {
         let v = Vector3::new;

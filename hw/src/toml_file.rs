@@ -133,6 +133,7 @@ mod tests {
         count: usize,
     }
 
+    /// A wrong type, a misspelt key and broken syntax are each reported at their line and key path.
     #[test]
     fn problems_name_line_and_key() {
         let p = deserialize::<Outer>("[inner]\ncount = \"two\"\n").unwrap_err();

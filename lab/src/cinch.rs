@@ -570,6 +570,8 @@ pub fn run_capstan_over_ball(
 mod tests {
     use super::*;
 
+    /// A tight helix measures at its own radius with its whole length in the wrap zone, and a strand far from
+    /// the axis measures nothing.
     #[test]
     fn a_tight_helix_lies_at_its_radius_with_its_length_in_the_zone() {
         let axis = [Vector3::new(-0.1, 0.0, 0.0), Vector3::new(0.1, 0.0, 0.0)];
@@ -589,6 +591,8 @@ mod tests {
         assert_eq!(wrap_tightness(&axis, &far, WRAP_ZONE_M), (None, 0.0));
     }
 
+    /// The winding count gives a helix's turns round its axis (negative when wound the other way), and a
+    /// strand that passes by and comes back on the same side winds none.
     #[test]
     fn a_helix_winds_its_turns_round_its_axis() {
         let axis = [Vector3::new(-0.1, 0.0, 0.0), Vector3::new(0.1, 0.0, 0.0)];

@@ -279,6 +279,8 @@ pub fn run_reef(
 mod tests {
     use super::*;
 
+    /// The laid loose knot classifies as a square knot, and with blue's free end led out over the bend
+    /// instead it classifies as a single throw (a trefoil).
     #[test]
     fn the_loose_knot_is_a_square_knot() {
         let knot = loose_knot(0.003, 0.0015, 0.03);

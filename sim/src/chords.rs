@@ -46,6 +46,7 @@ pub fn chord_points(polyline: &[Vector3<f64>], step_m: f64, count: usize) -> Vec
 mod tests {
     use super::*;
 
+    /// Chord points fall exactly a step apart, follow the polyline round its corner and run on past its end.
     #[test]
     fn chord_points_are_a_step_apart_and_turn_corners() {
         let l = vec![Vector3::zeros(), Vector3::new(0.1, 0.0, 0.0), Vector3::new(0.1, 0.1, 0.0)];

@@ -91,6 +91,7 @@ mod tests {
         }
     }
 
+    /// A step command is reached exactly, the motor never exceeding its speed or acceleration limit.
     #[test]
     fn a_step_command_is_reached_within_limits() {
         let s = servo(0.0, 0.0);
@@ -109,6 +110,7 @@ mod tests {
         assert!((state.link_rad - 1.0).abs() < 1e-9, "{state:?}");
     }
 
+    /// With a calibration offset the link settles at the command plus the offset, not at the command.
     #[test]
     fn the_link_settles_at_command_plus_calibration_offset() {
         let s = servo(0.0, 0.05);
@@ -119,6 +121,8 @@ mod tests {
         assert!((state.link_rad - 0.55).abs() < 1e-9, "{state:?}");
     }
 
+    /// Driven forward the link lags the motor by half the play; backed off by less than the play it stays
+    /// still, and backed off further it follows, leading the motor by half the play.
     #[test]
     fn reversing_direction_crosses_the_play_before_the_link_moves() {
         let s = servo(0.02, 0.0);
@@ -141,6 +145,7 @@ mod tests {
         assert!((state.link_rad - state.motor_rad - 0.01).abs() < 1e-9, "{state:?}");
     }
 
+    /// A command beyond the joint's position limit stops the link at the limit, not past it.
     #[test]
     fn commands_beyond_the_limits_stop_at_the_limit() {
         let s = servo(0.0, 0.0);

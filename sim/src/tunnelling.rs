@@ -127,6 +127,7 @@ mod tests {
         Capsule { a_m: Vector3::from(a), b_m: Vector3::from(b), radius_m: 0.001 }
     }
 
+    /// A segment moved through another over several steps counts as one tunnelling event.
     #[test]
     fn a_segment_moving_through_another_is_one_event() {
         let mut monitor = TunnellingMonitor::new(0.01);
@@ -187,6 +188,7 @@ mod tests {
         assert_eq!(monitor.events, 1);
     }
 
+    /// A segment that goes round past the end of another, changing sides beyond it, is no tunnelling event.
     #[test]
     fn a_segment_sliding_off_the_end_is_not_an_event() {
         let mut monitor = TunnellingMonitor::new(0.01);

@@ -5,6 +5,8 @@ use super::common;
 
 use common::{json, knotlab};
 
+/// `knotlab demo --json` reports each run's seed, verdict and knot at release, writes the snapshot,
+/// centreline and contacts files, and a recording that `knotlab learn` reads as a demonstration.
 #[test]
 fn demo_json_reports_each_run_and_writes_loadable_demonstrations() {
     let dir = std::env::temp_dir().join(format!("knotlab-demo-{}", std::process::id()));
@@ -93,6 +95,7 @@ fn demo_json_reports_each_run_and_writes_loadable_demonstrations() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
+/// An empty, reversed, non-numeric or single-number `--seeds` range is refused with exit code 2, naming it.
 #[test]
 fn bad_seed_ranges_are_refused() {
     for range in ["5..5", "7..3", "a..4", "3"] {
@@ -102,6 +105,8 @@ fn bad_seed_ranges_are_refused() {
     }
 }
 
+/// A narrower `--snapshot-half-width` draws a different snapshot and a bad one is refused; the centreline
+/// beside it classifies and draws through along the left's or assist's jaws, a bad arm or grip refused.
 #[test]
 fn snapshots_zoom_to_the_half_width_asked_for() {
     let dir = std::env::temp_dir().join(format!("knotlab-demo-zoom-{}", std::process::id()));
@@ -181,6 +186,8 @@ fn snapshots_zoom_to_the_half_width_asked_for() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
+/// `--knot-trace P` writes knot-trace.csv with its full header and a row every P seconds without drift;
+/// without the flag no trace is written, and a zero, negative or non-numeric period is refused.
 #[test]
 fn the_knot_trace_takes_the_knot_and_the_gauges_at_the_period_asked() {
     let out = std::env::temp_dir().join(format!("knotlab-demo-trace-{}", std::process::id()));
@@ -273,6 +280,8 @@ fn the_knot_trace_takes_the_knot_and_the_gauges_at_the_period_asked() {
     let _ = std::fs::remove_dir_all(&out);
 }
 
+/// `--expert FILE` changes the scripted expert's plan (base.toml matches an empty file), and a file with a
+/// bad key is refused, naming the file, the line and the key.
 #[test]
 fn the_experts_geometry_comes_from_a_file_and_a_bad_one_is_refused_naming_its_key() {
     let dir = std::env::temp_dir().join(format!("knotlab-demo-expert-{}", std::process::id()));
@@ -310,6 +319,8 @@ fn the_experts_geometry_comes_from_a_file_and_a_bad_one_is_refused_naming_its_ke
     let _ = std::fs::remove_dir_all(&dir);
 }
 
+/// `knotlab learn` without `--demo` reads scenarios/demos/instrument-tie, accepts it and learns every
+/// primitive of the shipped pattern (L1 to L6, R2 to R5 and A1).
 #[test]
 fn the_learner_accepts_the_canonical_demonstration_by_default() {
     let dir = std::env::temp_dir().join(format!("knotlab-canonical-{}", std::process::id()));

@@ -55,6 +55,8 @@ fn ghia_table() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("scenarios/reference/ghia1982-cavity.csv")
 }
 
+/// `fluid cavity` at Re 100 on 32 x 32 cells reaches a steady, divergence-free flow within 0.02 of Ghia's
+/// table and writes the centreline profiles at the table's stations, the lid's and walls' values exact.
 #[test]
 fn cavity_writes_the_centreline_profiles_at_ghias_stations() {
     let dir = TempDir::new("cavity");
@@ -107,6 +109,8 @@ fn cavity_writes_the_centreline_profiles_at_ghias_stations() {
     assert!(value("u", 0.5) < -0.1, "the vortex turns back along the centre");
 }
 
+/// `fluid cavity` refuses a non-positive `--re`, too small an `--n` and a reference table with a bad number
+/// (naming the file and line), and writes nothing.
 #[test]
 fn cavity_refuses_bad_flags() {
     let dir = TempDir::new("cavity-bad");
@@ -125,6 +129,8 @@ fn cavity_refuses_bad_flags() {
     assert!(!Path::new(&out).exists(), "nothing written on bad input");
 }
 
+/// `fluid primitive` detours round a box obstacle with clearance in a divergence-free flow, and writes a path
+/// with no point in a blocked cell of the grid file, timed from 0 to the reported duration.
 #[test]
 fn primitive_writes_the_path_and_the_grid_around_an_obstacle() {
     let dir = TempDir::new("primitive");
@@ -176,6 +182,8 @@ fn primitive_writes_the_path_and_the_grid_around_an_obstacle() {
     assert!((t[t.len() - 1] - number(&v, "duration_s")).abs() < 1e-12);
 }
 
+/// `fluid primitive --path-file` follows the file's path to its end; a short row, a zero speed, a bad
+/// obstacles file or a malformed `--obstacle` is refused, naming the file, line or field.
 #[test]
 fn primitive_reads_a_path_file_and_names_bad_input() {
     let dir = TempDir::new("primitive-file");
@@ -201,6 +209,8 @@ fn primitive_reads_a_path_file_and_names_bad_input() {
     assert!(stderr.contains("x0,y0,x1,y1"), "{stderr}");
 }
 
+/// 3D solids (a capsule and a tilted box) cutting the plane block cells that the path detours round with
+/// clearance; a solid with a negative radius is refused, naming the solid and the field.
 #[test]
 fn primitive_avoids_solids_cutting_the_plane() {
     let dir = TempDir::new("primitive-solids");

@@ -47,6 +47,8 @@ fn field<'a>(v: &'a Value, key: &str) -> &'a Value {
     v.get(key).unwrap_or_else(|| panic!("no '{key}' in {v}"))
 }
 
+/// `knot classify` names a trefoil, and the (2, 5) torus knot as a surgeon's knot, with their crossings,
+/// determinant and writhe, all 13 projection directions agreeing, in JSON and in text.
 #[test]
 fn classify_a_trefoil_and_a_cinquefoil() {
     let dir = TempDir::new("knots");
@@ -78,6 +80,7 @@ fn classify_a_trefoil_and_a_cinquefoil() {
     assert!(text.contains("13 of 13 directions agree"), "{text}");
 }
 
+/// A wavy, untied thread (its file with a comment and a blank line) is the unknot: no crossings, no span.
 #[test]
 fn an_untied_thread_is_the_unknot() {
     let dir = TempDir::new("unknot");
@@ -94,6 +97,8 @@ fn an_untied_thread_is_the_unknot() {
     assert!(field(&v, "span").is_null());
 }
 
+/// Given the tissue plane and stitch, `knot classify` says whether the knot is down on the tissue and its
+/// height when not; only some of the three flags, or a zero normal, is refused.
 #[test]
 fn knot_down_on_the_tissue_or_not() {
     let dir = TempDir::new("down");
@@ -152,6 +157,8 @@ fn refused(dir: &TempDir, name: &str, text: &str, message: &str) {
     assert!(Path::new(v["file"].as_str().expect("file name")).ends_with(name));
 }
 
+/// A centreline file with too few points, a repeated point, a non-finite or non-numeric value or a short
+/// line, or a missing file, is refused without a panic, naming the file, the line and the reason.
 #[test]
 fn bad_files_are_named_with_line_and_reason() {
     let dir = TempDir::new("bad");

@@ -48,6 +48,8 @@ fn field<'a>(v: &'a Value, key: &str) -> &'a Value {
     v.get(key).unwrap_or_else(|| panic!("no '{key}' in {v}"))
 }
 
+/// `knotlab learn` accepts a synthetic demonstration, lists every detected feature in time order, decomposes
+/// it into the pattern's 11 primitives per instrument, and writes the knowledge base it prints.
 #[test]
 fn learn_prints_the_decomposition_and_writes_the_knowledge_base() {
     let dir = TempDir::new("ok");
@@ -127,6 +129,8 @@ fn learn_prints_the_decomposition_and_writes_the_knowledge_base() {
     }
 }
 
+/// A demonstration with one wrap, no tail grasp or cut short is rejected with exit code 3, the missing
+/// element and the reason, and no knowledge base is written.
 #[test]
 fn demonstrations_that_are_not_the_task_are_rejected_with_the_reason() {
     let dir = TempDir::new("rejected");
@@ -164,6 +168,8 @@ fn demonstrations_that_are_not_the_task_are_rejected_with_the_reason() {
     }
 }
 
+/// A NaN in a demonstration, an unknown feature kind in a pattern, a missing demonstration and a missing
+/// `--out` are refused, naming the file, line and field, or the flag.
 #[test]
 fn bad_files_and_flags_are_named() {
     let dir = TempDir::new("bad");

@@ -78,6 +78,8 @@ fn lines(out: &Path) -> Vec<serde_json::Value> {
         .collect()
 }
 
+/// A Monte Carlo run of one seed writes a byte-identical summary.json with one job and with two, its draws
+/// varying by trial, each line counting the thread's self-crossings and naming the first.
 #[test]
 fn the_same_seed_gives_the_same_summary_with_one_or_two_jobs() {
     let (a, b) = (dir("jobs1"), dir("jobs2"));
@@ -102,6 +104,8 @@ fn the_same_seed_gives_the_same_summary_with_one_or_two_jobs() {
     std::fs::remove_dir_all(&b).ok();
 }
 
+/// A run whose last results line is cut short resumes with every trial counted exactly once; a damaged line
+/// that is not the last is an error naming the file and the line.
 #[test]
 fn a_killed_run_resumes_with_every_trial_once() {
     let out = dir("resume");
@@ -123,6 +127,7 @@ fn a_killed_run_resumes_with_every_trial_once() {
     std::fs::remove_dir_all(&out).ok();
 }
 
+/// A Monte Carlo run killed with SIGKILL resumes with every trial of every method counted exactly once.
 #[test]
 fn a_run_killed_with_sigkill_resumes_with_every_trial_once() {
     let out = dir("sigkill");
@@ -136,6 +141,8 @@ fn a_run_killed_with_sigkill_resumes_with_every_trial_once() {
     std::fs::remove_dir_all(&out).ok();
 }
 
+/// Ctrl-C (SIGINT) stops a Monte Carlo run with exit code 130, whole lines only and a summary covering them,
+/// and the run resumes with every trial counted once.
 #[test]
 fn ctrl_c_stops_cleanly_and_the_run_resumes() {
     let out = dir("sigint");
@@ -164,6 +171,8 @@ fn ctrl_c_stops_cleanly_and_the_run_resumes() {
     std::fs::remove_dir_all(&out).ok();
 }
 
+/// Two shards merged give the single run's summary.json and lines; a merge with a shard missing, or with
+/// another seed's shard, is refused, naming what is missing or differs.
 #[test]
 fn two_shards_merged_give_the_single_run() {
     let (whole, s0, s1, merged) = (dir("whole"), dir("shard0"), dir("shard1"), dir("merged"));
@@ -215,6 +224,8 @@ fn knotlab_mc_seed(out: &Path, trials: u64, seed: &str, more: &[&str]) -> (i32, 
     (code, format!("{stdout}{stderr}"))
 }
 
+/// Another seed's output directory and an unknown preset are refused with the reason; the `ideal` preset
+/// draws no play or calibration error, and `endopar` draws play.
 #[test]
 fn another_runs_directory_and_an_unknown_preset_are_named() {
     let out = dir("another");

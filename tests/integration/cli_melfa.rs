@@ -11,6 +11,8 @@ use knotlab_hw::device::ArmServo;
 use knotlab_hw::melfa::{Layout, MelfaArm, MelfaConfig};
 use knotlab_hw::rig::{ArmName, Rig};
 
+/// The MELFA emulator serves a pre-H7 driver session over loopback, drops every third reply as asked, and on
+/// END exits cleanly with a summary matching the moves, the drops and the final joints.
 #[test]
 fn the_emulator_serves_a_session_and_exits_on_end() {
     let mut child = Command::new(env!("CARGO_BIN_EXE_knotlab"))
@@ -77,6 +79,7 @@ fn the_emulator_serves_a_session_and_exits_on_end() {
     assert!((final_j1 - (ready[0] + 0.012)).abs() < 1e-6, "{final_j1}");
 }
 
+/// The MELFA emulator refuses to bind a non-loopback address without `--allow-remote`.
 #[test]
 fn a_remote_address_is_refused_without_allow_remote() {
     let (code, _, stderr) = common::knotlab(&["melfa-emulator", "--bind", "0.0.0.0:0"]);

@@ -56,6 +56,8 @@ fn png_size(path: &Path) -> (u32, u32) {
     (word(16), word(20))
 }
 
+/// `knotlab obstacles` on the default scene gives consistent counts and writes the CSV and PNG; the GPU's
+/// cells equal the CPU's, and a CPU fallback fails the test unless KNOTLAB_ALLOW_NO_GPU=1.
 #[test]
 fn default_scene_on_cpu_and_gpu() {
     let dir = TempDir::new("default");
@@ -127,6 +129,7 @@ fn default_scene_on_cpu_and_gpu() {
     assert_eq!(gpu_rows, rows, "the GPU's cells equal the CPU's");
 }
 
+/// A scene obstacle in a custom plane blocks the cells under it as collisions; cells far from it stay free.
 #[test]
 fn an_obstacle_in_the_plane_blocks_its_cells() {
     let dir = TempDir::new("obstacle");
@@ -161,6 +164,7 @@ fn an_obstacle_in_the_plane_blocks_its_cells() {
     assert_eq!(cell(14, 0)[5], "free", "far from the box");
 }
 
+/// Without `--json`, `knotlab obstacles` prints the blocked, checked and elapsed counts and writes the PNG.
 #[test]
 fn text_output_prints_the_counts() {
     let dir = TempDir::new("text");
@@ -185,6 +189,8 @@ fn text_output_prints_the_counts() {
     assert!(Path::new(&out).join("obstacles.png").exists());
 }
 
+/// An unknown arm, non-perpendicular plane axes, a jaw direction for the endoscope, a missing scene, a
+/// partial plane or too few cells is refused, naming the cause.
 #[test]
 fn bad_flags_are_named() {
     let dir = TempDir::new("bad");

@@ -103,6 +103,8 @@ fn assert_self_contained(html: &str) {
     }
 }
 
+/// `knotlab report` writes a self-contained HTML report with each method's counts by verdict, a failure-mode
+/// chart and one chart per varying parameter, its figures following from the results lines.
 #[test]
 fn the_report_shows_every_method_and_a_chart_per_varying_parameter() {
     let d = dir("full");
@@ -148,6 +150,8 @@ fn the_report_shows_every_method_and_a_chart_per_varying_parameter() {
     std::fs::remove_dir_all(&d).ok();
 }
 
+/// A parameter fixed across trials is stated in text instead of charted, the report goes to `--out`, and
+/// `--json` gives each method's trials, successes and rate as the lines say.
 #[test]
 fn a_fixed_parameter_is_said_in_text_and_json_matches_the_lines() {
     let d = dir("fixed");
@@ -180,6 +184,8 @@ fn a_fixed_parameter_is_said_in_text_and_json_matches_the_lines() {
     std::fs::remove_dir_all(&d).ok();
 }
 
+/// A directory with no results.jsonl, an empty one or a malformed line is an error naming the file and, for a
+/// bad line, its number.
 #[test]
 fn a_directory_without_results_or_with_a_bad_line_is_named() {
     let d = dir("missing");

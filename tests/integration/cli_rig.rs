@@ -6,6 +6,8 @@ use serde_json::Value;
 
 use common::{json, knotlab};
 
+/// `rig check` accepts the shipped rig: four arms with their joints and limits and the models agreeing, in
+/// JSON and in text.
 #[test]
 fn rig_check_validates_the_shipped_rig() {
     let (code, v) = json(&["rig", "check", "--json"]);
@@ -23,6 +25,7 @@ fn rig_check_validates_the_shipped_rig() {
     assert!(text.contains("OK") && text.contains("arm camera (endoscope)"), "{text}");
 }
 
+/// `rig check --urdf` fails on a non-finite joint origin, naming the file, the joint and the field.
 #[test]
 fn rig_check_names_the_broken_element_of_a_urdf_file() {
     let dir = std::env::temp_dir().join(format!("knotlab-cli-{}", std::process::id()));
@@ -85,6 +88,8 @@ fn rig_ik_then_fk_returns_to_the_target() {
     assert!(names.iter().all(|n| n.starts_with("left_")));
 }
 
+/// `rig ik` fails with exit code 1 and a specific message for a tip too close to the trocar, an insertion
+/// depth out of range and a jaw direction given for the camera.
 #[test]
 fn rig_ik_reports_typed_errors() {
     let (code, v) = json(&[
@@ -121,6 +126,8 @@ fn rig_ik_reports_typed_errors() {
     assert!(stderr.contains("--jaw-dir"), "{stderr}");
 }
 
+/// `rig fk` and `rig ik` name an unknown arm, a non-numeric joint, the wrong number of joints and a short
+/// vector, usage errors exiting 2.
 #[test]
 fn bad_arguments_are_named() {
     let (code, _, stderr) = knotlab(&["rig", "fk", "--arm", "middle", "--joints", "0,0,0,0,0,0"]);

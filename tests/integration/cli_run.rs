@@ -12,6 +12,8 @@ fn short(method: &str, extra: &[&str]) -> (i32, serde_json::Value) {
     json(&args)
 }
 
+/// A 1.5 s `knotlab run` of each method reports every verdict field: no knot yet, the wound open, no thread
+/// self-crossing, simulated, the preview not passed.
 #[test]
 fn a_short_trial_reports_its_verdict_for_every_method() {
     for method in ["replay", "dmp", "fluid"] {
@@ -35,6 +37,7 @@ fn a_short_trial_reports_its_verdict_for_every_method() {
     }
 }
 
+/// `--stitch-offset` and `--stitch-rotate` are reported back, and the moved skill runs without a fault.
 #[test]
 fn a_moved_stitch_moves_the_skill_and_its_way_in() {
     let (code, r) = short("dmp", &["--stitch-offset", "0.02,-0.01,0", "--stitch-rotate", "-20"]);
@@ -45,6 +48,8 @@ fn a_moved_stitch_moves_the_skill_and_its_way_in() {
     assert!(r["skill_duration_s"].as_f64().unwrap() > 10.0, "{r}");
 }
 
+/// A skill that fails the preview is refused before a real (MELFA) rig with exit code 4, naming the servo; a
+/// simulated rig is not gated.
 #[test]
 fn a_failed_preview_refuses_the_real_rig() {
     // No MELFA controller listens: had the gate let the skill through, connecting would fail with
@@ -59,6 +64,8 @@ fn a_failed_preview_refuses_the_real_rig() {
     assert_eq!(r["execution"]["status"], "simulated");
 }
 
+/// An unknown method, a missing skill file and a stitch moved out of reach are refused, naming the method,
+/// the file, or the moved scene, the arm and the trocar once.
 #[test]
 fn bad_arguments_are_named() {
     let (code, _, stderr) = knotlab(&["run", "--method", "spline", "--until", "1"]);
@@ -75,6 +82,8 @@ fn bad_arguments_are_named() {
     assert_eq!(stderr.matches("trocars.left").count(), 1, "said once: {stderr}");
 }
 
+/// The canonical demonstration replayed open-loop at its own stitch ties the surgeon's knot the evaluator
+/// accepts, the wound closed and the preview passed.
 #[test]
 fn the_canonical_demonstration_replayed_at_its_own_stitch_ties_the_knot() {
     // Issue 6: the recording captures what matters. Played back open-loop at the nominal scene (every
@@ -84,6 +93,8 @@ fn the_canonical_demonstration_replayed_at_its_own_stitch_ties_the_knot() {
     ties_at_its_own_stitch("replay");
 }
 
+/// The skill learned from the canonical demonstration, run by the fluid method at its own stitch, ties the
+/// surgeon's knot the evaluator accepts without any grip slipping.
 #[test]
 fn the_skill_learned_from_the_canonical_demonstration_ties_the_knot_at_its_own_stitch() {
     // Issue 10: learned by the shipped pattern and carried to the stitch by the paper's method (the

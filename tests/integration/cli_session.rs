@@ -7,6 +7,8 @@ use super::common;
 use common::{json, knotlab};
 use knotlab_learner::demonstration::load_demonstration;
 
+/// A one-second unpaced session on the sim rig is recorded as a demonstration that loads, with three
+/// instruments' samples and its source and scene named.
 #[test]
 fn a_short_session_is_recorded_as_a_demonstration() {
     let dir = std::env::temp_dir().join(format!("knotlab-cli-session-{}", std::process::id()));
@@ -30,6 +32,8 @@ fn a_short_session_is_recorded_as_a_demonstration() {
     assert_eq!(demo.metadata.scene, "scenarios/default.toml");
 }
 
+/// Without the `gamepad` feature the default gamepad rig is refused, saying to build with it and naming
+/// `pedals.backend` once.
 #[cfg(not(feature = "gamepad"))]
 #[test]
 fn the_gamepad_rig_needs_the_gamepad_feature() {

@@ -33,6 +33,8 @@ fn assert_has(paths: &BTreeSet<String>, wanted: &[&str]) {
     }
 }
 
+/// Rerun recordings of a short demo, of learning, of a fluid primitive and of a learned skill's trial decode
+/// with the expected entity paths on the `sim_time` and `step` timelines.
 #[test]
 fn a_short_trial_and_its_learning_read_back() {
     let dir = std::env::temp_dir().join(format!("knotlab-rerun-{}", std::process::id()));
@@ -136,6 +138,7 @@ fn a_short_trial_and_its_learning_read_back() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
+/// `--rerun` with a `--seeds` range is refused: one recording holds one trial.
 #[test]
 fn one_recording_is_one_trial() {
     let (code, _, err) =
@@ -144,6 +147,8 @@ fn one_recording_is_one_trial() {
     assert!(err.contains("--seed N, not --seeds"), "{err}");
 }
 
+/// `mc --record-trials` records only the trials asked for and `--record-failures` records every failed trial,
+/// each as a readable recording.
 #[test]
 fn a_monte_carlo_run_records_the_trials_asked_for_and_the_failures() {
     let dir = std::env::temp_dir().join(format!("knotlab-rerun-mc-{}", std::process::id()));

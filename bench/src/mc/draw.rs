@@ -115,6 +115,8 @@ mod tests {
             .expect("the default scene")
     }
 
+    /// Adding random obstacles to a scene shifts none of a trial's other draws; a sure obstacle lands within
+    /// its bounds in the moved tissue frame and an impossible one never appears.
     #[test]
     fn obstacles_are_placed_near_the_drawn_stitch_and_change_nothing_else() {
         let plain = scene();

@@ -331,6 +331,7 @@ pub fn run_mc_with(
 mod tests {
     use super::*;
 
+    /// A results line that lacks the self-crossing and slip fields reads, with those fields as none.
     #[test]
     fn lines_written_before_self_crossings_were_counted_still_read() {
         let out = std::env::temp_dir().join(format!("knotlab-mc-old-lines-{}", std::process::id()));
@@ -346,6 +347,7 @@ mod tests {
         std::fs::remove_dir_all(&out).ok();
     }
 
+    /// A trial line's first self-crossing (its time and segment pair) is written and reads back unchanged.
     #[test]
     fn a_lines_first_self_crossing_reads_back_as_written() {
         let crossing = knotlab_sim::thread_watch::SelfCrossing { time_s: 21.25, segments: (16, 35) };
@@ -359,6 +361,7 @@ mod tests {
         assert_eq!(serde_json::from_str::<TrialLine>(&text).unwrap(), line);
     }
 
+    /// How much of each free end a knot let through is written into the trial line and reads back unchanged.
     #[test]
     fn what_a_knot_let_through_reads_back_as_written() {
         let slid = knotlab_sim::evaluate::Slid { long_end_m: 0.011, tail_m: 0.039 };

@@ -149,6 +149,8 @@ impl RunInfo {
 mod tests {
     use super::*;
 
+    /// A shard such as `1/3` parses and holds every third trial, malformed shards are refused, and every
+    /// trial falls in exactly one shard of a run.
     #[test]
     fn shards_parse_and_split_the_trials() {
         let s: Shard = "1/3".parse().expect("shard");

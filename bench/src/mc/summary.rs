@@ -208,6 +208,7 @@ pub fn summarize(scene: &str, seed: u64, trials: u64, methods: &[Method], lines:
 mod tests {
     use super::*;
 
+    /// The 95 % Wilson interval matches the textbook, also with no successes, all successes or no trials.
     #[test]
     fn wilson_intervals_match_the_textbook() {
         // 8 of 10: 0.490 to 0.943 (Wilson 1927, z = 1.96).
@@ -228,6 +229,8 @@ mod tests {
         }
     }
 
+    /// The self-crossing tally counts only lines that carry a count, the trials with any and the total, and
+    /// the run summary reports that total.
     #[test]
     fn self_crossings_count_trials_and_passes_and_skip_lines_that_lack_them() {
         let lines = [line(0, Some(0)), line(1, Some(2)), line(2, None), line(3, Some(1))];

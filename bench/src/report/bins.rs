@@ -233,6 +233,8 @@ mod tests {
         super::super::test_line(method, draw, verdict)
     }
 
+    /// A value lands in its equal-width bin; the top value and anything above it fall in the last bin,
+    /// anything below in the first.
     #[test]
     fn values_fall_in_equal_width_bins_and_the_top_value_in_the_last() {
         assert_eq!(bin_index(0.0, 0.0, 1.0, 5), 0);
@@ -244,6 +246,8 @@ mod tests {
         assert_eq!(bin_index(7.0, 0.0, 1.0, 5), 4);
     }
 
+    /// Each bin counts its trials and successes with its own Wilson interval, and bins with no trials are
+    /// left out.
     #[test]
     fn bins_count_trials_and_successes_with_a_wilson_interval_each_and_skip_empty_ones() {
         let outcomes = [(0.0, true), (0.1, false), (0.5, true), (0.55, true), (1.0, false), (0.95, true)];
@@ -268,6 +272,8 @@ mod tests {
         assert!(bins[1].wilson_95[1] > 0.999 && bins[1].wilson_95[0] > 0.3);
     }
 
+    /// A parameter drawn at one value only is reported as a constant, not binned, and a degenerate range puts
+    /// everything in one bin instead of dividing by zero.
     #[test]
     fn a_parameter_with_one_value_is_constant_not_binned() {
         let lines: Vec<TrialLine> =
@@ -284,6 +290,8 @@ mod tests {
         assert!(matches!(displacement.shape, SweepShape::Binned { .. }), "{displacement:?}");
     }
 
+    /// Bins span the range of every method's values together, and lines whose draw lacks the value are
+    /// counted apart.
     #[test]
     fn bins_span_every_methods_values_and_lines_without_the_value_are_counted() {
         let mut lines = vec![
@@ -312,6 +320,7 @@ mod tests {
         );
     }
 
+    /// Stitch displacement is the drawn offset's norm; a malformed draw gives no value, not a wrong one.
     #[test]
     fn stitch_displacement_is_the_offsets_norm() {
         let l = line("fluid", 0.0, [0.003, 0.004, 0.0], "success");

@@ -178,11 +178,14 @@ pub fn page(title: &str, header: &str, sections: &[Section]) -> String {
 mod tests {
     use super::*;
 
+    /// Text taken from the results file is HTML-escaped, so it cannot inject markup into the page.
     #[test]
     fn text_from_the_results_file_is_escaped() {
         assert_eq!(escape("<b>\"a\" & 'b'</b>"), "&lt;b&gt;&quot;a&quot; &amp; &#39;b&#39;&lt;/b&gt;");
     }
 
+    /// A method's table shows the thread's self-crossings as the total in the trials with any, of those
+    /// that counted them.
     #[test]
     fn a_method_table_counts_the_threads_self_crossings() {
         let line = |trial, crossings| crate::mc::TrialLine {

@@ -108,6 +108,8 @@ mod tests {
         TrialLine { trial, seed: 3, ..super::super::test_line(method, serde_json::Value::Null, verdict) }
     }
 
+    /// Each method counts each trial once (the first of duplicate lines wins) with its verdicts and Wilson
+    /// interval, failure modes rank by count, and no lines give no run overview.
     #[test]
     fn each_method_counts_its_trials_once_with_its_verdicts() {
         let lines = unique_lines(&[

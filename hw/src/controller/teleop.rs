@@ -80,6 +80,8 @@ mod tests {
     use super::*;
     use nalgebra::{Translation3, Vector3};
 
+    /// A handle's move and turn reach the tip scaled and turned into the world frame, and settings with a
+    /// zero scale or a clutch pedal that does not exist are refused.
     #[test]
     fn the_handle_moves_the_tip_scaled_and_turned_into_the_world() {
         let settings = TeleopSettings {

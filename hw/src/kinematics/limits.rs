@@ -104,6 +104,7 @@ mod tests {
     use super::*;
     use std::f64::consts::PI;
 
+    /// The whole-turn equivalent nearest the reference is picked, but never one outside the limit.
     #[test]
     fn nearest_equivalent_prefers_the_turn_near_the_reference() {
         let wide = JointLimit::new(-2.0 * PI, 2.0 * PI, 1.0);
@@ -116,6 +117,8 @@ mod tests {
         assert!((q - 0.1).abs() < 1e-12, "{q}");
     }
 
+    /// An angle with no equivalent inside a narrow limit gets none, and one past a bound by less than the
+    /// slack is clamped onto it.
     #[test]
     fn nearest_equivalent_rejects_angles_outside_a_narrow_limit() {
         let narrow = JointLimit::new(-1.0, 1.0, 1.0);
@@ -123,6 +126,7 @@ mod tests {
         assert_eq!(narrow.nearest_equivalent(-1.0 - 1e-13, 0.0), Some(-1.0));
     }
 
+    /// The inlined rounding agrees with `f64::round` at halves, near halves, zero and large values.
     #[test]
     fn round_small_matches_round() {
         for x in [-2.5, -1.5, -0.6, -0.4, 0.0, 0.4, 0.5, 0.6, 1.49, 2.5, 1e9 + 0.3] {
@@ -130,6 +134,7 @@ mod tests {
         }
     }
 
+    /// Angles wrap into (-pi, pi]: -pi lands on pi, and several turns on the equivalent angle.
     #[test]
     fn wrap_angle_lands_in_half_open_interval() {
         assert!((wrap_angle(3.0 * PI) - PI).abs() < 1e-12);

@@ -135,6 +135,8 @@ impl Rv6slGeometry {
 mod tests {
     use super::*;
 
+    /// The RV-6SL's precomputed elbow offset is bit for bit the atan2 it stands for, and other geometries
+    /// compute theirs.
     #[test]
     fn rv6sl_elbow_offset_constant_is_atan2_bit_for_bit() {
         let g = Rv6slGeometry::RV6SL;

@@ -120,6 +120,8 @@ mod tests {
         PoseKey { time_s, world_position_m: [x, 0.0, 1.0], orientation }
     }
 
+    /// Positions interpolate linearly between keys and hold the first and last key outside them; without
+    /// keys there is no pose.
     #[test]
     fn positions_interpolate_linearly_and_hold_outside_the_keys() {
         let keys = [key(0.0, 0.0, Orientation::AlongShaft), key(2.0, 0.2, Orientation::AlongShaft)];
@@ -130,6 +132,7 @@ mod tests {
         assert!(pose_at(&[], 0.0).is_none());
     }
 
+    /// Two frame keys a quarter turn apart slerp to an eighth of a turn halfway between them.
     #[test]
     fn frames_slerp_halfway() {
         let half = std::f64::consts::FRAC_PI_4;
@@ -141,6 +144,8 @@ mod tests {
         assert!((r.angle() - std::f64::consts::FRAC_PI_4).abs() < 1e-12, "{}", r.angle());
     }
 
+    /// Jaw directions of different lengths turn halfway between their unit directions; between keys of
+    /// different kinds the earlier orientation holds until the later key's time.
     #[test]
     fn jaw_directions_turn_and_mixed_kinds_step() {
         let a = Orientation::JawDirection { direction: [1.0, 0.0, 0.0] };
@@ -153,6 +158,7 @@ mod tests {
         assert_eq!(interpolate_orientation(&a, &Orientation::AlongShaft, 1.0), Orientation::AlongShaft);
     }
 
+    /// Jaw openings interpolate linearly between keys and hold outside them; without keys there is none.
     #[test]
     fn jaw_openings_interpolate() {
         let keys = [JawKey { time_s: 1.0, jaw_rad: 0.6 }, JawKey { time_s: 2.0, jaw_rad: 0.0 }];

@@ -75,6 +75,8 @@ mod tests {
     use crate::skill::{Orientation, PoseKey, Track};
     use nalgebra::Vector3;
 
+    /// A target beyond the instrument's reach is found on the way to it, naming the arm and a time inside
+    /// the skill, while a nearby target passes.
     #[test]
     fn a_target_out_of_reach_is_found_with_its_arm_and_time() {
         let rig = Rig::shipped().expect("the shipped rig");

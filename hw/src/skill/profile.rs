@@ -12,6 +12,8 @@ pub fn min_jerk(s: f64) -> f64 {
 mod tests {
     use super::*;
 
+    /// The minimum-jerk profile runs from 0 to 1, clamps outside, is symmetric about its middle, and starts
+    /// and ends with no speed.
     #[test]
     fn min_jerk_starts_and_ends_at_rest_and_is_symmetric() {
         assert_eq!(min_jerk(0.0), 0.0);

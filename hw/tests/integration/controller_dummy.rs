@@ -25,6 +25,8 @@ fn max_abs_diff(a: &ArmJoints, b: &ArmJoints) -> f64 {
     a.to_array().iter().zip(b.to_array()).map(|(x, y)| (x - y).abs()).fold(0.0, f64::max)
 }
 
+/// A 2 s skill completes in 2001 cycles, no axis stepping faster than half its rated speed and every
+/// commanded tip on its target; the arm ends at the last target with the jaw at 0.2 rad.
 #[test]
 fn a_skill_runs_to_its_end_on_its_targets() {
     let arm = ArmName::Left;
@@ -72,6 +74,8 @@ fn a_skill_runs_to_its_end_on_its_targets() {
     assert!((a.world_from_tip.translation.vector - (start + offset)).norm() < 1e-9);
 }
 
+/// The emergency stop writes no new set-point in the cycle after the press and holds the arm still even
+/// with the pedal released; new skills are refused until it is reset, and the arm then holds.
 #[test]
 fn the_emergency_stop_halts_motion_within_one_cycle_and_holds() {
     let arm = ArmName::Left;
@@ -114,6 +118,8 @@ fn the_emergency_stop_halts_motion_within_one_cycle_and_holds() {
     assert_eq!(controller.status(), Status::Running);
 }
 
+/// Resetting the emergency stop is refused when none is latched, and while the pedal is still pressed,
+/// which leaves the controller stopped.
 #[test]
 fn an_emergency_stop_is_not_cleared_while_the_pedal_is_pressed() {
     let arm = ArmName::Left;
@@ -127,6 +133,7 @@ fn an_emergency_stop_is_not_cleared_while_the_pedal_is_pressed() {
     assert_eq!(controller.status(), Status::EmergencyStopped);
 }
 
+/// A run stopped by the pedal reports an emergency stop as its outcome, ending in the cycle after the press.
 #[test]
 fn run_to_end_reports_an_emergency_stop() {
     let arm = ArmName::Right;
@@ -195,6 +202,8 @@ fn controller_with_force(sensor: Box<dyn ForceSensor>, params: ControllerParams)
     Controller::new(devices, &[setup(arm)], params).expect("the dummy rig starts")
 }
 
+/// A force sensor whose readings go stale faults the run at the watchdog's 25th stale cycle, naming the
+/// device, cycles and seconds; the faulted controller refuses further steps.
 #[test]
 fn the_watchdog_faults_a_run_whose_device_goes_stale() {
     let params = ControllerParams { watchdog_cycles: 25, ..ControllerParams::default() };
@@ -223,6 +232,7 @@ fn the_watchdog_faults_a_run_whose_device_goes_stale() {
     assert!(matches!(controller.step(), Err(ControllerError::NotRunning { status: Status::Faulted })));
 }
 
+/// A force sensor's bus time-out faults the run in that same cycle, the error naming the left force sensor.
 #[test]
 fn a_device_time_out_faults_the_run_at_once() {
     let mut controller =
@@ -254,6 +264,8 @@ fn hold_still_skill(arm: ArmName, start: Vector3<f64>, events: Vec<ForceEvent>) 
     }
 }
 
+/// An open-jaw force event opens the jaw within a cycle or two of the pull reaching its threshold, fires
+/// once, and the jaw track takes over again once the event's window closes.
 #[test]
 fn a_force_event_opens_the_jaw_when_the_threshold_is_crossed() {
     let arm = ArmName::Left;
@@ -295,6 +307,8 @@ fn a_force_event_opens_the_jaw_when_the_threshold_is_crossed() {
     assert!(fired[0].force_n >= 1.5 && fired[0].force_n < 1.5 + 5.0 * PERIOD_S + 1e-9);
 }
 
+/// A force event with a 50 ms sustain ignores a 30 ms spike over its threshold and fires once, 50 ms into
+/// the sustained pull.
 #[test]
 fn a_force_event_with_a_sustain_ignores_a_shorter_spike() {
     let arm = ArmName::Left;
@@ -329,6 +343,8 @@ fn a_force_event_with_a_sustain_ignores_a_shorter_spike() {
     assert!((fired[0].time_s - 0.55).abs() < 2.5 * PERIOD_S, "fired at {} s", fired[0].time_s);
 }
 
+/// A hold event keeps the tip's target where it was when the force crossed the threshold, for the rest
+/// of the event's window, instead of following the skill's path on down.
 #[test]
 fn a_hold_event_stops_the_tip_until_its_window_closes() {
     let arm = ArmName::Left;
@@ -390,6 +406,8 @@ fn two_arm_controller() -> (Controller, [ForceHandle; 2]) {
     (controller, handles)
 }
 
+/// An event linked by `fires_with` holds the other arm a cycle after the first arm's force fires it;
+/// unlinked, the other pulls on to its end; a link to a name no other track has is refused naming the field.
 #[test]
 fn an_event_that_fires_with_another_stops_both_pulls_at_the_first_force() {
     let set_force = |fires_with: &str| ForceEvent {
@@ -453,6 +471,8 @@ fn an_event_that_fires_with_another_stops_both_pulls_at_the_first_force() {
     );
 }
 
+/// A target deeper than the instrument reaches faults the run with an IK error naming the arm and a time
+/// on the way there, blaming the insertion depth or a joint's limits.
 #[test]
 fn an_unreachable_target_faults_the_run_with_the_arm_and_time() {
     let arm = ArmName::Left;
@@ -479,6 +499,8 @@ fn an_unreachable_target_faults_the_run_with_the_arm_and_time() {
     assert!(text.contains("insertion depth") || text.contains("outside its limits"), "{error}");
 }
 
+/// Skills needing an arm or a force sensor the rig lacks are refused naming the device, and a negative
+/// sustain or keys out of order are refused naming the bad field's path.
 #[test]
 fn skills_the_rig_cannot_run_are_refused() {
     let arm = ArmName::Left;
@@ -539,6 +561,7 @@ fn skills_the_rig_cannot_run_are_refused() {
     );
 }
 
+/// Devices for an arm with no model and trocar are refused when the controller is built, naming the arm.
 #[test]
 fn devices_without_a_setup_are_refused() {
     let (joints, _) = parked(ArmName::Left);

@@ -17,6 +17,7 @@ fn left() -> (knotlab_hw::kinematics::ArmModel, Vector3<f64>, ArmJoints) {
     (rig.arm(ArmName::Left).model, common::default_trocar(ArmName::Left), ArmName::Left.ready_joints())
 }
 
+/// A target whose wrist centre lies beyond any reach is refused as out of reach, its distance past the max.
 #[test]
 fn a_target_far_out_of_reach_is_out_of_reach() {
     let (model, _, seed) = left();
@@ -28,6 +29,8 @@ fn a_target_far_out_of_reach_is_out_of_reach() {
     assert!(matches!(err, IkError::OutOfReach { distance_m, max_m, .. } if distance_m > max_m), "{err:?}");
 }
 
+/// A tip within a millimetre of the trocar, or a wrist bent back to put its pitch axis on the trocar, is
+/// refused as too close to the trocar, naming which.
 #[test]
 fn a_target_within_a_millimetre_of_the_trocar_is_refused() {
     let (model, trocar, seed) = left();
@@ -55,6 +58,7 @@ fn a_target_within_a_millimetre_of_the_trocar_is_refused() {
     assert!(matches!(err, IkError::TooCloseToTrocar { what: "wrist pitch axis", .. }), "{err:?}");
 }
 
+/// A target deeper than the shaft can be inserted is refused as too deep, its depth past the maximum.
 #[test]
 fn a_target_deeper_than_the_shaft_allows_is_refused() {
     let (model, trocar, seed) = left();
@@ -64,6 +68,8 @@ fn a_target_deeper_than_the_shaft_allows_is_refused() {
     assert!(matches!(err, IkError::InsertionTooDeep { depth_m, max_m } if depth_m > max_m), "{err:?}");
 }
 
+/// Jaws pointing back up the shaft are refused with a joint-limit error naming a wrist joint, for a jaw
+/// direction and a full frame alike.
 #[test]
 fn a_jaw_bent_past_the_wrist_limit_names_the_wrist_joint() {
     let (model, trocar, seed) = left();
@@ -82,6 +88,7 @@ fn a_jaw_bent_past_the_wrist_limit_names_the_wrist_joint() {
     );
 }
 
+/// A pose reachable only by turning an arm axis past its limit is refused naming that arm joint.
 #[test]
 fn a_pose_only_reachable_past_an_arm_limit_names_the_arm_joint() {
     let (model, _, seed) = left();
@@ -94,6 +101,8 @@ fn a_pose_only_reachable_past_an_arm_limit_names_the_arm_joint() {
     assert!(matches!(err, IkError::JointLimit { joint: JointId::Arm(_), .. }), "{err:?}");
 }
 
+/// Non-finite targets, trocars and jaw directions, a zero jaw direction, and an orientation asked of the
+/// camera are each refused with their own typed error, not solved into NaNs.
 #[test]
 fn non_finite_and_degenerate_inputs_are_typed_errors() {
     let (model, trocar, seed) = left();

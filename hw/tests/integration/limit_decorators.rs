@@ -29,6 +29,8 @@ fn limit_error(result: Result<(), DeviceError>) -> LimitError {
     }
 }
 
+/// A position-limited servo refuses a command outside a joint's range, naming the joint and bounds, or a
+/// NaN, without passing either to the driver; commands inside, bounds included, pass.
 #[test]
 fn position_limits_refuse_commands_outside_and_pass_those_inside() {
     let mut servo = PositionLimit::arm(DummyArmServo::new([0.0; 6]), ARM, limits());
@@ -54,6 +56,8 @@ fn position_limits_refuse_commands_outside_and_pass_those_inside() {
     assert_eq!(error, LimitError::NotFinite { device: ARM, joint: JointId::Arm(3) });
 }
 
+/// A velocity-limited servo refuses a step faster than the joint's speed, naming the joint and speeds, and
+/// measures the next step from the last accepted command, not the refused one.
 #[test]
 fn velocity_limits_refuse_steps_faster_than_the_speed_limit() {
     // 2 rad/s over 10 ms cycles: at most 0.02 rad per cycle.
@@ -73,6 +77,8 @@ fn velocity_limits_refuse_steps_faster_than_the_speed_limit() {
     assert_eq!(servo.read().unwrap().joints_rad, [0.039, 0.0, 0.0, 0.02, 0.0, -0.04]);
 }
 
+/// A step-limited servo refuses a write before its first read, and a step over the per-cycle limit naming
+/// the joint, the step and the limit.
 #[test]
 fn step_limits_refuse_large_steps_and_writes_before_any_read() {
     let mut servo = StepLimit::arm(DummyArmServo::new([0.1; 6]), ARM, [0.05; 6]);
@@ -90,6 +96,8 @@ fn step_limits_refuse_large_steps_and_writes_before_any_read() {
     }
 }
 
+/// Limits on an instrument drive refuse a wrist pitch past its range and a jaw moving too fast, naming the
+/// instrument joint, and pass a jaw step within its speed.
 #[test]
 fn instrument_limits_name_the_instrument_joint() {
     let rig = rigs::rig();

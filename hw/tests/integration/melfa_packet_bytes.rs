@@ -53,6 +53,7 @@ fn h7_move_packet() -> Packet {
     }
 }
 
+/// A MOVE command in the H7 layout encodes to exactly the 196 hand-written bytes of the layout table.
 #[test]
 fn h7_move_command_encodes_byte_for_byte() {
     let bytes = h7_move_bytes();
@@ -60,6 +61,8 @@ fn h7_move_command_encodes_byte_for_byte() {
     assert_eq!(encode(&h7_move_packet(), Layout::H7), bytes);
 }
 
+/// The hand-written H7 MOVE bytes decode to the packet field by field, monitor requests as zeros of the
+/// requested type.
 #[test]
 fn h7_move_command_decodes_field_by_field() {
     let packet = Packet::decode(&h7_move_bytes(), Layout::H7).unwrap();
@@ -119,6 +122,8 @@ fn h7_reply_packet() -> Packet {
     }
 }
 
+/// An H7 reply with joints, a pose with flags and motor currents decodes to its fields and encodes back
+/// to the same bytes, its filtered and feedback joints read out in radians.
 #[test]
 fn h7_reply_round_trips_byte_for_byte() {
     let bytes = h7_reply_bytes();
@@ -167,6 +172,8 @@ fn pre_h7_move_is_the_h7_prefix() {
     assert_eq!(decoded.data, h7_move_packet().data);
 }
 
+/// A packet of the wrong size is refused with its length and the layout's, a pre-H7 packet decoded as H7
+/// hinting at the other layout.
 #[test]
 fn wrong_sizes_are_refused_with_a_hint_at_the_other_layout() {
     let pre = encode(&h7_move_packet(), Layout::PreH7);
@@ -178,6 +185,8 @@ fn wrong_sizes_are_refused_with_a_hint_at_the_other_layout() {
     assert!(error.to_string().contains("63 bytes; the pre-h7 layout has 64"), "{error}");
 }
 
+/// Unknown command, data-type and I/O-type codes are refused naming the field, its offset and the value,
+/// in the header and in a monitor slot alike.
 #[test]
 fn unknown_codes_are_refused_naming_field_and_offset() {
     let mut bytes = h7_move_bytes();
@@ -204,6 +213,7 @@ fn unknown_codes_are_refused_naming_field_and_offset() {
     assert!(error.to_string().contains("RecvIOType (offset 50) is 3"), "{error}");
 }
 
+/// A NaN joint in a packet's data is refused naming the union, the joint and its offset.
 #[test]
 fn non_finite_joints_are_refused_naming_the_joint() {
     let mut bytes = h7_move_bytes();
@@ -214,6 +224,7 @@ fn non_finite_joints_are_refused_naming_the_joint() {
     assert!(error.to_string().contains("dat.j3 (offset 16)"), "{error}");
 }
 
+/// Random bytes of any plausible or implausible size and codes never panic the decoder, in either layout.
 #[test]
 fn random_bytes_never_panic_the_decoder() {
     let mut rng = ChaCha8Rng::seed_from_u64(5);

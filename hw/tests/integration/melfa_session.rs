@@ -64,16 +64,22 @@ fn session(layout: Layout) {
     assert!(matches!(melfa.write(&target), Err(DeviceError::Closed { .. })));
 }
 
+/// An H7 session seeds the joints from NULL, reaches a MOVE in one cycle, keeps alive with NULLs and is
+/// ended by END, after which writes are refused as closed.
 #[test]
 fn an_h7_session_seeds_moves_keeps_alive_and_ends() {
     session(Layout::H7);
 }
 
+/// A pre-H7 session seeds the joints from NULL, reaches a MOVE in one cycle, keeps alive with NULLs and
+/// is ended by END, after which writes are refused as closed.
 #[test]
 fn a_pre_h7_session_seeds_moves_keeps_alive_and_ends() {
     session(Layout::PreH7);
 }
 
+/// The driver clamps each commanded step to the axis's per-cycle maximum, reaching a far goal in the
+/// fewest cycles without faulting the emulated controller.
 #[test]
 fn the_driver_clamps_each_step_so_the_controller_never_faults() {
     let (start, _) = parked(ARM);
@@ -104,6 +110,8 @@ fn the_driver_clamps_each_step_so_the_controller_never_faults() {
     assert!(report.ended);
 }
 
+/// A MOVE jumping an axis 0.2 rad in one cycle faults the emulated controller for over-speed on that
+/// joint, and the faulted controller sends no reply.
 #[test]
 fn an_unclamped_jump_faults_the_emulated_controller() {
     let (start, _) = parked(ARM);
@@ -139,6 +147,8 @@ fn melfa_rig_text(addr: std::net::SocketAddr) -> String {
     )
 }
 
+/// With one reply in ten dropped, a MELFA rig's skill still completes on its last target, its losses
+/// counted as stale cycles, and no command needs the driver's clamp.
 #[test]
 fn ten_percent_of_replies_dropped_and_the_skill_still_completes() {
     let (_, tip) = parked(ARM);
@@ -172,6 +182,8 @@ fn ten_percent_of_replies_dropped_and_the_skill_still_completes() {
     assert_eq!(report.replies_dropped, stats.lost_total);
 }
 
+/// A run of 100 lost replies faults the rig with a link-down error, and no MOVE is sent after the fault,
+/// so the arm holds its last command.
 #[test]
 fn a_run_of_100_lost_replies_faults_the_rig_and_the_arm_stands_still() {
     let (_, tip) = parked(ARM);
@@ -199,6 +211,8 @@ fn a_run_of_100_lost_replies_faults_the_rig_and_the_arm_stands_still() {
     assert_eq!(report.replies_dropped, 100);
 }
 
+/// A pre-H7 reply to a driver expecting H7 is refused as a protocol error naming the servo, the sender,
+/// both sizes and the other layout.
 #[test]
 fn a_reply_in_the_wrong_layout_is_refused_clearly() {
     // A fake controller that answers in the pre-H7 layout while the driver expects H7.
@@ -225,6 +239,7 @@ fn a_reply_in_the_wrong_layout_is_refused_clearly() {
     assert!(text.contains("64 bytes; the h7 layout has 196") && text.contains("pre-h7"), "{text}");
 }
 
+/// Connecting to a controller that never answers fails as a link down after the allowed lost replies.
 #[test]
 fn a_controller_that_never_answers_is_a_link_down() {
     // A bound socket that never replies.
@@ -237,6 +252,8 @@ fn a_controller_that_never_answers_is_a_link_down() {
     assert!(matches!(error, DeviceError::LinkDown { lost: 5, .. }), "{error}");
 }
 
+/// The emulator counts a malformed packet, reporting its number and size, and keeps answering the
+/// packets after it.
 #[test]
 fn the_emulator_ignores_malformed_packets_and_keeps_serving() {
     let (addr, emulator) = spawn_emulator(emulator_config(ARM, Layout::H7, DropPolicy::Never, 0.0));
@@ -263,6 +280,7 @@ fn the_emulator_ignores_malformed_packets_and_keeps_serving() {
     );
 }
 
+/// A paced emulator counts the 7.11 ms cycles that pass between packets, in its replies and its report.
 #[test]
 fn a_paced_emulator_counts_the_cycles_between_packets() {
     let mut config = emulator_config(ARM, Layout::H7, DropPolicy::Never, 0.0);
@@ -281,6 +299,7 @@ fn a_paced_emulator_counts_the_cycles_between_packets() {
     assert!(report.cycles >= 5 * 4, "{report:?}");
 }
 
+/// The emulator refuses to bind a non-loopback address unless explicitly allowed to.
 #[test]
 fn the_emulator_binds_loopback_only_unless_told() {
     let config = emulator_config(ARM, Layout::H7, DropPolicy::Never, 0.0);

@@ -13,6 +13,8 @@ fn rig(file: &str) -> knotlab_hw::rig_config::RigConfig {
     parse_rig_config(&text, &path.display().to_string()).expect("the shipped rig config parses")
 }
 
+/// A failed preview refuses a MELFA rig's run, naming the reason, every real servo and the override; the
+/// explicit override or a passed preview lets it run.
 #[test]
 fn a_failed_preview_blocks_a_real_backend_unless_overridden() {
     let melfa = rig("melfa.toml");
@@ -28,6 +30,7 @@ fn a_failed_preview_blocks_a_real_backend_unless_overridden() {
     assert!(may_execute(&melfa, &passed, false).is_ok());
 }
 
+/// A rig of simulated devices has no real devices and may run even after a failed preview.
 #[test]
 fn a_simulated_rig_is_never_gated() {
     let sim = rig("sim.toml");

@@ -32,6 +32,7 @@ fn has(problems: &[(String, String)], key: &str, words: &str) -> bool {
     problems.iter().any(|(k, r)| k == key && r.contains(words))
 }
 
+/// The shipped sim and MELFA rig configs parse, with their arms' backends, layout and controller address.
 #[test]
 fn the_shipped_rig_configs_parse() {
     let sim = parse_rig_config(SIM, "scenarios/rigs/sim.toml").unwrap();
@@ -45,6 +46,8 @@ fn the_shipped_rig_configs_parse() {
     assert!(melfa.arms.camera.is_none());
 }
 
+/// An unknown key or a misspelt arm is refused naming its line and the unknown field; a misspelt arm's
+/// error lists the valid arm names.
 #[test]
 fn an_unknown_key_is_named_with_its_line() {
     let text =
@@ -58,6 +61,8 @@ fn an_unknown_key_is_named_with_its_line() {
     assert!(reason.contains("unknown field `lft`") && reason.contains("left"), "{reason}");
 }
 
+/// A bad layout, an address without a port, an unknown backend or a negative watchdog count is refused
+/// naming the key and line, and the accepted values where there are some.
 #[test]
 fn bad_values_are_named_with_key_and_line() {
     let text = "description = \"x\"\n\n[arms.left]\ntrocar_m = [0.0, 0.0, 1.0]\nservo = { backend = \"melfa\", controller = \"192.168.0.21:10000\", layout = \"h8\" }\n";
@@ -80,12 +85,15 @@ fn bad_values_are_named_with_key_and_line() {
     assert_eq!((line, key.as_str()), (3, "controller.watchdog_cycles"));
 }
 
+/// Malformed TOML is refused naming the line of the syntax error.
 #[test]
 fn broken_toml_names_its_line() {
     let (line, key, _) = schema("description = \"x\"\n[arms.left\nservo = 1\n");
     assert_eq!((line, key.as_str()), (2, "(syntax)"));
 }
 
+/// A rig config with many unworkable combinations lists every problem key by key, not just the first,
+/// its message starting with the file and the first key.
 #[test]
 fn combinations_that_cannot_work_are_listed_key_by_key() {
     let text = r#"
@@ -122,12 +130,14 @@ backend = "sim"
     assert!(text.starts_with("rig.toml: controller.speed_scale: 1.5 is not in (0, 1]; "), "{text}");
 }
 
+/// A rig config that cannot be read is refused naming its path.
 #[test]
 fn a_missing_file_is_named() {
     let error = load_rig_config(std::path::Path::new("no/such/rig.toml")).unwrap_err();
     assert!(error.to_string().starts_with("no/such/rig.toml: cannot read:"), "{error}");
 }
 
+/// Building a sim rig without the simulator is refused, pointing to knotlab-sim.
 #[test]
 fn a_sim_rig_needs_the_simulator() {
     let config = parse_rig_config(SIM, "sim.toml").unwrap();
@@ -136,6 +146,8 @@ fn a_sim_rig_needs_the_simulator() {
     assert!(error.to_string().contains("knotlab-sim"), "{error}");
 }
 
+/// A rig of dummy devices builds with its force, master and pedal handles and its own period, the arm
+/// at its ready joints.
 #[test]
 fn a_dummy_rig_builds_with_its_handles() {
     let text = r#"

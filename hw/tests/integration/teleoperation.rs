@@ -56,6 +56,8 @@ fn run(controller: &mut Controller, cycles: usize) -> Vector3<f64> {
     tip
 }
 
+/// The handle moves the tip a third as far and the gripper sets the jaw; clutched, the hand moves back
+/// without moving the tip, and on release motion counts from where the tip is.
 #[test]
 fn the_handle_steers_the_tip_scaled_and_the_clutch_repositions_the_hand() {
     let (mut c, pedals, master) = teleop_rig();
@@ -88,6 +90,8 @@ fn the_handle_steers_the_tip_scaled_and_the_clutch_repositions_the_hand() {
     assert!((again - held - Vector3::new(0.0, 0.01, 0.0)).norm() < 1e-6, "{:?}", again - held);
 }
 
+/// The handle is ignored while a skill runs, and manual control resumes from the skill's end without a
+/// jump towards the hand, following the hand's moves from there.
 #[test]
 fn a_running_skill_blocks_manual_input_and_control_resumes_without_a_jump() {
     let (mut c, _, master) = teleop_rig();
@@ -112,6 +116,7 @@ fn a_running_skill_blocks_manual_input_and_control_resumes_without_a_jump() {
     assert!((nudged - resumed - Vector3::new(-0.005, 0.0, 0.0)).norm() < 1e-6, "{:?}", nudged - resumed);
 }
 
+/// Under the emergency stop the handle's motion does not move the tip.
 #[test]
 fn the_emergency_stop_halts_manual_motion() {
     let (mut c, pedals, master) = teleop_rig();
@@ -123,6 +128,7 @@ fn the_emergency_stop_halts_manual_motion() {
     assert!((stopped - start).norm() < 1e-9, "moved {:?} under the emergency stop", stopped - start);
 }
 
+/// Teleoperation settings with a negative scale are refused naming `teleoperation.scale`.
 #[test]
 fn bad_settings_are_refused() {
     let (mut c, _, _) = teleop_rig();

@@ -15,6 +15,8 @@ fn load_err(text: &str) -> String {
     }
 }
 
+/// The shipped URDF loads with four arms and a limit on each of their 24 axes and three instruments'
+/// 15 joints.
 #[test]
 fn the_shipped_rig_loads_with_four_arms() {
     let rig = Rig::shipped().unwrap();
@@ -22,6 +24,7 @@ fn the_shipped_rig_loads_with_four_arms() {
     assert_eq!(rig.tree.joints.iter().filter(|j| j.limit.is_some()).count(), 6 * 4 + 5 * 3);
 }
 
+/// A joint naming a parent link that does not exist is refused naming the file, the joint and the link.
 #[test]
 fn a_joint_naming_a_missing_parent_link_is_named() {
     let text = broken("<parent link=\"left_link1\"/>", "<parent link=\"left_link9\"/>");
@@ -33,6 +36,7 @@ fn a_joint_naming_a_missing_parent_link_is_named() {
     );
 }
 
+/// A joint without a parent element is refused naming the joint, its line and the missing element.
 #[test]
 fn a_joint_without_a_parent_element_is_named_with_its_line() {
     let text = broken("    <parent link=\"left_link1\"/>\n", "");
@@ -42,6 +46,7 @@ fn a_joint_without_a_parent_element_is_named_with_its_line() {
     assert!(err.contains(&format!("joint 'left_joint2' (line {line}), parent: missing element")), "{err}");
 }
 
+/// A box without a size is refused naming its link and the missing attribute.
 #[test]
 fn a_box_without_a_size_is_named_by_its_link() {
     let text = broken("<box size=\"0.12 0.5 0.13\"/>", "<box/>");
@@ -49,6 +54,7 @@ fn a_box_without_a_size_is_named_by_its_link() {
     assert!(err.contains("link 'left_link2' <box>") && err.contains("size: missing attribute"), "{err}");
 }
 
+/// Malformed XML is refused as an XML error in the document, not loaded.
 #[test]
 fn malformed_xml_gives_the_position() {
     let text = broken("<link name=\"table\">", "<link name=\"table\"");
@@ -56,6 +62,7 @@ fn malformed_xml_gives_the_position() {
     assert!(err.contains("document, xml:") && err.contains(":"), "{err}");
 }
 
+/// A joint limit whose lower bound lies above its upper is refused naming the joint and both bounds.
 #[test]
 fn a_limit_with_lower_above_upper_is_named() {
     let text =
@@ -64,6 +71,7 @@ fn a_limit_with_lower_above_upper_is_named() {
     assert!(err.contains("joint 'left_joint5', limit: lower 2.5 must be below upper 1"), "{err}");
 }
 
+/// A NaN velocity limit and a NaN origin are both reported in one error, each naming its field.
 #[test]
 fn a_nan_limit_and_a_nan_origin_are_named_together() {
     let text = broken("velocity=\"4.6600291028248595\"", "velocity=\"nan\"");
@@ -74,6 +82,7 @@ fn a_nan_limit_and_a_nan_origin_are_named_together() {
     assert!(err.contains("joint 'left_wrist_pitch', origin.xyz: not finite"), "{err}");
 }
 
+/// An arm missing one of its joints is refused naming the arm and the missing joint.
 #[test]
 fn a_missing_arm_joint_is_named() {
     let text = broken("name=\"camera_joint4\"", "name=\"camera_joint_four\"");
@@ -81,6 +90,7 @@ fn a_missing_arm_joint_is_named() {
     assert!(err.contains("arm 'camera', joints: no joint 'camera_joint4'"), "{err}");
 }
 
+/// A collision mesh is refused naming the link and its collision element: only boxes, capsules and spheres.
 #[test]
 fn an_unsupported_collision_shape_is_named() {
     // Both the visual and the collision element use it; only collision geometry matters.
@@ -89,6 +99,7 @@ fn an_unsupported_collision_shape_is_named() {
     assert!(err.contains("link 'table' collision 0, geometry: only boxes, capsules and spheres"), "{err}");
 }
 
+/// A link given two parents, making a cycle or a second root in the tree, is refused.
 #[test]
 fn a_cycle_is_refused() {
     // Hang the gantry from the left arm's tip: the gantry gets two parents.
@@ -100,6 +111,7 @@ fn a_cycle_is_refused() {
     assert!(err.contains("cycle") || err.contains("more than one root"), "{err}");
 }
 
+/// A URDF file that cannot be read is refused as a read error naming its path.
 #[test]
 fn an_unreadable_file_names_the_file() {
     let err = Rig::from_file(std::path::Path::new("/nonexistent/rig.urdf")).unwrap_err();
@@ -107,6 +119,7 @@ fn an_unreadable_file_names_the_file() {
     assert!(err.to_string().starts_with("/nonexistent/rig.urdf: cannot read"), "{err}");
 }
 
+/// Empty, non-XML, malformed-geometry and non-robot documents are refused naming the file.
 #[test]
 fn garbage_is_a_parse_error() {
     for text in [

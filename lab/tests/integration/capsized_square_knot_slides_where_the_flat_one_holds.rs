@@ -11,6 +11,8 @@ use knotlab_sim::knot::KnotType;
 use knotlab_sim::scene::parse_scene;
 use knotlab_sim::thread::ThreadParams;
 
+/// A capsized square knot, one strand drawn straight, slides further under the load the flat one holds,
+/// while its knot type still reads square.
 #[test]
 fn a_square_knot_drawn_straight_through_one_strand_slides_under_the_load_the_flat_one_holds() {
     let scene =

@@ -18,6 +18,8 @@ fn scene() -> SceneConfig {
     .expect("shipped scene")
 }
 
+/// The laid thread spans its full length as a square knot through every stitch point, with no instrument
+/// holding it.
 #[test]
 fn the_thread_is_laid_as_a_square_knot_through_both_stitch_points() {
     let params = LaidKnotParams::default();
@@ -44,6 +46,7 @@ fn the_thread_is_laid_as_a_square_knot_through_both_stitch_points() {
     assert!(world.arms().iter().all(|a| a.hold().is_none()));
 }
 
+/// A surgeon's knot laid as two helices is named a surgeon's knot by the evaluator.
 #[test]
 fn the_surgeons_knot_is_laid_as_two_helices_the_evaluator_names_a_surgeons_knot() {
     let params = LaidKnotParams {
@@ -60,6 +63,7 @@ fn the_surgeons_knot_is_laid_as_two_helices_the_evaluator_names_a_surgeons_knot(
     assert_eq!(knot_now(&world).map(|k| k.knot), Some(KnotType::SurgeonsKnot));
 }
 
+/// A thread too short for the laid knot is refused with `ThreadTooShort` instead of being laid.
 #[test]
 fn a_thread_too_short_for_the_knot_is_refused() {
     let mut short = scene();

@@ -12,6 +12,8 @@ use knotlab_lab::laid_knot::LaidKnotKind;
 use knotlab_lab::wound::{WoundTrialParams, laid_surgeons_knot_in_wound};
 use knotlab_sim::knot::KnotType;
 
+/// A lone surgeon's double throw, snugged with the wound closed, lets it open under the holding load once
+/// its ends are let go: a second throw stays necessary.
 #[test]
 fn a_double_throw_alone_lets_the_wound_open_under_the_holding_load() {
     let scene = common::short_suture_friction_0_5();

@@ -22,6 +22,7 @@ fn string() -> RopeParams {
     }
 }
 
+/// A double wrap of the default stiff rope holds a tension ratio of 10 at friction 1 without sliding.
 #[test]
 fn a_double_wrap_of_the_stiff_rope_holds_a_tension_ratio_of_10_at_friction_1() {
     let slide = capstan(RopeParams::default(), 0.3, 10.0);
@@ -34,6 +35,7 @@ fn a_double_wrap_of_the_stiff_rope_holds_a_tension_ratio_of_10_at_friction_1() {
     );
 }
 
+/// A double wrap of string (no bending stiffness) holds a tension ratio of 30 at friction 1 once settled.
 #[test]
 fn a_double_wrap_of_string_holds_a_tension_ratio_of_30_at_friction_1() {
     let slide = capstan(string(), 0.3, 30.0);
@@ -46,6 +48,7 @@ fn a_double_wrap_of_string_holds_a_tension_ratio_of_30_at_friction_1() {
     );
 }
 
+/// Without friction a double wrap of string slides at a tension ratio of only 1.5.
 #[test]
 fn without_friction_the_wrap_lets_go_at_a_ratio_of_1_5() {
     let params = RopeParams { static_friction: 0.0, kinetic_friction: 0.0, ..string() };
@@ -53,6 +56,7 @@ fn without_friction_the_wrap_lets_go_at_a_ratio_of_1_5() {
     assert!(slide.slip_m > 0.02, "slid only {:.2} mm", slide.slip_m * 1e3);
 }
 
+/// A rope square knot stays square and holds its standing parts within 2 mm with its free ends let go.
 #[test]
 fn a_square_knot_holds_its_standing_parts_with_its_free_ends_let_go() {
     let slide = reef(RopeParams::default(), 0.003, 0.001, 1.0, 0.3, 1.0);
@@ -66,6 +70,7 @@ fn a_square_knot_holds_its_standing_parts_with_its_free_ends_let_go() {
     );
 }
 
+/// Without friction the rope's square knot comes apart under the load on its standing parts.
 #[test]
 fn without_friction_the_square_knot_comes_apart() {
     let params = RopeParams { static_friction: 0.0, kinetic_friction: 0.0, ..RopeParams::default() };
@@ -73,6 +78,8 @@ fn without_friction_the_square_knot_comes_apart() {
     assert!(slide.slip_m > 0.01, "the standing parts drew only {:.2} mm apart", slide.slip_m * 1e3);
 }
 
+/// At friction 0.5 a string's square knot creeps with one contact pass a substep and holds still,
+/// square, with four.
 #[test]
 fn more_contact_passes_stop_a_string_square_knot_creeping_at_friction_0_5() {
     let params = |contact_passes| RopeParams {
@@ -101,6 +108,7 @@ fn more_contact_passes_stop_a_string_square_knot_creeping_at_friction_0_5() {
     assert_eq!(four.knot_after, Some(KnotType::Square));
 }
 
+/// The same capstan trial run twice gives bit-identical slip.
 #[test]
 fn the_same_trial_twice_gives_the_same_bits() {
     let params = RopeParams::default();

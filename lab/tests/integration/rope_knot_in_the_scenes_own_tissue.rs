@@ -11,6 +11,8 @@ use knotlab_lab::tissue_trial::laid_surgeons_knot_in_tissue;
 use knotlab_lab::wound::{WoundTrialParams, laid_surgeons_knot_in_wound};
 use knotlab_sim::knot::KnotType;
 
+/// A tight rope surgeon's knot closes and holds the wound between the scene's Rapier flaps as it does
+/// between the hand-integrated ones, without stretching the rope.
 #[test]
 fn a_tight_surgeons_knot_holds_the_rapier_flaps_as_it_holds_the_hand_integrated_ones() {
     let scene = common::short_suture_friction_0_5();

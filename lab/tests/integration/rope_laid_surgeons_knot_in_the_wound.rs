@@ -12,6 +12,8 @@ use knotlab_sim::knot::KnotType;
 use knotlab_sim::rope::RopeParams;
 use knotlab_sim::scene::parse_scene;
 
+/// The snug draws the wound closed, the rope stays a surgeon's knot from laying to after the load, and the
+/// wound opens only by the thread the knot gives up to the loop.
 #[test]
 fn the_snug_closes_the_wound_and_the_knot_stays_a_surgeons_knot() {
     let scene = parse_scene(

@@ -14,6 +14,8 @@ use knotlab_sim::evaluate::hold_watched;
 use knotlab_sim::scene::parse_scene;
 use knotlab_sim::tissue::Flap;
 
+/// Under the holding load a stitch point slides no further than allowed past its segment's end, so the
+/// flaps part no further than the thread between the stitch points lets them.
 #[test]
 fn the_flaps_part_no_further_than_the_thread_between_the_stitch_points_allows() {
     let scene = parse_scene(

@@ -21,6 +21,8 @@ fn trial(bending_stiffness_n_m2: f64) -> WoundOutcome {
     laid_surgeons_knot_in_wound(rope, &scene.tissue, &scene.stitch, &knot, &WoundTrialParams::default())
 }
 
+/// A surgeon's knot in suture-stiff rope holds the snugged wound closed under the holding load, where the
+/// same knot in string (no bending stiffness) lets it open.
 #[test]
 fn a_stiff_rope_holds_the_wound_closed_where_a_string_lets_it_open() {
     let stiff = trial(1e-7);

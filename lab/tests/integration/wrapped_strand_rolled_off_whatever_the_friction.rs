@@ -17,6 +17,8 @@ const PULL: CapstanParams =
 /// A ratio of 1.5.
 const GENTLE: CapstanParams = CapstanParams { low_n: 0.2, ..PULL };
 
+/// The shipped thread locks its twist and holds a double wrap at a tension ratio of 1.5, where the
+/// twist-free thread slides off.
 #[test]
 fn the_shipped_thread_holds_a_double_wrap_at_a_tension_ratio_of_1_5() {
     let scene =
@@ -33,6 +35,7 @@ fn the_shipped_thread_holds_a_double_wrap_at_a_tension_ratio_of_1_5() {
     }
 }
 
+/// A twist-free thread's double wrap slides off even at friction 1 (or trips the speed check).
 #[test]
 fn with_the_twist_free_it_slides_even_at_friction_1() {
     let scene =

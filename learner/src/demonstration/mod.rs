@@ -231,6 +231,8 @@ impl Demonstration {
 mod tests {
     use super::*;
 
+    /// The sample nearest a time is found, a tie goes to the earlier, a time past either end finds that end,
+    /// and a NaN time or an empty record finds none.
     #[test]
     fn the_sample_nearest_a_time_is_found_and_ties_go_to_the_earlier() {
         let at = |time_s: f64| Sample {

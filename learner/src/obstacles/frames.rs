@@ -199,6 +199,8 @@ mod tests {
     use super::*;
     use knotlab_hw::rig::{ArmName, Rig};
 
+    /// Sines and cosines stepped from known ones match `sin_cos` within 4e-16 for changes up to 0.5 rad,
+    /// and the anchor poses built from them match the directly computed ones within 1e-14.
     #[test]
     fn sines_near_known_ones_match_sin_cos_and_so_do_the_poses() {
         let rig = Rig::shipped().expect("the shipped rig");

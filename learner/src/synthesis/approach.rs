@@ -129,6 +129,8 @@ mod tests {
         }
     }
 
+    /// An instrument starting 4 cm away gets a 2 s way in at 2 cm/s and every track's keys wait for it;
+    /// one already at its first key gets no way in, only the wait.
     #[test]
     fn a_far_instrument_comes_in_and_everything_waits_for_it() {
         let mut skill = Skill {

@@ -115,6 +115,8 @@ impl Dmp {
 mod tests {
     use super::*;
 
+    /// A DMP fitted to a demonstration reproduces it within 2 mm, and rolled out to a moved start and goal
+    /// starts exactly at the start and ends within 2 mm of the goal.
     #[test]
     fn reproduces_its_demonstration_and_follows_a_moved_goal() {
         let dt = 0.01;

@@ -105,6 +105,8 @@ pub fn recorded_orientation(
 mod tests {
     use super::*;
 
+    /// A bent wrist keeps its jaw direction, a nearly straight one is left along the shaft, and one asked to
+    /// bend past its reach bends only as far as it can, in the same plane.
     #[test]
     fn a_bent_wrist_keeps_its_direction_and_a_straight_one_follows_the_shaft() {
         let trocar = Vector3::new(0.0, 0.0, 1.0);
@@ -127,6 +129,8 @@ mod tests {
         assert!(d.y.abs() < 1e-12 && d.x > 0.0, "{d:?}");
     }
 
+    /// A recorded key with the wrist bent within reach keeps its whole frame, roll included; nearly straight
+    /// it goes along the shaft, and bent past reach it becomes the jaw direction bent as far as it can.
     #[test]
     fn a_replayed_key_keeps_the_recorded_frame_where_the_wrist_is_bent_within_reach() {
         let trocar = Vector3::new(0.0, 0.0, 1.0);

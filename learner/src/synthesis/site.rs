@@ -27,6 +27,7 @@ pub fn pose_isometry(pose: &Pose) -> Isometry3<f64> {
 mod tests {
     use super::*;
 
+    /// A point fixed in the stitch frame is relocated to the same place relative to the new stitch.
     #[test]
     fn a_point_keeps_its_place_relative_to_the_stitch() {
         let demo = Isometry3::new(Vector3::new(0.0, 0.0, 0.95), Vector3::new(0.0, 0.0, 0.2));

@@ -643,6 +643,8 @@ mod tests {
             .collect()
     }
 
+    /// A line turns the tip as the demonstration turned along its path (a fifth of the turn halfway when it
+    /// turned late), and turns by length for keys without frames or with hardly a turn.
     #[test]
     fn a_line_turns_the_tip_as_the_demonstration_did_along_its_path() {
         // The demonstration turned late: a fifth of the turn over the first half of the way.

@@ -7,6 +7,8 @@ use knotlab_hw::skill::{JawKey, Orientation, PoseKey, Skill, Track};
 use knotlab_learner::synthesis::{ApproachSettings, StartPose, prepend_approach};
 use nalgebra::Isometry3;
 
+/// No key of a way in is timed before 0 s, for distances and key counts whose durations round either way,
+/// and the keys stay in time order.
 #[test]
 fn no_key_of_a_way_in_comes_before_the_start() {
     // Distances whose durations round either way at many key counts.

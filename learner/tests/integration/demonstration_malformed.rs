@@ -55,12 +55,14 @@ fn assert_names(error: &DemoError, file_suffix: &str, line: usize, field: &str, 
     );
 }
 
+/// A freshly written valid demonstration loads, so each refusal here comes from its edit alone.
 #[test]
 fn the_valid_demonstration_loads() {
     let dir = TempDir::with_demo("valid");
     load_demonstration(&dir.0).unwrap();
 }
 
+/// A CSV file cut off inside a row is refused as truncated, naming that row's line and the column cut (`qx`).
 #[test]
 fn a_file_cut_inside_a_row_is_truncated_at_that_line_and_field() {
     let dir = TempDir::with_demo("cut-row");
@@ -77,6 +79,7 @@ fn a_file_cut_inside_a_row_is_truncated_at_that_line_and_field() {
     assert_names(&error, "right.csv", last_line, "qx", "truncated");
 }
 
+/// A CSV file missing its last 25 rows is refused as truncated at the line after the last one kept.
 #[test]
 fn a_file_missing_its_last_rows_is_truncated() {
     let dir = TempDir::with_demo("cut-rows");
@@ -90,6 +93,7 @@ fn a_file_missing_its_last_rows_is_truncated() {
     assert_names(&error, "left.csv", kept + 1, "(rows)", "truncated");
 }
 
+/// A CSV file without its `jaw_rad` column is refused as a missing column, named on the header line.
 #[test]
 fn a_missing_column_is_named_on_the_header_line() {
     let dir = TempDir::with_demo("column");
@@ -107,6 +111,7 @@ fn a_missing_column_is_named_on_the_header_line() {
     assert_names(&dir.load_error(), "assist.csv", 1, "jaw_rad", "missing column");
 }
 
+/// A demonstration row with a NaN force is refused naming its file, line and column (`fy_n`), not loaded.
 #[test]
 fn nan_is_named_with_its_line_and_column() {
     let dir = TempDir::with_demo("nan");
@@ -120,6 +125,7 @@ fn nan_is_named_with_its_line_and_column() {
     assert_names(&dir.load_error(), "left.csv", 77, "fy_n", "NaN");
 }
 
+/// A row whose time does not increase on the row before is refused naming its line and `time_s`.
 #[test]
 fn time_going_back_is_named_with_its_line() {
     let dir = TempDir::with_demo("time");
@@ -133,6 +139,7 @@ fn time_going_back_is_named_with_its_line() {
     assert_names(&dir.load_error(), "right.csv", 50, "time_s", "time must increase");
 }
 
+/// A `format_version` of 2 is refused as unsupported, naming its line in `demo.toml`.
 #[test]
 fn a_wrong_version_is_refused_naming_its_line() {
     let dir = TempDir::with_demo("version");
@@ -144,6 +151,8 @@ fn a_wrong_version_is_refused_naming_its_line() {
     assert_names(&dir.load_error(), "demo.toml", line, "format_version", "version 2 is not supported");
 }
 
+/// Wrong units, an unknown key, an unknown grasp word, a non-unit quaternion, a gap, text for a number,
+/// a missing instrument file and a missing directory are each refused naming where they are.
 #[test]
 fn other_malformations_are_named_too() {
     // Units other than the format's.

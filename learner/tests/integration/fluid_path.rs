@@ -8,6 +8,8 @@ fn v(x: f64, y: f64) -> Vector2<f64> {
     Vector2::new(x, y)
 }
 
+/// Equal arc-length samples of an L with a zero-length segment lie exactly at multiples of the step
+/// along it, and a step that does not divide the length ends on the path's end.
 #[test]
 fn equal_arc_length_samples_are_exactly_d_apart_along_the_path() {
     // An L with a zero-length segment in it: 0.3 m then 0.4 m.
@@ -31,6 +33,8 @@ fn equal_arc_length_samples_are_exactly_d_apart_along_the_path() {
     assert!((s[3] - 0.7).abs() < 1e-15 && (s[2] - 0.6).abs() < 1e-12);
 }
 
+/// Equal arc-length samples of a dense 2000-segment circle stay the step apart along it and lie on the
+/// circle within the polyline's sag.
 #[test]
 fn samples_of_a_dense_circle_lie_on_it() {
     let points: Vec<Vector2<f64>> = (0..=2000)
@@ -50,6 +54,8 @@ fn samples_of_a_dense_circle_lie_on_it() {
     assert!(samples.iter().all(|s| (s.point_m.norm() - 0.02).abs() < 3e-8));
 }
 
+/// Time along a path follows its speed profile exactly: t = s / v at constant speed, and the closed form
+/// for a speed linear in arc length.
 #[test]
 fn timing_follows_the_speed_profile_exactly() {
     // Constant speed: t = s / v.
@@ -71,6 +77,8 @@ fn timing_follows_the_speed_profile_exactly() {
     }
 }
 
+/// The built-in double loop winds twice round its centre, peaks at its given speed, is 2 to 4 cm across,
+/// and keeps its length when moved in its plane.
 #[test]
 fn the_double_loop_is_a_double_wrap_at_its_speed() {
     let centre = v(0.01, -0.02);
@@ -92,6 +100,8 @@ fn the_double_loop_is_a_double_wrap_at_its_speed() {
     assert!((moved.length_m() - path.length_m()).abs() < 1e-12);
 }
 
+/// A path of one point, a zero speed or a NaN point is refused naming the field, and one of no length or
+/// with a speed count that does not match is refused too.
 #[test]
 fn bad_paths_name_the_field() {
     let err = SpeedPath::new(vec![v(0.0, 0.0)], vec![0.1]).expect_err("one point");
@@ -105,6 +115,8 @@ fn bad_paths_name_the_field() {
     assert!(SpeedPath::new(vec![v(0.0, 0.0), v(1.0, 0.0)], vec![0.1]).is_err());
 }
 
+/// A zero, negative, NaN or vanishingly small sampling step gives a bounded number of samples ending at
+/// the path's end instead of exhausting memory.
 #[test]
 fn a_degenerate_step_does_not_exhaust_memory() {
     let path = SpeedPath::constant_speed(vec![v(0.0, 0.0), v(0.1, 0.0)], 0.02).expect("path");

@@ -22,6 +22,8 @@ fn square_distance(region: &GridRegion, i: usize, j: usize, p: Vector2<f64>) -> 
     dx.hypot(dy)
 }
 
+/// A shaft through the plane blocks exactly the cells whose squares come within its radius of where it
+/// crosses, and reports that count.
 #[test]
 fn a_shaft_through_the_plane_blocks_the_cells_within_its_radius() {
     let (plane, region) = setup();
@@ -43,6 +45,8 @@ fn a_shaft_through_the_plane_blocks_the_cells_within_its_radius() {
     assert!(expected > 40);
 }
 
+/// A capsule lying above the plane blocks only the cells within its cut where it dips in, and none when it
+/// stays clear of the plane.
 #[test]
 fn a_capsule_lying_above_the_plane_blocks_only_where_it_dips_in() {
     let (plane, region) = setup();
@@ -80,6 +84,7 @@ fn a_capsule_lying_above_the_plane_blocks_only_where_it_dips_in() {
     }
 }
 
+/// A tilted box blocks every cell holding a point of it and no cell farther than a sampling step from it.
 #[test]
 fn a_tilted_box_blocks_exactly_the_cells_it_touches() {
     let (plane, region) = setup();
@@ -120,6 +125,7 @@ fn a_tilted_box_blocks_exactly_the_cells_it_touches() {
     assert!(mask.count_blocked() > 20);
 }
 
+/// A capsule with a negative radius, and a mask whose size does not match the grid, are refused.
 #[test]
 fn bad_solids_are_refused() {
     let (plane, region) = setup();

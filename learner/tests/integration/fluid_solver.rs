@@ -41,6 +41,8 @@ fn random_mask(n: usize, seed: u64) -> ObstacleMask {
     mask.repaired().mask
 }
 
+/// Repair grows a lone obstacle cell to a 2 x 2 block and a one-cell wall to two cells thick, never frees
+/// a blocked cell, and leaves a mask the flags accept where before they refused it.
 #[test]
 fn repair_grows_obstacles_until_no_cell_has_fluid_on_opposite_sides() {
     let mut mask = ObstacleMask::free(10);
@@ -64,6 +66,7 @@ fn repair_grows_obstacles_until_no_cell_has_fluid_on_opposite_sides() {
     assert!(Flags::new(&repair.mask, 0.1).is_ok());
 }
 
+/// Repaired random masks have no violations and no boundary cell with fluid on two opposite sides.
 #[test]
 fn random_masks_repair_to_valid_flags() {
     for seed in 0..200 {
@@ -77,6 +80,8 @@ fn random_masks_repair_to_valid_flags() {
     }
 }
 
+/// On random obstacle masks the SOR and direct pressure solvers each reach their tolerance and agree up
+/// to one constant per connected fluid region.
 #[test]
 fn sor_and_direct_agree_and_reach_their_tolerance() {
     for seed in 0..5 {
@@ -157,6 +162,7 @@ fn every_step_leaves_the_divergence_below_the_tolerance() {
     }
 }
 
+/// Two runs of the same flow give the same velocities and pressures bit for bit, and the flow does move.
 #[test]
 fn the_same_input_gives_the_same_bits() {
     let run = || {
@@ -180,6 +186,8 @@ fn the_same_input_gives_the_same_bits() {
     assert!(a.0.iter().any(|x| *x != 0.0), "the flow moved");
 }
 
+/// An SOR pressure solve cut off at 2 sweeps is a `PressureNotConverged` error naming the solver, not a
+/// step taken with the divergence left in.
 #[test]
 fn an_unconverged_pressure_solve_is_an_error_not_a_silent_step() {
     let mut p = params(PressureSolverKind::Sor);
@@ -200,6 +208,8 @@ fn an_unconverged_pressure_solve_is_an_error_not_a_silent_step() {
     }
 }
 
+/// A fluid pocket enclosed by obstacles is solved as a second region with the divergence in tolerance,
+/// and, undriven, stays at rest.
 #[test]
 fn an_enclosed_fluid_pocket_is_solved_too() {
     // A ring of obstacles encloses a 4 x 4 pocket: two fluid regions, each pressure fixed separately.
@@ -231,6 +241,8 @@ fn an_enclosed_fluid_pocket_is_solved_too() {
     }
 }
 
+/// A tau above 1 and a NaN viscosity are refused naming the field; a donor-cell factor of 2, a wrong-size
+/// or full mask, a negative step and a preset on a wall face are refused too.
 #[test]
 fn bad_parameters_name_the_field() {
     let mut p = params(PressureSolverKind::Direct);

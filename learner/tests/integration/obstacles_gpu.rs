@@ -91,6 +91,8 @@ fn compare(
     (cs.len(), differing, cpu)
 }
 
+/// On 24 seeded scenes the GPU grid equals the CPU grid except at subcells within 1e-5 m of a boundary,
+/// with every verdict exercised.
 #[test]
 fn gpu_matches_cpu_on_seeded_scenes() {
     let Some((ctx, kernel)) = gpu("gpu_matches_cpu_on_seeded_scenes") else { return };
@@ -116,6 +118,8 @@ fn gpu_matches_cpu_on_seeded_scenes() {
     assert!(verdicts.iter().all(|v| *v > 100), "the scenes exercise every verdict: {verdicts:?}");
 }
 
+/// On a full-size 50-cell grid with a pad in it, along the shaft and with a jaw direction, the GPU grid
+/// equals the CPU grid away from boundaries and the pad blocks cells.
 #[test]
 fn gpu_matches_cpu_on_a_full_size_grid() {
     let Some((ctx, kernel)) = gpu("gpu_matches_cpu_on_a_full_size_grid") else { return };
@@ -139,6 +143,8 @@ fn gpu_matches_cpu_on_a_full_size_grid() {
     }
 }
 
+/// A scene with more environment boxes than the GPU kernel takes is a `TooLarge` error naming them, not a
+/// panic.
 #[test]
 fn too_many_boxes_is_an_error_not_a_panic() {
     let Some((ctx, kernel)) = gpu("too_many_boxes_is_an_error_not_a_panic") else { return };

@@ -30,6 +30,8 @@ fn inside(p: &Vector3<f64>, b: &Obb) -> bool {
     (0..3).all(|k| local[k].abs() <= b.half_extents_m[k])
 }
 
+/// Two boxes sharing their axes intersect exactly when their centres' offset is within the summed
+/// half-extents on every axis.
 #[test]
 fn boxes_sharing_axes_follow_the_interval_rule() {
     let mut rng = ChaCha8Rng::seed_from_u64(1);
@@ -56,6 +58,8 @@ fn boxes_sharing_axes_follow_the_interval_rule() {
     }
 }
 
+/// Where the box test finds a separating axis no point of one box lies inside the other, and from any hint
+/// the hinted test gives the plain verdict, leaving the hint on a separating axis.
 #[test]
 fn apart_means_no_point_inside_and_hints_change_nothing() {
     let mut rng = ChaCha8Rng::seed_from_u64(2);

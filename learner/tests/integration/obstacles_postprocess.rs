@@ -18,6 +18,7 @@ fn mask(rows: &[&str]) -> ObstacleMask {
     m
 }
 
+/// The fluid rules grow a lone cell and a corner cell to 2 x 2 blocks and double a one-cell wall, no more.
 #[test]
 fn lone_cells_and_thin_walls_grow() {
     let lone = mask(&["....", ".#..", "....", "...."]);
@@ -38,6 +39,8 @@ fn lone_cells_and_thin_walls_grow() {
     assert_eq!(fixed, mask(&["....", "....", "##..", "##.."]));
 }
 
+/// On random masks the fluid rules leave no violation, never free a blocked cell, and leave an obeying
+/// mask alone.
 #[test]
 fn random_masks_obey_after_growing_and_only_grow() {
     let mut rng = ChaCha8Rng::seed_from_u64(3);

@@ -35,6 +35,7 @@ fn left_towards(rig: &Rig, world: &CollisionWorld, to_m: Vector3<f64>, steps: us
     out
 }
 
+/// Arms standing still at their nominal joints report no link collision.
 #[test]
 fn standing_still_hits_nothing() {
     let rig = Rig::shipped().expect("the shipped rig");
@@ -44,6 +45,7 @@ fn standing_still_hits_nothing() {
     assert_eq!(first_link_collision(&world, &still, STEP_S), None);
 }
 
+/// The left's jaws driven onto the right's inside the patient are not reported as a collision.
 #[test]
 fn instruments_working_together_inside_are_not_a_collision() {
     let rig = Rig::shipped().expect("the shipped rig");
@@ -61,6 +63,8 @@ fn instruments_working_together_inside_are_not_a_collision() {
     assert_eq!(first_link_collision(&world, &[(ArmName::Left, path)], STEP_S), None);
 }
 
+/// A shoulder swing clear of everything reports no collision until a box stands where the elbow passes;
+/// then the left link and the box are both named, no later than the elbow gets there.
 #[test]
 fn an_obstacle_in_the_arms_way_is_hit_with_both_named() {
     let rig = Rig::shipped().expect("the shipped rig");

@@ -30,6 +30,8 @@ fn random_joints(rig: &Rig, name: ArmName, jaw_rad: f64, rng: &mut ChaCha8Rng) -
     ArmJoints { arm_rad, tool }
 }
 
+/// Each arm's collision boxes, hung on anchors, match the URDF walk's link poses within 1e-9 and the
+/// shapes' extents at random joints.
 #[test]
 fn anchored_boxes_follow_the_urdf_walk() {
     let rig = Rig::shipped().unwrap();
@@ -64,6 +66,7 @@ fn anchored_boxes_follow_the_urdf_walk() {
     assert_eq!(compared, 50 * (15 * 3 + 11));
 }
 
+/// The cached anchor kinematics give the uncached anchor poses within 1e-12 at random joints of every arm.
 #[test]
 fn cached_forward_kinematics_matches_hw() {
     let rig = Rig::shipped().unwrap();
@@ -80,6 +83,8 @@ fn cached_forward_kinematics_matches_hw() {
     }
 }
 
+/// The rig's fixed parts are classed as 4 gantry, 1 table and 2 patient, arm boxes as inserted or not,
+/// and two boxes of one arm are tested against each other only with enough joints between them.
 #[test]
 fn rig_parts_are_classified() {
     let rig = Rig::shipped().unwrap();
@@ -111,6 +116,7 @@ fn rig_parts_are_classified() {
     assert!(!pairs.contains(&(idx("left_jaw_1"), idx("left_jaw_2"))));
 }
 
+/// Every arm's tip where it is parked is judged free, not colliding or unreachable.
 #[test]
 fn parked_arms_are_free() {
     let rig = Rig::shipped().unwrap();
@@ -127,6 +133,8 @@ fn parked_arms_are_free() {
     }
 }
 
+/// The grid's along-shaft IK shortcut solves and refuses exactly the tips `hw`'s solver does, with the
+/// same joints.
 #[test]
 fn along_shaft_shortcut_gives_hw_solutions() {
     let rig = Rig::shipped().unwrap();
@@ -157,6 +165,8 @@ fn along_shaft_shortcut_gives_hw_solutions() {
     }
 }
 
+/// A missing arm state, a NaN trocar, a negative box size, bad grid-plane values, a camera given a jaw
+/// direction and a zero jaw direction are refused naming what is wrong.
 #[test]
 fn bad_input_is_refused_with_its_field() {
     let rig = Rig::shipped().unwrap();

@@ -50,6 +50,8 @@ fn reach(t: f64) -> Vector3<f64> {
     Vector3::new(0.05 * minimum_jerk((t - 1.0) / 1.2), 0.0, 0.0)
 }
 
+/// A 5 cm minimum-jerk move gives one start and one stop within 5 ms of its own, its path length, and no
+/// loop or inflection.
 #[test]
 fn a_minimum_jerk_move_starts_and_stops_where_it_does() {
     let fs = features(&record(3.5, reach, |_| Vector3::zeros(), |_| 0.0));
@@ -61,6 +63,7 @@ fn a_minimum_jerk_move_starts_and_stops_where_it_does() {
     assert!(of(&fs, FeatureKind::Loop).is_empty() && of(&fs, FeatureKind::Inflection).is_empty(), "{fs:?}");
 }
 
+/// Tremor on a minimum-jerk move adds no motion start or stop and moves its boundaries by under 20 ms.
 #[test]
 fn tremor_adds_no_motion_and_barely_moves_the_boundaries() {
     let mut rng = ChaCha8Rng::seed_from_u64(9);
@@ -72,6 +75,7 @@ fn tremor_adds_no_motion_and_barely_moves_the_boundaries() {
     assert!((stops[0].time_s - 2.2).abs() < 0.02, "stop at {}", stops[0].time_s);
 }
 
+/// Three circles of 8 mm radius are found as three loops of 16 mm diameter, with no inflection.
 #[test]
 fn three_circles_are_three_loops_of_their_diameter() {
     // Three turns of radius 8 mm at 1 turn per second in a tilted plane, with a gentle start and stop.
@@ -89,6 +93,7 @@ fn three_circles_are_three_loops_of_their_diameter() {
     assert!(of(&fs, FeatureKind::Inflection).is_empty(), "a circle has no inflection: {fs:?}");
 }
 
+/// An S-curve gives exactly one inflection, where and when its curvature changes sign.
 #[test]
 fn an_s_curve_has_one_inflection_where_it_turns_the_other_way() {
     // Two half circles of radius 1 cm, the second curving the other way, at constant speed between a
@@ -112,6 +117,8 @@ fn an_s_curve_has_one_inflection_where_it_turns_the_other_way() {
     assert!((inflections[0].position_m - Vector3::new(0.02, 0.0, 0.0)).norm() < 0.002);
 }
 
+/// A noisy force pulse gives one onset where it passes the threshold, one peak at its 1.2 N top, and one
+/// release as it falls.
 #[test]
 fn a_force_pulse_has_an_onset_a_peak_and_a_release() {
     let mut rng = ChaCha8Rng::seed_from_u64(4);
@@ -143,6 +150,8 @@ fn a_force_pulse_has_an_onset_a_peak_and_a_release() {
     assert!(releases[0].time_s > 2.0 && releases[0].time_s < 2.1, "release at {}", releases[0].time_s);
 }
 
+/// Jaws opening and closing are timed where they start to move, with the opening's size and the grasp
+/// state after each.
 #[test]
 fn jaws_opening_and_closing_are_timed_where_they_start_to_move() {
     let jaw = |t: f64| {
@@ -166,6 +175,8 @@ fn jaws_opening_and_closing_are_timed_where_they_start_to_move() {
     assert_eq!(closes[0].grasp_after, GraspState::ClosedEmpty);
 }
 
+/// A motion-off threshold above the motion-on one, or a NaN smoothing time, is refused naming the
+/// parameter.
 #[test]
 fn nonsense_thresholds_are_refused_naming_the_parameter() {
     let r = record(1.0, |_| Vector3::zeros(), |_| Vector3::zeros(), |_| 0.0);
@@ -187,6 +198,8 @@ fn nonsense_thresholds_are_refused_naming_the_parameter() {
     assert_eq!(e.0, "smoothing_s");
 }
 
+/// Jaws closing over 0.6 s onto the thread are read as holding, the grasp taken once they have closed,
+/// not as they start.
 #[test]
 fn a_slow_grasp_is_read_once_the_jaws_have_closed() {
     // The jaws close over 0.6 s (from 1.0 s); they hold the thread from 1.6 s on.

@@ -30,6 +30,8 @@ fn error(text: &str) -> PatternError {
     parse_pattern(text, "p.toml").expect_err("a malformed pattern must be refused")
 }
 
+/// The shipped knot-tying pattern parses into the canonical task's primitives for each instrument, with
+/// two loops, and its elements keep their source lines.
 #[test]
 fn the_shipped_pattern_is_the_canonical_task() {
     let p =
@@ -67,6 +69,8 @@ fn the_shipped_pattern_is_the_canonical_task() {
     assert_eq!(l3_open.line, line_of(&text, "id = \"L3_open\"") - 1, "elements remember their line");
 }
 
+/// Each malformed pattern edit (unknown kind or type, bad version, negative magnitude, dangling
+/// reference, duplicate id, unknown field, ...) is refused naming its line, field and reason.
 #[test]
 fn malformed_patterns_are_named_by_line_and_field() {
     // (edit: old, new; the line to expect: a needle on it; the field; a part of the reason)
@@ -154,6 +158,8 @@ fn malformed_patterns_are_named_by_line_and_field() {
     }
 }
 
+/// A backwards span, a cycle of `after`s, a syntax error, an unknown instrument, a bad threshold, a file
+/// that is not a pattern and a missing file are each refused naming what is wrong.
 #[test]
 fn structural_mistakes_are_refused() {
     // A span that runs backwards.
@@ -190,6 +196,7 @@ fn structural_mistakes_are_refused() {
     assert!(e.to_string().contains("/no/such/pattern.toml: cannot read"), "{e}");
 }
 
+/// Detector thresholds set in a pattern are used, and any it leaves out keep their defaults.
 #[test]
 fn detector_thresholds_can_be_set_in_the_pattern() {
     // The shipped pattern sets the force thresholds; a key it leaves out keeps its default.

@@ -34,6 +34,8 @@ fn v(a: [f64; 3]) -> Vector3<f64> {
     Vector3::from(a)
 }
 
+/// Moving the whole demonstration to another stitch pose changes nothing in the knowledge base but that
+/// pose: the same primitives, spans and stitch-frame contents.
 #[test]
 fn the_knowledge_base_is_the_same_wherever_the_demonstration_was_made() {
     let here = SyntheticSettings::canonical(21, 100.0);
@@ -88,6 +90,8 @@ fn the_knowledge_base_is_the_same_wherever_the_demonstration_was_made() {
     }
 }
 
+/// Each primitive type holds what the synthetic expert did: linear reaches and a bell-shaped retreat, a
+/// planar two-turn winding, the pull's force and jaw opening, and a synchronized mapping.
 #[test]
 fn each_primitive_holds_what_the_expert_did() {
     let (kb, truth) = learn(&SyntheticSettings::canonical(22, 100.0));
@@ -145,6 +149,8 @@ fn close_to(a: Vector3<f64>, b: Vector3<f64>, tol: f64, what: &str) {
     assert!((a - b).norm() < tol, "{what}: {a:?} vs {b:?}");
 }
 
+/// The learned 2D primitive instantiates through the fluid solver in place, the particle ending within
+/// three cells of the path's end.
 #[test]
 fn the_two_d_primitive_goes_through_the_fluid_solver() {
     let (kb, _) = learn(&SyntheticSettings::canonical(23, 100.0));
@@ -184,6 +190,8 @@ fn the_two_d_primitive_goes_through_the_fluid_solver() {
     assert!((demo.plane.to_plane(&on_plane) - end).norm() < 1e-12);
 }
 
+/// The knowledge base file reads back identical; a bad version, a non-unit frame or a wrong type is
+/// refused naming where it is, and version 1 and 2 files still read.
 #[test]
 fn the_knowledge_base_file_round_trips_and_refuses_bad_files() {
     let (kb, _) = learn(&SyntheticSettings::canonical(24, 100.0));

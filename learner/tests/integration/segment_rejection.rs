@@ -22,6 +22,8 @@ fn rejection(settings: &SyntheticSettings) -> Rejection {
     decompose(&p, &features).expect_err("not the task: must be rejected")
 }
 
+/// A demonstration with a single wrap is rejected for the right's missing second loop, the reason saying
+/// so.
 #[test]
 fn a_single_wrap_is_rejected_for_the_missing_second_loop() {
     for seed in 0..6 {
@@ -38,6 +40,8 @@ fn a_single_wrap_is_rejected_for_the_missing_second_loop() {
     }
 }
 
+/// A demonstration that never grasps the tail is rejected for the missing grasp, with what waits on it
+/// named as consequences, not causes.
 #[test]
 fn a_tail_never_grasped_is_rejected_for_the_missing_grasp() {
     for seed in 0..6 {
@@ -54,6 +58,7 @@ fn a_tail_never_grasped_is_rejected_for_the_missing_grasp() {
     }
 }
 
+/// Jaws closed on nothing (closed_empty, not holding) are not taken for the tail's grasp.
 #[test]
 fn closing_the_jaws_on_nothing_is_no_grasp_either() {
     let p = pattern();
@@ -71,6 +76,8 @@ fn closing_the_jaws_on_nothing_is_no_grasp_either() {
     assert!(r.to_string().contains("closed_empty, not holding"), "{r}");
 }
 
+/// A recording cut just before the pull is rejected naming the right's missing pull and where the
+/// recording ends.
 #[test]
 fn a_recording_cut_before_the_pulls_is_rejected_for_the_missing_pull() {
     for seed in 0..6 {
@@ -87,6 +94,7 @@ fn a_recording_cut_before_the_pulls_is_rejected_for_the_missing_pull() {
     }
 }
 
+/// A demonstration missing the assist instrument is rejected saying there is no record of it.
 #[test]
 fn a_demonstration_without_an_instrument_the_pattern_needs_says_so() {
     let p = pattern();

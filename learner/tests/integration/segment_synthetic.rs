@@ -51,6 +51,8 @@ fn score(pattern: &TaskPattern, runs: impl Iterator<Item = SyntheticSettings>) -
     s
 }
 
+/// Synthetic demonstrations at realistic noise decompose into the task's primitives with a median
+/// boundary error of at most 20 ms, a boundary F1 of at least 0.95 and an edit score of at least 95.
 #[test]
 fn median_boundary_error_is_at_most_20_ms_at_realistic_noise() {
     let p = pattern();
@@ -63,6 +65,8 @@ fn median_boundary_error_is_at_most_20_ms_at_realistic_noise() {
     assert!(edit >= 95.0, "segmental edit score {edit:.1}");
 }
 
+/// Demonstrations recorded at 1 kHz decompose with a median boundary error of at most 20 ms and a
+/// boundary F1 of at least 0.95.
 #[test]
 fn one_kilohertz_recordings_decompose_as_well() {
     let p = pattern();
@@ -72,6 +76,7 @@ fn one_kilohertz_recordings_decompose_as_well() {
     assert!(s.counts.f1() >= 0.95, "boundary F1 at 1 kHz: {:?}", s.counts);
 }
 
+/// Twice the tremor and force noise still decomposes with a median boundary error of at most 20 ms.
 #[test]
 fn twice_the_tremor_and_force_noise_still_decomposes() {
     let p = pattern();
@@ -88,6 +93,8 @@ fn twice_the_tremor_and_force_noise_still_decomposes() {
     assert!(m <= 0.020, "median boundary error with twice the noise {m:.4} s");
 }
 
+/// Demonstrations at a third of the script's speed decompose with a median boundary error of at most
+/// 20 ms.
 #[test]
 fn slow_demonstrations_at_surgical_speeds_decompose_as_well() {
     // A third of the script's speed: reaches at 1-3 cm/s, the winding in about 7 s.
@@ -102,6 +109,7 @@ fn slow_demonstrations_at_surgical_speeds_decompose_as_well() {
     assert!(s.counts.f1() >= 0.9, "boundary F1 slow: {:?}", s.counts);
 }
 
+/// The same seed gives the same decomposition, and another seed a different one.
 #[test]
 fn the_same_seed_gives_the_same_decomposition() {
     let p = pattern();
@@ -113,6 +121,8 @@ fn the_same_seed_gives_the_same_decomposition() {
     assert_ne!(a.segments, c.segments, "another seed, another demonstration");
 }
 
+/// The synchronized L2 spans exactly its reference R2, and the pull R5 ends where the right's jaws open,
+/// within 50 ms of the truth.
 #[test]
 fn synchronized_primitive_spans_its_reference_and_the_pull_ends_at_the_release() {
     let p = pattern();

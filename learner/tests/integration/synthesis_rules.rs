@@ -79,6 +79,8 @@ fn nominal(kb: &KnowledgeBase) -> Isometry3<f64> {
     pose_isometry(&kb.world_from_stitch)
 }
 
+/// A force-controlled primitive drives on to 125 % of its line and back with its jaw held closed, its
+/// event opening the jaw at the recorded maximum force inside the primitive's window.
 #[test]
 fn a_force_controlled_primitive_goes_on_to_125_percent_and_comes_back_opening_at_the_recorded_force() {
     let (kb, demo) = learned(31);
@@ -117,6 +119,8 @@ fn a_force_controlled_primitive_goes_on_to_125_percent_and_comes_back_opening_at
     }
 }
 
+/// No primitive starts before the ones it waits for end, one taking 3 s longer delays those waiting by
+/// 3 s, and the right moves no more before its first primitive than it did in the demonstration.
 #[test]
 fn no_primitive_starts_before_those_it_waits_for_and_a_longer_one_delays_them() {
     let (kb, demo) = learned(32);
@@ -171,6 +175,8 @@ fn no_primitive_starts_before_those_it_waits_for_and_a_longer_one_delays_them() 
     );
 }
 
+/// A fluid or DMP skill made at a moved stitch is the nominal skill moved, within 0.2 mm, with the same
+/// timing and jaw keys.
 #[test]
 fn a_skill_made_at_a_moved_stitch_is_the_nominal_skill_moved() {
     let (kb, demo) = learned(33);
@@ -206,6 +212,8 @@ fn a_skill_made_at_a_moved_stitch_is_the_nominal_skill_moved() {
     }
 }
 
+/// Fluid and DMP skills at the demonstration's site follow the demonstrated winding in shape and pace
+/// (under 3 mm at worst), and the fluid run has a finite, non-flat pressure field.
 #[test]
 fn the_fluid_regenerates_the_winding_and_dmp_reproduces_it() {
     let (kb, demo) = learned(34);
@@ -250,6 +258,8 @@ fn the_fluid_regenerates_the_winding_and_dmp_reproduces_it() {
     }
 }
 
+/// Replay plays every instrument's recorded positions and jaws back moved by the site's motion, and
+/// refuses a NaN key period.
 #[test]
 fn replay_plays_the_demonstration_back_moved() {
     let (kb, demo) = learned(35);
@@ -268,9 +278,9 @@ fn replay_plays_the_demonstration_back_moved() {
     assert!(replay(&demo, &motion, &trocars(&here), &ReplaySettings { key_period_s: f64::NAN }).is_err());
 }
 
-/// Session 50: the fluid and DMP skills commanded the jaws' direction alone, and at the canonical
-/// demonstration's own stitch the right's jaws rolled otherwise than recorded and the needle was torn
-/// out of them (17.4 and 26.5 N). A key moved from the demonstration keeps its frame.
+/// A key moved from the demonstration keeps its frame where the wrist is bent: commanded by the jaws'
+/// direction alone, the fluid and DMP skills rolled the right's jaws otherwise than recorded at the
+/// canonical stitch and tore the needle out of them (17.4 and 26.5 N).
 #[test]
 fn keys_moved_from_the_demonstration_keep_its_frame_where_the_wrist_is_bent() {
     let (kb, demo) = learned(36);

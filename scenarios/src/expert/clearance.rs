@@ -127,6 +127,8 @@ mod tests {
 
     const THREAD_RADIUS_M: f64 = 0.0004;
 
+    /// The clearance check finds a circle round the jaws' base driving the thread into the leaning wrist, and
+    /// one round the jaws' front half clear of it.
     #[test]
     fn a_circle_round_the_jaws_base_passes_through_the_leaning_wrist() {
         assert!(clearance_m(&circle(0.006), &wrist(), THREAD_RADIUS_M) < 0.0);
@@ -134,6 +136,8 @@ mod tests {
         assert!(clearance_m(&circle(-0.004), &wrist(), THREAD_RADIUS_M) > 0.0);
     }
 
+    /// A winding circle moves towards the jaws' tips just far enough to clear the wrist, not at all when
+    /// already clear, and never past the limit.
     #[test]
     fn the_circle_moves_towards_the_tips_until_clear_and_no_further() {
         let (moved, by_m) =

@@ -101,6 +101,8 @@ impl CoilsAtTake {
 mod tests {
     use super::*;
 
+    /// A two-turn helix counts two turns about its axis, minus two about the reversed axis, and none about a
+    /// line beside it.
     #[test]
     fn a_helix_of_two_turns_counts_two() {
         let points: Vec<Vector3<f64>> = (0..=200)

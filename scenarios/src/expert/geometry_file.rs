@@ -310,6 +310,7 @@ fn range_problems(g: &TieGeometry) -> Vec<(String, String)> {
 mod tests {
     use super::*;
 
+    /// `experts/base.toml` parses to exactly the base plan, so its listed values match the code's.
     #[test]
     fn the_base_file_is_the_base_plan() {
         let g = parse_tie_geometry(include_str!("../../experts/base.toml"), "base.toml")
@@ -317,6 +318,7 @@ mod tests {
         assert_eq!(g, TieGeometry::default());
     }
 
+    /// A tie geometry file changes only the keys it gives; every other value stays the base plan's.
     #[test]
     fn only_the_keys_given_change() {
         let g = parse_tie_geometry("pull_force_n = 2.5\n[left_fetches]\nalong_tail = 0.4\njaw_direction = [0.0, 0.0, -1.0]\napproach_m = 0.01\nstop_short_m = 0.0\n", "x.toml").unwrap();
@@ -333,6 +335,8 @@ mod tests {
         );
     }
 
+    /// `tail_end_offered_m` is refused unless the assist presents the tail, and then the left fetches
+    /// nothing; a second throw does not inherit the assist presenting.
     #[test]
     fn where_the_assist_presents_the_tail_the_left_fetches_nothing_and_the_tail_end_may_be_offered() {
         // Shipped, the left fetches: nothing is offered.
@@ -351,6 +355,8 @@ mod tests {
         assert!(fetching.fetch().is_some(), "{fetching:?}");
     }
 
+    /// A `[second_throw]` table fills the keys it leaves out from the second throw's defaults and leaves the
+    /// first throw as the base plan.
     #[test]
     fn a_second_throw_table_takes_its_own_defaults_for_keys_left_out() {
         let g = parse_tie_geometry("[second_throw]\nwinding_turns = 2.0\n", "x.toml").unwrap();
@@ -361,6 +367,8 @@ mod tests {
         assert_eq!(TieGeometry { second_throw: None, ..g }, TieGeometry::default());
     }
 
+    /// A file with an unknown key, a wrong type or any value out of range is refused, naming the file, the
+    /// key (and line) and why, for every problem, the second throw's included.
     #[test]
     fn bad_files_name_the_key_and_why() {
         let schema = |text: &str| match parse_tie_geometry(text, "bad.toml") {

@@ -448,6 +448,7 @@ impl TrackBuilder {
 mod tests {
     use super::*;
 
+    /// A circular path of whole turns ends where it began, a key per 10 ms, its jaw centres on the circle.
     #[test]
     fn a_circle_comes_back_after_whole_turns() {
         let mut b = TrackBuilder::new(
@@ -487,6 +488,8 @@ mod tests {
         }
     }
 
+    /// Turning the jaws to a new direction carries their roll along: every key holds a whole frame with the
+    /// hinge along -z.
     #[test]
     fn turning_the_jaws_carries_their_roll_along() {
         let mut b = TrackBuilder::new(

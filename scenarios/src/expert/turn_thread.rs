@@ -65,6 +65,7 @@ mod tests {
         (Vector3::new(0.0, -0.0045, 0.0), Vector3::new(0.0, 0.0045, 0.0), Vector3::new(0.0, 0.15, 0.06))
     }
 
+    /// With long end to spare, the fetch takes the tail as far out as asked, not cut short.
     #[test]
     fn the_fetch_goes_as_far_as_asked_when_the_long_end_reaches() {
         let (exit, entry, hold) = stitch();
@@ -72,6 +73,8 @@ mod tests {
         assert_eq!(along_within_long_end(0.35, 0.2, 1.0, &exit, &entry, &hold, beside), 0.35);
     }
 
+    /// A long end too short for the asked fetch stops it at the furthest point its thread reaches, nearer
+    /// still when the right stands far back, and never below the least share.
     #[test]
     fn a_short_long_end_keeps_the_fetch_near_the_stitch() {
         let (exit, entry, hold) = stitch();

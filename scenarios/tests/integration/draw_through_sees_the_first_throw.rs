@@ -11,6 +11,8 @@ use knotlab_hw::rig::ArmName;
 use knotlab_sim::knot::{KnotType, classify, drawn_through};
 use nalgebra::Vector3;
 
+/// Just after the left takes the tail the thread reads unknotted; drawn back through the coils it reads a
+/// surgeon's throw, and drawn out past the jaws' tips it does not.
 #[test]
 fn drawn_through_the_coils_at_the_first_take_the_thread_makes_the_first_throw() {
     // Seed 0 of the two-throw scene: the left takes the tail at 16.23 s.

@@ -27,6 +27,8 @@ fn rope_world() -> SimWorld {
     SimWorld::new(rope_scene(), Rig::shipped().expect("the rig")).expect("the rope scene builds")
 }
 
+/// The point ahead of the jaws lies on the tail nearest their line, with the tail's direction towards its
+/// end and clear of the tissue, and no tail is found behind the jaws.
 #[test]
 fn the_point_ahead_of_the_jaws_is_on_the_tail_where_their_line_meets_it() {
     let world = rope_world();
@@ -61,6 +63,8 @@ fn the_point_ahead_of_the_jaws_is_on_the_tail_where_their_line_meets_it() {
     assert!(away.is_none_or(|(p, _)| (p - jaw_centre).dot(&up) >= 0.0), "{away:?} is behind the jaws");
 }
 
+/// A looking plan ends the first throw with the jaws over the tail, well short of the whole tie, and only
+/// a plan that looks has a tail take to plan after it.
 #[test]
 fn looking_splits_the_first_throw_at_the_tail() {
     let world = rope_world();
@@ -81,6 +85,8 @@ fn looking_splits_the_first_throw_at_the_tail() {
     );
 }
 
+/// A second throw whose fetch looks stops at the tail and leaves a tail take to plan; one that does not
+/// look, or fetches nothing, is planned whole.
 #[test]
 fn looking_splits_the_second_throw_at_the_tail_where_the_left_fetches_it() {
     let world = rope_world();
@@ -116,6 +122,8 @@ fn looking_splits_the_second_throw_at_the_tail_where_the_left_fetches_it() {
     }
 }
 
+/// The take comes over the tail and then onto it along the jaws, which keep their direction, with the
+/// hinge lying along the tail.
 #[test]
 fn the_take_comes_onto_the_tail_along_the_jaws_its_hinge_along_the_tail() {
     use knotlab_hw::skill::Orientation;
@@ -170,6 +178,7 @@ fn the_take_comes_onto_the_tail_along_the_jaws_its_hinge_along_the_tail() {
     }
 }
 
+/// On the rope scene (seed 1) the looking left grasps the tail near its end, not its own coils.
 #[test]
 fn on_the_rope_the_left_takes_the_tail_it_looked_at() {
     // Seed 1: the shipped plan's left closed on its own coils here (particle 91, session 44); looking,
@@ -198,6 +207,8 @@ fn on_the_rope_the_left_takes_the_tail_it_looked_at() {
     assert!(event_time_s(take).is_some_and(|t| t > 12.0), "{take}");
 }
 
+/// As the left goes down onto the tail the right follows it by the fetch's share, and stays put when told
+/// not to follow.
 #[test]
 fn the_right_follows_the_left_down_onto_the_tail() {
     // The turns lie round both instruments' jaws: the right left standing as the left went down onto

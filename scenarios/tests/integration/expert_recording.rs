@@ -34,6 +34,8 @@ fn reaches_every_key(world: &SimWorld, rig: &Rig, track: &knotlab_hw::skill::Tra
     Ok(())
 }
 
+/// The base plan is a well-formed three-arm skill each arm reaches key by key for every human variation,
+/// with a long winding path for the right and a pace the variation changes.
 #[test]
 fn the_plan_is_reachable_for_every_variation() {
     let rig = Rig::shipped().expect("the shipped rig");
@@ -71,6 +73,8 @@ fn the_plan_is_reachable_for_every_variation() {
     assert!(slow.duration_s() > fast.duration_s(), "the variation changes the pace");
 }
 
+/// A recorded run is a valid 100 Hz demonstration of every instrument, with the grasps seen, that writes
+/// and loads back identical.
 #[test]
 fn a_recorded_run_is_a_valid_100_hz_demonstration_that_round_trips() {
     let options = RecordOptions { cycles_per_sample: 10, ..RecordOptions::default() };
@@ -115,6 +119,8 @@ fn pulls(geometry: &TieGeometry) -> [(knotlab_hw::skill::Track, knotlab_hw::skil
     })
 }
 
+/// Each pull's set-force event fires at the pull force and opens the jaws, or holds instead when
+/// `hold_at_force` says so.
 #[test]
 fn the_pulls_let_go_at_the_set_force_or_hold_it_as_the_geometry_says() {
     use knotlab_hw::skill::ForceAction;
@@ -133,6 +139,8 @@ fn the_pulls_let_go_at_the_set_force_or_hold_it_as_the_geometry_says() {
     }
 }
 
+/// A set-force hold ends as the jaws start to open, or lasts until they are open when told to hold
+/// through the release.
 #[test]
 fn the_pulls_hold_through_the_release_when_told() {
     // For each pulling arm: when its set-force hold ends, when its jaws start to open at the end, and
@@ -153,6 +161,7 @@ fn the_pulls_hold_through_the_release_when_told() {
     }
 }
 
+/// Given its own tail pull force, the left's set force uses it while the right keeps the pull force.
 #[test]
 fn the_left_pulls_the_tail_to_its_own_set_force_when_given_one() {
     let geometry = TieGeometry { tail_pull_force_n: Some(0.7), ..TieGeometry::default() };
@@ -161,6 +170,8 @@ fn the_left_pulls_the_tail_to_its_own_set_force_when_given_one() {
     assert_eq!(right.threshold_n, geometry.pull_force_n);
 }
 
+/// Pulls told to go on pass their shipped targets by the distance asked, level with the tissue, at the
+/// shipped speed, and each fires with the other's set force.
 #[test]
 fn pulls_told_to_go_on_pass_their_targets_level_at_the_same_speed_and_stop_together() {
     let shipped = TieGeometry::default();
@@ -206,6 +217,8 @@ fn pulls_told_to_go_on_pass_their_targets_level_at_the_same_speed_and_stop_toget
     }
 }
 
+/// Pulls that end at different times hold alike and open their jaws together, a second after the later
+/// one ends.
 #[test]
 fn pulls_of_different_lengths_let_go_together() {
     // Sent 0.2 m on, the pulls stop where each arm's reach ends, one sooner than the other; both
@@ -239,6 +252,7 @@ fn pulls_of_different_lengths_let_go_together() {
     assert_eq!(left_set.until_s, right_set.until_s, "the holds last alike");
 }
 
+/// Pulls sent on out of the arms' reach stop within it: every key stays reachable and some pull ends short.
 #[test]
 fn pulls_told_to_go_on_out_of_reach_stop_within_it() {
     let rig = Rig::shipped().expect("the shipped rig");
@@ -266,6 +280,7 @@ fn pulls_told_to_go_on_out_of_reach_stop_within_it() {
     assert!(cut_short > 0, "0.2 m on is out of the arms' reach at this scene: some pull must stop short");
 }
 
+/// A pull takes as long as `pull_s` says: a slower pull moves the set-force hold's end by the difference.
 #[test]
 fn each_pull_takes_as_long_as_told() {
     // The pull's last move, to its target, ends where the set-force hold would otherwise run out: it
@@ -279,6 +294,8 @@ fn each_pull_takes_as_long_as_told() {
     }
 }
 
+/// With `right_jaws_across_winding` the right's jaws stay across the left's all round the winding;
+/// without it they reach back along the left's.
 #[test]
 fn while_winding_the_right_turns_its_jaws_across_the_left_as_the_geometry_says() {
     let world = SimWorld::new(scene(), Rig::shipped().expect("the shipped rig")).expect("the scene builds");
@@ -307,6 +324,8 @@ fn while_winding_the_right_turns_its_jaws_across_the_left_as_the_geometry_says()
     assert!(most < 0.05, "across the left's jaws all the way round: {most}");
 }
 
+/// The left's jaws close to be wound round or stay open as `winding_jaw_rad` says, closing on the tail
+/// either way.
 #[test]
 fn the_left_is_wound_round_with_its_jaws_as_open_as_the_geometry_says() {
     let world = SimWorld::new(scene(), Rig::shipped().expect("the shipped rig")).expect("the scene builds");
@@ -372,6 +391,8 @@ fn bearing_across_the_turn(
     (bearing(turning), bearing(arrived))
 }
 
+/// Fetching the tail as one body, the right keeps its bearing from the left's jaws as they turn;
+/// following their shift only, it does not.
 #[test]
 fn fetching_the_tail_as_one_body_the_right_turns_with_the_left_jaws() {
     use knotlab_scenarios::expert::LeftFetch;
@@ -396,6 +417,8 @@ fn fetching_the_tail_as_one_body_the_right_turns_with_the_left_jaws() {
     assert!((before - after).abs() > 0.2, "{before} rad before the turn, {after} rad after");
 }
 
+/// During the fetch the right follows the left's shift by the share told or stands at the offset given
+/// beside its jaws, and with `hinge_along_tail` the left's hinge lies along the tail.
 #[test]
 fn fetching_the_tail_the_right_follows_as_told_and_the_hinge_can_lie_along_the_tail() {
     use knotlab_hw::skill::Orientation;
@@ -492,6 +515,8 @@ fn fetching_the_tail_the_right_follows_as_told_and_the_hinge_can_lie_along_the_t
     );
 }
 
+/// A run-down force stops and holds each pulling arm, the right draws to the point given, a presented
+/// tail is taken short by the distance told, and a slower draw lengthens the plan by the difference.
 #[test]
 fn the_draw_and_the_run_down_go_as_the_geometry_says() {
     use knotlab_hw::skill::ForceAction;
@@ -563,6 +588,8 @@ fn the_draw_and_the_run_down_go_as_the_geometry_says() {
     assert!((2.7..3.5).contains(&longer_s), "{longer_s} s longer for a 2.8 s slower draw");
 }
 
+/// Before the draw the right carries the long end through the given points in order while the left holds
+/// the tail still; the base plan's right goes nowhere near them.
 #[test]
 fn before_the_draw_the_right_carries_the_long_end_through_the_points_given() {
     let world = SimWorld::new(scene(), Rig::shipped().expect("the shipped rig")).expect("the scene builds");
@@ -587,6 +614,8 @@ fn before_the_draw_the_right_carries_the_long_end_through_the_points_given() {
     assert!((at(end_s) - at(second_s)).norm() > 0.01, "the left draws and pulls afterwards");
 }
 
+/// The left runs down through the given points in order once the right is down, each leg taking the
+/// run-down's time.
 #[test]
 fn the_left_runs_down_through_the_points_given_after_the_right_has_run_down() {
     let world = SimWorld::new(scene(), Rig::shipped().expect("the shipped rig")).expect("the scene builds");
@@ -623,6 +652,8 @@ fn the_left_runs_down_through_the_points_given_after_the_right_has_run_down() {
     );
 }
 
+/// The right runs down through the given points in order before its run-down's end, each leg taking the
+/// run-down's time.
 #[test]
 fn the_right_runs_down_through_the_points_given_before_its_run_downs_end() {
     let world = SimWorld::new(scene(), Rig::shipped().expect("the shipped rig")).expect("the scene builds");
@@ -649,6 +680,8 @@ fn the_right_runs_down_through_the_points_given_before_its_run_downs_end() {
     );
 }
 
+/// For the second throw the assist takes the tail the distance told from its end and closes on it before
+/// the left opens, drawing it to the point given only once the left is open.
 #[test]
 fn for_the_second_throw_the_assist_takes_the_tail_near_its_end_and_draws_it_where_told() {
     use knotlab_scenarios::expert::{SecondThrow, plan_second_throw};
@@ -679,6 +712,8 @@ fn for_the_second_throw_the_assist_takes_the_tail_near_its_end_and_draws_it_wher
     assert!(drew_s > opened_s, "{drew_s} s, {opened_s} s");
 }
 
+/// Told to let go first, the left opens on the tail at the end of the first throw while the right keeps
+/// the needle, each pull holding until the left is open; otherwise both stay shut.
 #[test]
 fn the_left_lets_go_of_the_first_throw_before_the_second_when_told() {
     use knotlab_scenarios::expert::SecondThrow;
@@ -713,6 +748,8 @@ fn the_left_lets_go_of_the_first_throw_before_the_second_when_told() {
     }
 }
 
+/// With `tail_held_taut` the assist draws the tail only its share of the tail's length from the entry;
+/// untold, it draws it to the point given.
 #[test]
 fn the_assist_draws_the_tail_no_further_than_its_share_of_the_tail_when_told() {
     use knotlab_scenarios::expert::tail::tail_length_to;
@@ -755,6 +792,8 @@ fn the_assist_draws_the_tail_no_further_than_its_share_of_the_tail_when_told() {
     assert!((half - expected).norm() < offset_m + 1e-3, "drawn to {half:?}, not {expected:?}");
 }
 
+/// The assist offers the tail end the distance told beside the take point, not ahead of the left's jaws,
+/// with its hinge along that offset so the thread crosses them.
 #[test]
 fn the_assist_offers_the_tail_end_beside_the_left_jaws_along_their_hinge() {
     use knotlab_hw::skill::Orientation;
@@ -824,6 +863,8 @@ fn first_reaches(track: &knotlab_hw::skill::Track, point_m: &Vector3<f64>) -> Op
         .map(|k| k.time_s)
 }
 
+/// With `tail_brought_to_m` the assist brings the tail to the point given before the left opens to fetch
+/// it, and the left fetches its share of the way there; the base plan's assist does not go there.
 #[test]
 fn once_wound_the_assist_brings_the_tail_where_told_before_the_left_fetches_it() {
     let world = SimWorld::new(scene(), Rig::shipped().expect("the shipped rig")).expect("the scene builds");
@@ -849,6 +890,8 @@ fn once_wound_the_assist_brings_the_tail_where_told_before_the_left_fetches_it()
     assert_eq!(first_reaches(shipped.track(ArmName::Assist).expect("the assist"), &point), None);
 }
 
+/// A winding pitch makes the right end its winding pitch times turns further along the left's jaws, from
+/// the same start, and no further apart anywhere.
 #[test]
 fn the_winding_advances_along_the_jaws_by_its_pitch() {
     let world = SimWorld::new(scene(), Rig::shipped().expect("the shipped rig")).expect("the scene builds");
@@ -886,6 +929,8 @@ fn the_winding_advances_along_the_jaws_by_its_pitch() {
     assert!(apart(0.0).norm() < 1e-9, "the same start");
 }
 
+/// A throw wound on the assist's jaws starts with a hand-over: the assist takes the tail's end before the
+/// left lets go, the left retakes it further up before the assist opens, and only the assist winds.
 #[test]
 fn a_second_throw_on_the_assists_jaws_begins_with_the_tail_handed_over_and_taken_back() {
     use knotlab_scenarios::expert::{SecondThrow, plan_second_throw, plan_tail_hand_over};
@@ -939,6 +984,8 @@ fn a_second_throw_on_the_assists_jaws_begins_with_the_tail_handed_over_and_taken
     assert!(first_reaches(left, &winding_world.coords).is_none(), "the left stays away");
 }
 
+/// The second throw presents the tail `tail_ahead_m` ahead of the left's jaws: 4 mm ahead and taken 4 mm
+/// short, the left closes where it wound; untold, it moves on along its jaws as in the first throw.
 #[test]
 fn the_second_throw_presents_the_tail_as_far_ahead_of_the_left_jaws_as_told() {
     use knotlab_scenarios::expert::{SecondThrow, plan_second_throw};

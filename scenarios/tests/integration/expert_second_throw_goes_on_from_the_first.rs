@@ -32,6 +32,8 @@ fn parse(events: &[String]) -> (Vec<Grasped>, Vec<Released>) {
     (grasped, released)
 }
 
+/// After the first throw the assist takes the tail again between the knot and the left's jaws, the left
+/// lets go after that, and one valid demonstration records on through both.
 #[test]
 fn the_assist_takes_the_tail_and_the_left_lets_it_go() {
     let scene = parse_scene(include_str!("../../chain.toml"), "chain.toml").expect("the chain scene");

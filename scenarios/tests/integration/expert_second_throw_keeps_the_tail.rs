@@ -9,6 +9,7 @@ use super::common;
 use common::{event_time_s, expert, two_throw_run};
 use knotlab_scenarios::expert::TieGeometry;
 
+/// `two-throws.toml` is `coils-on-the-left.toml` with a second throw that keeps the tail in the left's jaws.
 #[test]
 fn the_two_throw_file_ties_its_first_throw_as_coils_on_the_left() {
     let two = expert("two-throws.toml");
@@ -17,6 +18,8 @@ fn the_two_throw_file_ties_its_first_throw_as_coils_on_the_left() {
     assert_eq!(TieGeometry { second_throw: None, ..two }, expert("coils-on-the-left.toml"));
 }
 
+/// With the left keeping the tail there is no hand-over (one left take, no release, one assist take), and
+/// the second turn lies on the left's closed jaws.
 #[test]
 fn the_second_turn_is_wound_round_the_jaws_that_hold_the_tail() {
     // Seed 0: the first throw ends at 28 s, the second turn is wound by 38 s and drawn at 41-45 s.

@@ -15,6 +15,8 @@ use common::two_throw_run;
 use knotlab_sim::knot::KnotType;
 use knotlab_sim::knot::verdict::{FailureMode, Verdict};
 
+/// The leg-behind second throw makes a surgeon's knot by release without grip slips, and the run shows why
+/// it slips: throws apart, exit leg nearly taut, a capsized knot with the tail across the right.
 #[test]
 fn the_second_throw_is_of_the_other_hand_and_makes_a_surgeons_knot() {
     // Seed 0: the left takes the presented tail at 47.3 s; the instruments let go at 75.3 s.

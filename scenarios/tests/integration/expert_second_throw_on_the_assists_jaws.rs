@@ -12,6 +12,8 @@ use knotlab_hw::rig::ArmName;
 use knotlab_scenarios::expert::diagnose::turns_about;
 use nalgebra::Vector3;
 
+/// The assist takes the tail's end, the left lets go and retakes it nearer the knot, the assist lets go,
+/// the long end is wound about once round the assist's jaws, and the presented tail is taken near its end.
 #[test]
 fn the_left_takes_the_tail_back_and_the_long_end_is_wound_round_the_assists_jaws() {
     // Seed 0: the first throw ends near 28 s; the assist takes the tail's end at 29.4 s, the left

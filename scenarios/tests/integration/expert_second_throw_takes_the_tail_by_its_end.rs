@@ -12,6 +12,8 @@ use super::common;
 use common::{event_segment, event_time_s, expert, two_throw_run};
 use knotlab_scenarios::expert::TieGeometry;
 
+/// `two-throws-tail-end.toml` is `coils-on-the-left.toml` with a second throw whose assist holds the tail
+/// 6 mm from its end and presents it.
 #[test]
 fn the_tail_end_file_ties_its_first_throw_as_coils_on_the_left() {
     let file = expert("two-throws-tail-end.toml");
@@ -21,6 +23,8 @@ fn the_tail_end_file_ties_its_first_throw_as_coils_on_the_left() {
     assert_eq!(TieGeometry { second_throw: None, ..file }, expert("coils-on-the-left.toml"));
 }
 
+/// For the second throw the assist takes the tail within two segments of its end, the left lets go after,
+/// and the turn lies wound on the left's empty jaws.
 #[test]
 fn the_assist_takes_the_tail_by_its_end_and_the_turn_is_wound_round_the_empty_jaws() {
     // Seed 1: the first throw ends at 27 s; the assist takes the tail's end, the left lets go, the

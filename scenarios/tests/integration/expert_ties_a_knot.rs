@@ -16,6 +16,8 @@ use knotlab_sim::knot::KnotType;
 use knotlab_sim::knot::Verdict;
 use knotlab_sim::scene::parse_scene;
 
+/// On the chain, seed 0 of the base plan ties a surgeon's double throw down at the stitch, the wound nearly
+/// closed at release, the right's pull stopped at its set force and the long end wound round both jaws.
 #[test]
 fn on_the_chain_seed_0_ties_a_surgeons_knot_down_at_the_stitch() {
     let scene = parse_scene(include_str!("../../chain.toml"), "chain.toml").expect("the chain scene");
@@ -75,6 +77,8 @@ fn on_the_chain_seed_0_ties_a_surgeons_knot_down_at_the_stitch() {
     assert!(far.len() >= 4 && far[far.len() - 1] > far[0] + 8, "{coils:?}");
 }
 
+/// Seed 0 of the shipped plan on the nominal scene ties a surgeon's double throw the evaluator accepts,
+/// holding the wound closed under load, each pull stopped at its own set force.
 #[test]
 fn seed_0_of_the_shipped_plan_ties_a_surgeons_knot_that_holds() {
     let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));

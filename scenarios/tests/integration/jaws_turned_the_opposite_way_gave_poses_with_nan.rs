@@ -10,6 +10,8 @@ use knotlab_scenarios::expert::{TieGeometry, Variation, plan_instrument_tie};
 use knotlab_sim::scene::parse_scene;
 use knotlab_sim::world::SimWorld;
 
+/// Jaws wound pointing straight up and then turned straight down to fetch the tail plan only finite,
+/// well-formed poses.
 #[test]
 fn jaws_wound_pointing_up_then_turned_down_to_the_tail() {
     let scene = parse_scene(include_str!("../../chain.toml"), "chain.toml").expect("the chain scene");

@@ -28,6 +28,8 @@ fn tip(report: &knotlab_scenarios::session::SessionReport, arm: ArmName, time_s:
         .expect("a tip sample")
 }
 
+/// The master moves the left at 1:3, the skill pedal starts the skill at once and the master is ignored
+/// while it runs, the emergency stop halts every arm, and the teleoperated recording reads back whole.
 #[test]
 fn teleoperate_then_the_skill_pedal_then_the_emergency_stop() {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));

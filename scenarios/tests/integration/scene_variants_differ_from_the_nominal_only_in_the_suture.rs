@@ -14,6 +14,8 @@
 use knotlab_sim::scene::parse_scene;
 use knotlab_sim::thread::ThreadModel;
 
+/// `chain.toml` differs from `default.toml` only in its suture: the thread model, friction and length,
+/// rope and solver passes, and stitch slide friction.
 #[test]
 fn the_chain_scene_differs_from_the_nominal_one_only_in_the_suture() {
     let nominal = parse_scene(include_str!("../../default.toml"), "default.toml").expect("the shipped scene");
@@ -41,6 +43,8 @@ fn the_chain_scene_differs_from_the_nominal_one_only_in_the_suture() {
     assert_eq!(chain, nominal, "every other setting as in default.toml");
 }
 
+/// `polypropylene-3-0.toml` differs from `default.toml` only in the 3-0 polypropylene suture's settings
+/// and its bending-stiffness draw.
 #[test]
 fn the_polypropylene_scene_differs_from_the_nominal_one_only_in_the_suture() {
     let nominal = parse_scene(include_str!("../../default.toml"), "default.toml").expect("the shipped scene");

@@ -6,6 +6,7 @@
 
 use knotlab_sim::scene::parse_scene;
 
+/// `short-suture.toml` differs from `chain.toml` only in a shorter thread cut at the same segment length.
 #[test]
 fn the_short_suture_scene_differs_from_the_chain_one_only_in_the_thread_length() {
     let chain = parse_scene(include_str!("../../chain.toml"), "chain.toml").expect("the chain scene");
@@ -30,6 +31,7 @@ fn the_short_suture_scene_differs_from_the_chain_one_only_in_the_thread_length()
     assert_eq!(short, chain, "every other setting as in chain.toml");
 }
 
+/// `short-suture-friction-0.5.toml` differs from `short-suture.toml` only in the thread's friction on itself.
 #[test]
 fn the_two_throw_scene_is_the_short_suture_one_with_more_friction_on_itself() {
     let short = parse_scene(include_str!("../../short-suture.toml"), "short-suture.toml")

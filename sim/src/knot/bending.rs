@@ -63,6 +63,7 @@ mod tests {
         crate::knot::legs::tests::line()
     }
 
+    /// A long end wound once round a straight tail bends about a turn while the tail shows no bending.
     #[test]
     fn a_long_end_wound_round_a_straight_tail_bends_and_the_tail_does_not() {
         let (p, exit_m, entry_m) = wound_round_a_straight_tail();
@@ -73,6 +74,7 @@ mod tests {
         assert!(b.tail_rad < 1e-9, "the tail runs straight: {b:?}");
     }
 
+    /// Reading the thread from its tail's end swaps the long end's and the tail's bending exactly.
     #[test]
     fn read_from_the_other_end_the_roles_swap() {
         // The same thread from its tail's end: the straight strand is now the long end.
@@ -86,6 +88,7 @@ mod tests {
         assert!((forward.tail_rad - backward.long_end_rad).abs() < 1e-9, "{forward:?} {backward:?}");
     }
 
+    /// Ends that never touch, an exit after the entry, or a one-point thread give no bending at all.
     #[test]
     fn ends_that_touch_nothing_have_no_bending() {
         let (p, exit_m, entry_m) = wound_round_a_straight_tail();

@@ -72,6 +72,7 @@ mod tests {
         (0..n).map(|i| Vector3::new(i as f64, 0.0, 0.0)).collect()
     }
 
+    /// A centreline with too few points, a non-finite coordinate or a repeated point is refused, naming it.
     #[test]
     fn refuses_short_non_finite_and_repeated_centrelines() {
         assert_eq!(validate(&line(3)), Err(KnotError::TooFewPoints { count: 3 }));
@@ -87,6 +88,7 @@ mod tests {
         assert_eq!(validate(&dup), Err(KnotError::DuplicatePoint { index: 3, previous: 2 }));
     }
 
+    /// A straight thread's knot region is centred on it, half its length in radius; its arc lengths add up.
     #[test]
     fn region_holds_the_thread_and_arc_length_adds_up() {
         let points = line(11);

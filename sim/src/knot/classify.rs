@@ -206,6 +206,8 @@ pub fn classify(points: &[Vector3<f64>]) -> Result<Classification, KnotError> {
 mod tests {
     use super::*;
 
+    /// Each row of the rules table maps crossings, determinant and writhe to its knot type, and every type's
+    /// serde name is its snake_case name.
     #[test]
     fn rules_table() {
         use KnotType::*;

@@ -95,6 +95,8 @@ mod tests {
 
     use super::*;
 
+    /// Every closure vertex lies beyond twice the radius of the thread's picture, so the closure draws no
+    /// crossing over the knot.
     #[test]
     fn closure_leaves_radially_and_stays_outside_the_picture() {
         let points: Vec<Vector3<f64>> =

@@ -104,6 +104,8 @@ mod tests {
         }
     }
 
+    /// A single crossing is found with the right strand over and a right-handed sign; raising the other
+    /// strand swaps over and under and makes it left-handed.
     #[test]
     fn one_crossing_with_over_under_and_sign() {
         // Segment 0 goes up-right, segment 2 goes up-left (from (2,0) to (0,2)).

@@ -125,6 +125,7 @@ pub fn read_points(path: &Path) -> Result<Vec<Vector3<f64>>, CsvError> {
 mod tests {
     use super::*;
 
+    /// A header line, blank lines, `#` comments and CRLF endings are skipped and every data line is read.
     #[test]
     fn header_blank_lines_and_comments() {
         let text = "x, y, z\n\n0,0,0\n# a comment\n1,0,0\r\n1,1,0\n0,1,0.5\n\n";
@@ -133,6 +134,8 @@ mod tests {
         assert_eq!(points[3], Vector3::new(0.0, 1.0, 0.5));
     }
 
+    /// Each malformed centreline is refused with the number of its bad line and the reason: field count, not
+    /// a number, not finite, duplicate, too few points, or a second header.
     #[test]
     fn each_problem_names_its_line() {
         let cases = [

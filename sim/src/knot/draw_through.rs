@@ -38,6 +38,8 @@ pub fn drawn_through(
 mod tests {
     use super::*;
 
+    /// The draw keeps the thread up to the grip, puts the next point on the jaws' axis level with the grip
+    /// and lays the tail back along the jaws for the draw's length.
     #[test]
     fn the_tail_past_the_grip_is_replaced_by_a_line_back_along_the_jaws() {
         let points: Vec<Vector3<f64>> = (0..10).map(|i| Vector3::new(i as f64 * 0.003, 0.01, 0.0)).collect();
@@ -51,6 +53,7 @@ mod tests {
         assert!((drawn[16] - Vector3::new(0.012, 0.0, -0.03)).norm() < 1e-12, "{}", drawn[16]);
     }
 
+    /// A grip at the thread's first point or past its last, a zero step or a non-finite draw is refused.
     #[test]
     fn a_grip_off_the_thread_or_a_bad_draw_is_refused() {
         let points: Vec<Vector3<f64>> = (0..5).map(|i| Vector3::new(i as f64, 0.0, 0.0)).collect();

@@ -94,6 +94,8 @@ impl GaussCode {
 mod tests {
     use super::*;
 
+    /// Crossings become passages in order along the curve with their signs and writhe, and a code whose
+    /// crossing changes sign between its passages is refused.
     #[test]
     fn passages_follow_the_curve() {
         let crossings = [

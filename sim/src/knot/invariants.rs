@@ -87,6 +87,8 @@ mod tests {
         determinant(&GaussCode::parse(text).expect("valid code"))
     }
 
+    /// Bareiss elimination gives exact integer determinants, swapping rows past a zero pivot and giving zero
+    /// for singular matrices.
     #[test]
     fn bareiss_is_exact() {
         assert_eq!(bareiss_abs_det(vec![2, -1, 0, -1, 2, -1, 0, -1, 2], 3), Some(4));
@@ -97,6 +99,8 @@ mod tests {
         assert_eq!(bareiss_abs_det(vec![0, 1, 0, 1], 2), Some(0));
     }
 
+    /// The unknot, trefoil, figure-eight, cinquefoil and granny codes give their known determinants, and a
+    /// code with a crossing missing its over passage gives none.
     #[test]
     fn determinants_of_known_knots() {
         assert_eq!(det(""), Some(1));

@@ -146,6 +146,8 @@ pub(crate) mod tests {
         (p, exit_m, entry_m)
     }
 
+    /// A slack leg looping out and back counts all its thread against its shorter span, and a tail running
+    /// straight through the wrap has a short leg with no slack.
     #[test]
     fn the_slack_leg_counts_whole_and_the_tail_leg_is_short() {
         let (p, exit_m, entry_m) = line();
@@ -167,6 +169,8 @@ pub(crate) mod tests {
         assert!(entry_leg.slack_m().abs() < 1e-9, "{entry_leg:?}");
     }
 
+    /// The long end is free from its end to its first contact with the tail, the tail from its last contact
+    /// to its end; ends that never touch or an exit after the entry give none.
     #[test]
     fn the_free_ends_run_to_the_wrap() {
         let (p, exit_m, entry_m) = line();
@@ -182,6 +186,7 @@ pub(crate) mod tests {
         assert_eq!(free_ends(&p, entry_m, exit_m, 0.0012), None);
     }
 
+    /// Ends that never touch, an exit after the entry, or a one-point thread give no leg at all.
     #[test]
     fn ends_that_touch_nothing_have_no_leg() {
         let (p, exit_m, entry_m) = line();

@@ -70,6 +70,8 @@ pub fn directions() -> [Projection; DIRECTIONS] {
 mod tests {
     use super::*;
 
+    /// Every projection basis is orthonormal and right-handed, no direction lies on an axis, and no two
+    /// directions nearly coincide.
     #[test]
     fn bases_are_right_handed_and_directions_distinct() {
         let all = directions();

@@ -121,6 +121,8 @@ mod tests {
 
     const TREFOIL: &str = "O0+ U1+ O2+ U0+ O1+ U2+";
 
+    /// Reduction takes a kink out by R1 and a bigon by R2 down to the trefoil, leaves the trefoil as it is,
+    /// and keeps the figure-eight's clasp whole.
     #[test]
     fn kinks_and_bigons_go_a_trefoil_stays() {
         assert_eq!(reduced(TREFOIL), (TREFOIL.to_owned(), Reductions::default()));
@@ -136,6 +138,8 @@ mod tests {
         assert_eq!(reduced(figure_eight), (figure_eight.to_owned(), Reductions::default()));
     }
 
+    /// A nugatory crossing joining two trefoils is removed though it is not a kink, and a string of kinks
+    /// reduces to nothing.
     #[test]
     fn nugatory_crossing_joining_two_knots_goes() {
         // Trefoil (0,1,2), then crossing 9 whose loop holds a second trefoil (3,4,5): chord 9 is

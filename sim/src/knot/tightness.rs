@@ -191,6 +191,8 @@ mod tests {
         }
     }
 
+    /// Crossings with the suture running under the wound are left out of the knot's height and stitch
+    /// distance, while points just under the surface, or all of them under it, still count.
     #[test]
     fn crossings_with_the_suture_under_the_wound_are_not_the_knot() {
         let surface = TissueSurface::new(Vector3::zeros(), Vector3::z()).expect("a surface");
@@ -213,6 +215,8 @@ mod tests {
         assert!((KnotPlacement::measure(&under, &surface, &stitch).height_m + 0.003).abs() < 1e-12);
     }
 
+    /// The loop outside the tissue runs from the knot's passages to the exit and from the entry back to the
+    /// knot, and a knot all on one side of the stitch closes no loop.
     #[test]
     fn the_loop_outside_runs_from_the_knot_to_the_exit_and_from_the_entry_to_the_knot() {
         // Wraps at 100-110 mm, the exit at 150 mm, the entry at 165 mm, the tail through at 210 mm.
@@ -228,6 +232,8 @@ mod tests {
         assert_eq!(aside.loop_outside_m(0.15, 0.165), None);
     }
 
+    /// A knot 1 mm above an offset surface at the stitch is down; one higher up or 1 cm from the stitch is
+    /// not, and a zero or NaN surface normal is refused.
     #[test]
     fn placement_against_a_tilted_surface() {
         let surface =
@@ -247,6 +253,7 @@ mod tests {
         assert!(TissueSurface::new(stitch, Vector3::new(f64::NAN, 0.0, 1.0)).is_err());
     }
 
+    /// A knot's span takes its arc-length range and points from passages on the thread, not on the closure.
     #[test]
     fn span_locates_passages_on_the_thread_only() {
         let points: Vec<Vector3<f64>> = (0..5).map(|i| Vector3::new(i as f64, 0.0, 0.0)).collect();

@@ -112,6 +112,8 @@ mod tests {
 
     use super::*;
 
+    /// Every failure mode's name and the success verdict's read back through serde as themselves, and the
+    /// eight failure modes' names are distinct.
     #[test]
     fn names_are_snake_case_and_distinct() {
         for mode in FailureMode::ALL {

@@ -227,6 +227,8 @@ mod tests {
         (ropes.x.clone(), ropes.watch.pairs_measured, touched)
     }
 
+    /// Passing over rope pairs that cannot touch leaves a coiled, pulled strand bit for bit as solving every
+    /// candidate does, while measuring under a quarter as many pairs.
     #[test]
     fn culling_the_pairs_that_cannot_touch_changes_no_bit() {
         let (culled, culled_measured, touched) = coiled_and_pulled(false);

@@ -132,6 +132,8 @@ pub fn run_all(suture: &SutureUnderTest) -> Vec<Check> {
 mod tests {
     use super::*;
 
+    /// Relative, range and absolute checks pass inside their tolerance and fail outside it, a NaN figure
+    /// fails, and a report-only check neither passes nor fails.
     #[test]
     fn a_check_passes_within_its_tolerance_and_fails_outside_it() {
         let rel = |m| Check::new("x", "f", "1", m, 1.0, Tolerance::Relative { fraction: 0.02 }, "s").passed;
@@ -144,6 +146,7 @@ mod tests {
         assert_eq!(Check::new("x", "f", "1", 9.0, 1.0, Tolerance::Report, "s").passed, None);
     }
 
+    /// Printed figures keep four significant digits, plain or in exponent form, from 6.25e-8 to 50000 and 0.
     #[test]
     fn figures_keep_four_significant_digits() {
         let texts: Vec<String> =

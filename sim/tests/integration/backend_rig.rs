@@ -19,6 +19,8 @@ fn backend() -> (SimBackend, Rig) {
     (SimBackend::new(SimWorld::new(scene, rig.clone()).expect("the scene builds")), rig)
 }
 
+/// The shipped sim rig config drives the scene one step per cycle, reads the scene's joints, and brings the
+/// instruments' forces back to the world frame unchanged.
 #[test]
 fn the_shipped_sim_rig_drives_the_scene() {
     let (mut backend, rig) = backend();
@@ -64,6 +66,8 @@ fn the_shipped_sim_rig_drives_the_scene() {
     assert!(pulled > 0.01, "some instrument feels a force, so the frame round trip is tested");
 }
 
+/// After an emergency stop the set-points freeze in the next cycle, the scene holds the last one, and the
+/// simulated links come to rest on it within 150 ms.
 #[test]
 fn the_emergency_stop_freezes_the_set_points_and_the_scene_comes_to_rest() {
     let (mut backend, rig) = backend();

@@ -28,6 +28,8 @@ fn go(w: &mut SimWorld, target: &Vector3<f64>, jaw_rad: f64, steps: usize) {
     }
 }
 
+/// Jaws closed on nothing do not grasp the thread they are later lowered onto, and reopening clears their
+/// empty state.
 #[test]
 fn jaws_closed_on_nothing_do_not_grasp_what_comes_later() {
     let mut w = world();

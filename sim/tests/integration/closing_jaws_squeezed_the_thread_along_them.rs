@@ -42,6 +42,8 @@ fn close_on_tilted(jaw_rad: f64, from_hinge_m: f64, off_m: f64, tilt_rad: f64) -
     (w, n / 2)
 }
 
+/// Jaws closing on a thread lying across them near their tips take the segment they meet and hold it between
+/// their faces, not squeezed along or aside.
 #[test]
 fn closing_jaws_hold_a_thread_lying_across_them_near_their_tips() {
     for (from_hinge_m, off_m) in [(0.008, 0.0), (0.008, 0.0005), (0.009, -0.0005)] {
@@ -58,6 +60,8 @@ fn closing_jaws_hold_a_thread_lying_across_them_near_their_tips() {
     }
 }
 
+/// Jaws closing on a thread lying aslant across them take the segment where they meet it, not one squeezed
+/// several segments along.
 #[test]
 fn closing_jaws_hold_a_thread_lying_aslant_where_they_meet_it() {
     // Before: the jaws took the segment 2-4 from the middle (the thread squeezed along them).
@@ -70,6 +74,7 @@ fn closing_jaws_hold_a_thread_lying_aslant_where_they_meet_it() {
     }
 }
 
+/// Jaws closing with the thread 6 mm across the opening from their line, outside them, hold nothing.
 #[test]
 fn jaws_closing_on_nothing_between_them_hold_nothing() {
     // The thread 6 mm across the opening from the jaws' line: outside the open jaws.

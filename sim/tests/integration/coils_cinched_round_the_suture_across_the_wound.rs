@@ -9,6 +9,8 @@ use knotlab_sim::scene::parse_scene;
 use knotlab_sim::world::SimWorld;
 use nalgebra::Point3;
 
+/// The suture between the stitch points crosses the wound once, under the surface at the stitch's depth, not
+/// straight across the surface.
 #[test]
 fn the_suture_crosses_the_wound_at_the_stitch_depth() {
     let scene =

@@ -56,6 +56,7 @@ fn an_unreachable_trocar_is_named() {
     assert!(err.to_string().starts_with("trocars.left: the left arm cannot put its tool through"), "{err}");
 }
 
+/// A grasp pulled at half its grip force holds its segment within 1 mm, and the strain gauge reads the pull.
 #[test]
 fn a_grasp_holds_below_its_grip_force() {
     let mut w = common::chain_world();
@@ -73,6 +74,7 @@ fn a_grasp_holds_below_its_grip_force() {
     assert!((felt - 0.5 * w.grip_force_n()).abs() < 0.3 * w.grip_force_n(), "force reading {felt} N");
 }
 
+/// A grasp pulled at twice its grip force slips and lets go of the thread.
 #[test]
 fn a_grasp_slips_above_its_grip_force() {
     let mut w = common::chain_world();
@@ -82,6 +84,7 @@ fn a_grasp_slips_above_its_grip_force() {
     assert!(w.arm(ArmName::Left).hold().is_none());
 }
 
+/// Opening the jaws on a held thread drops the hold and reports the release in the same step.
 #[test]
 fn opening_the_jaws_releases() {
     let mut w = common::chain_world();

@@ -49,6 +49,7 @@ fn close_on(
     w.arm(ArmName::Left).hold().is_some()
 }
 
+/// Closing jaws do not take a thread running 4 mm beside them, where a coil wound round them lies.
 #[test]
 fn a_thread_beside_the_jaws_is_not_taken() {
     // 4 mm beside the jaws' centre, across them: outside the jaws, like a segment of a coil wound
@@ -60,6 +61,7 @@ fn a_thread_beside_the_jaws_is_not_taken() {
     assert!(!held, "the jaws took a thread running beside them");
 }
 
+/// Closing jaws take a thread lying across their line near the tips.
 #[test]
 fn a_thread_across_the_jaws_near_their_tips_is_taken() {
     // Across the jaws' line (along the hinge axis), 4 mm from their centre towards the tip.

@@ -9,6 +9,8 @@ use knotlab_hw::rig::{ArmName, Rig};
 use knotlab_sim::scene::parse_scene;
 use knotlab_sim::world::{JawState, SimWorld};
 
+/// Releasing every instrument for the holding test lets go of a tail taken with the jaws opened wider than
+/// the usual opening, and of the needle.
 #[test]
 fn release_all_lets_go_of_a_tail_taken_wider_than_the_usual_opening() {
     let scene = parse_scene(include_str!("../../../scenarios/default.toml"), "default.toml")

@@ -22,6 +22,8 @@ fn piece(at_m: Vector3<f64>, along: Vector3<f64>) -> [Vector3<f64>; 2] {
     [at_m - along * 0.01, at_m + along * 0.01]
 }
 
+/// Jaws 0.66 rad open squeeze a thread lying between their faces but not one lying 1.32 mm beside them along
+/// the hinge.
 #[test]
 fn closing_jaws_squeeze_thread_between_their_faces_not_beside_them() {
     let tip = IsometryMatrix3::identity();
@@ -42,6 +44,8 @@ fn closing_jaws_squeeze_thread_between_their_faces_not_beside_them() {
     assert!(!faces.between(&middle(beside)) && faces.between(&middle(between)));
 }
 
+/// Closing jaws take the rope strand between their faces rather than a coil beside them nearer their line,
+/// and take nothing when only the coil is there.
 #[test]
 fn closing_jaws_take_the_rope_between_their_faces_not_the_coil_beside_them() {
     let tip = IsometryMatrix3::identity();

@@ -13,6 +13,8 @@ use knotlab_sim::scene::parse_scene;
 use knotlab_sim::world::SimWorld;
 use std::f64::consts::TAU;
 
+/// A full turn of the wrist joint spins no link of the arm faster than the joint's speed limit, even where a
+/// link pose's quaternion flips sign.
 #[test]
 fn a_full_turn_of_the_wrist_joint_spins_no_link_faster_than_the_joint() {
     let scene =

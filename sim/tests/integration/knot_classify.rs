@@ -234,6 +234,7 @@ fn check(name: &str, points: &[V], knot: KnotType, det: u64, writhe_abs: u32) ->
     c
 }
 
+/// A kinked circle and an ascending thread that draw many crossings both classify as the unknot.
 #[test]
 fn unknot_drawn_with_many_removable_crossings() {
     let kinked = classify(&kinked_circle(400)).expect("valid");
@@ -286,6 +287,8 @@ fn unknots_that_reduction_alone_cannot_simplify() {
     assert!(kept_crossings > 0, "the determinant rule was never needed: make the curves harder");
 }
 
+/// The trefoil, figure-eight and cinquefoil cut open on their rim get their knot, determinant, writhe and
+/// crossing count, and a mirrored trefoil the opposite writhe.
 #[test]
 fn closed_knots_cut_open_on_their_rim() {
     let trefoil = check("trefoil", &torus_knot(2.0, 3.0, 200), KnotType::Trefoil, 3, 3);
@@ -301,6 +304,7 @@ fn closed_knots_cut_open_on_their_rim() {
     assert_eq!(mirrored.writhe, -trefoil.writhe);
 }
 
+/// A 6 mm trefoil placed 0.8 m up still classifies as a trefoil with determinant 3 and writhe 3.
 #[test]
 fn scale_and_position_do_not_matter() {
     // A 6 mm trefoil tied 0.8 m above the floor.
@@ -309,6 +313,7 @@ fn scale_and_position_do_not_matter() {
     check("mm trefoil", &small, KnotType::Trefoil, 3, 3);
 }
 
+/// An open overhand, an overhand in a loop and a suture's single throw each classify as a trefoil.
 #[test]
 fn open_overhand_closed_far_away_is_a_trefoil() {
     check("open overhand", &open_overhand(), KnotType::Trefoil, 3, 3);
@@ -323,6 +328,8 @@ fn open_overhand_closed_far_away_is_a_trefoil() {
     check("single throw", &suture(&[3]), KnotType::Trefoil, 3, 3);
 }
 
+/// Square knots (opposite throws) and granny knots (like throws), in a loop or as sutures, are told apart by
+/// their writhe.
 #[test]
 fn square_and_granny() {
     let square = loop_with_knots(&[(-1.0, hairpin_overhand(false, 90)), (1.0, hairpin_overhand(true, 90))]);
@@ -335,6 +342,8 @@ fn square_and_granny() {
     check("granny (suture, other hand)", &suture(&[-3, -3]), KnotType::Granny, 9, 6);
 }
 
+/// A surgeon's double throw classifies as `surgeons`, unlike a single throw, and a double throw followed by
+/// an opposite single throw as the surgeon's knot.
 #[test]
 fn surgeons_double_throw_and_surgeons_knot() {
     let double = check("double throw", &suture(&[5]), KnotType::Surgeons, 5, 5);
@@ -374,6 +383,7 @@ fn small_perturbations_change_no_verdict() {
     }
 }
 
+/// A centreline with too few points, a repeated point or a NaN coordinate is refused, naming the point.
 #[test]
 fn degenerate_centrelines_are_refused() {
     let points = torus_knot(2.0, 3.0, 50);
@@ -388,6 +398,8 @@ fn degenerate_centrelines_are_refused() {
     assert_eq!(error.to_string(), "point 7: x is not finite (NaN)");
 }
 
+/// A valid CSV centreline reads back as its trefoil, and a short, duplicated, NaN, malformed or missing file
+/// is refused with a message naming the file and, where it has one, the bad line.
 #[test]
 fn csv_files_name_the_bad_line() {
     let dir = std::env::temp_dir().join(format!("knotlab-knot-csv-{}", std::process::id()));
@@ -421,6 +433,8 @@ fn csv_files_name_the_bad_line() {
     std::fs::remove_dir_all(&dir).ok();
 }
 
+/// A throw tied at the stitch is judged a success; the wrong knot type, a knot 10 mm from the tissue, or no
+/// knot each fail with their own mode.
 #[test]
 fn verdicts_from_topology_and_tightness() {
     // A single throw tied 1 mm above a tissue surface, its stitch at the knot.

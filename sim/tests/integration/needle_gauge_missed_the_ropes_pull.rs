@@ -48,6 +48,8 @@ fn drawn_taut(own_rope: bool) -> (Vec<(f64, f64, f64)>, Option<f64>) {
     (gauges, slipped)
 }
 
+/// At the rope's own resolution the right's gauge reads the long end's pull on the needle it holds, about
+/// what the assist reads on the tail.
 #[test]
 fn the_right_reads_the_long_ends_pull_on_the_needle_it_holds() {
     // At the rope's own resolution the draw is smooth: at the moment the assist reads most, the
@@ -63,6 +65,8 @@ fn the_right_reads_the_long_ends_pull_on_the_needle_it_holds() {
     );
 }
 
+/// At the shipped scene's rope resolution the right's gauge reads the long end's pull on its needle too, its
+/// median while taut near the assist's.
 #[test]
 fn at_the_shipped_scenes_resolution_the_right_reads_the_pull_too() {
     // At the shipped scene's coarser rope the assist's grip gives way in a jolt (2.7 N at one step,

@@ -9,6 +9,8 @@ use super::common;
 
 use nalgebra::Vector3;
 
+/// A released needle rides on the rope's end, within 2 mm of it and never faster than free fall, instead of
+/// flying off.
 #[test]
 fn a_released_needle_stays_on_the_ropes_end() {
     let mut w = common::rope_world();

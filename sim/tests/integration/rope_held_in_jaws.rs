@@ -43,6 +43,8 @@ fn step(
     bodies[body].set_position(next, true);
 }
 
+/// Jaws closed across the rope take the 11 particles within reach, lift them with the ends hanging, and carry
+/// the rope's weight within 5 %.
 #[test]
 fn closed_jaws_lift_the_run_between_them_and_feel_the_rope_hang() {
     let (mut ropes, mut bodies, body, grasp, mut contacts) = setup();
@@ -64,6 +66,7 @@ fn closed_jaws_lift_the_run_between_them_and_feel_the_rope_hang() {
     assert!((force.z - weight).abs() < 0.05 * weight, "the jaws hold it up with {:.4} N", force.z);
 }
 
+/// A 2 N pull on a held rope reads back through the grasp, and released, the rope moves off with the pull.
 #[test]
 fn a_pull_on_the_rope_reads_on_the_grasp_and_a_released_rope_is_pulled_away() {
     let (mut ropes, mut bodies, body, grasp, mut contacts) = setup();

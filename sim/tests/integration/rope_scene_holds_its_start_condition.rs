@@ -10,6 +10,8 @@ use knotlab_hw::rig::ArmName;
 use knotlab_sim::tissue::Flap;
 use knotlab_sim::world::SimWorld;
 
+/// Standing still for a second, the rope scene keeps the needle and the tail held, the thread still in the
+/// stitch and the rope at its length, gauges under 2 N and the tail lying in the assist's jaws.
 #[test]
 fn the_rope_scene_holds_the_needle_the_tail_and_the_stitch_standing_still() {
     let mut w = common::rope_world();

@@ -9,6 +9,8 @@ use super::common;
 
 use knotlab_hw::rig::ArmName;
 
+/// While an arm moves, every moving link posed outside Rapier's solver stands exactly at its kinematic pose,
+/// its colliders out of the broad phase, and the jaws' carriers stay kinematic.
 #[test]
 fn every_link_stands_where_the_kinematics_put_it_while_an_arm_moves() {
     let mut w = common::rope_world();

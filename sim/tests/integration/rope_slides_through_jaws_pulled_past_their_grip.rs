@@ -57,6 +57,8 @@ fn draw(grip_n: Option<f64>) -> (std::ops::Range<usize>, std::ops::Range<usize>,
     (grasp.particles, taken, out_at_s, largest_n, ropes)
 }
 
+/// A rope pulled past its grip slides through the jaws, still held at about the grip force, until its far end
+/// runs out of them.
 #[test]
 fn a_rope_pulled_past_the_grip_slides_through_the_jaws_until_it_runs_out() {
     let grip_n = 1.0;
@@ -83,6 +85,7 @@ fn a_rope_pulled_past_the_grip_slides_through_the_jaws_until_it_runs_out() {
     assert!((0.8..1.1).contains(&out_at_s), "out at {out_at_s} s");
 }
 
+/// A fixed hold drawn the same way keeps the particles it took and reads over 10 N, with no limit of its own.
 #[test]
 fn a_fixed_hold_on_the_same_draw_pulls_without_limit() {
     // The same draw with the attachments alone: nothing gives, and the hold reads far past the grip.

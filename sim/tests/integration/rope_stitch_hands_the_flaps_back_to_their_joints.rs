@@ -10,6 +10,8 @@ use knotlab_sim::rope::{RopeParams, Ropes};
 use knotlab_sim::tissue::Flap;
 use rapier3d::prelude::*;
 
+/// The flaps' joints are disabled while the stitch's slides move them and enabled again on release, so the
+/// released flaps stay in place.
 #[test]
 fn the_flaps_joints_rest_while_the_slides_move_them_and_hold_them_after() {
     let common::StitchBench { scene, mut physics, tissue, path, .. } =

@@ -61,6 +61,8 @@ fn drawn_through(slide_friction_n: f64) -> (f64, f64) {
     (late_pulls_n[late_pulls_n.len() / 2], slid_m)
 }
 
+/// The rope drawn through the stitch slides only under a pull of about both flaps' slide friction, and under
+/// next to nothing without friction.
 #[test]
 fn the_rope_slides_through_the_stitch_only_once_pulled_with_its_friction() {
     let (free_n, free_slid_m) = drawn_through(0.0);

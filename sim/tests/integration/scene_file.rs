@@ -13,6 +13,7 @@ fn err(text: &str) -> String {
     }
 }
 
+/// The shipped default scene loads from its file with its 80 segments and its left trocar in place.
 #[test]
 fn the_shipped_scene_loads() {
     let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenarios/default.toml");
@@ -21,6 +22,7 @@ fn the_shipped_scene_loads() {
     assert_eq!(scene.trocars.left, [-0.08, 0.12, 1.02]);
 }
 
+/// A misspelt key is refused, not ignored, with the file, the line and the key's dotted path.
 #[test]
 fn an_unknown_key_is_named_with_its_path_and_line() {
     let text = DEFAULT.replace("segments = 80", "segments = 80\nsegmnets = 81");
@@ -29,6 +31,7 @@ fn an_unknown_key_is_named_with_its_path_and_line() {
     assert!(e.starts_with(&format!("bad.toml:{line}: thread.segmnets: unknown field `segmnets`")), "{e}");
 }
 
+/// An unknown thread model is refused with the file, the line and the key, listing the models there are.
 #[test]
 fn an_unknown_thread_model_is_named_with_its_path_line_and_the_models() {
     let text = CHAIN.replace("segments = 80", "segments = 80\nmodel = \"ropes\"");
@@ -66,12 +69,14 @@ fn a_key_of_the_other_suture_model_is_refused_with_its_line() {
     assert!(e.contains("thread.bend_damping_n_m_s_per_rad: missing"), "{e}");
 }
 
+/// A value of the wrong type is refused naming the key's dotted path.
 #[test]
 fn a_wrong_type_is_named_with_its_path() {
     let e = err(&DEFAULT.replace("segments = 80", "segments = \"eighty\""));
     assert!(e.contains("thread.segments:"), "{e}");
 }
 
+/// A scene missing the thread's friction key is refused naming the missing field.
 #[test]
 fn a_missing_key_is_named() {
     // The thread's own friction line (the first key `friction` in the file), whatever its value.
@@ -82,6 +87,7 @@ fn a_missing_key_is_named() {
     assert!(e.contains("thread") && e.contains("missing field `friction`"), "{e}");
 }
 
+/// Every out-of-range value in a scene is reported at once, each under its own key.
 #[test]
 fn out_of_range_values_are_all_named() {
     let text = CHAIN
@@ -113,6 +119,8 @@ fn out_of_range_values_are_all_named() {
     }
 }
 
+/// Randomization bounds given high before low or out of range are named by key, and a misspelt randomization
+/// key is refused.
 #[test]
 fn bad_randomization_bounds_are_named() {
     let text = DEFAULT
@@ -134,6 +142,8 @@ stich_w_m = [0.0, 0.0]",
     assert!(e.contains("stich_w_m"), "{e}");
 }
 
+/// A preset's bounds are checked under its name, applying it changes only what it names, and an unknown
+/// preset or preset key is refused by name.
 #[test]
 fn presets_are_checked_applied_and_named() {
     // A preset's bounds are checked as applied, under the preset's name.
@@ -161,6 +171,7 @@ fn presets_are_checked_applied_and_named() {
     assert!(e.contains("play"), "{e}");
 }
 
+/// A TOML syntax error is reported with the file and the line it is on.
 #[test]
 fn broken_toml_gives_the_line() {
     let text = DEFAULT.replace("[stitch]", "[stitch");
@@ -169,6 +180,7 @@ fn broken_toml_gives_the_line() {
     assert!(e.starts_with(&format!("bad.toml:{line}: (syntax)")), "{e}");
 }
 
+/// A scene file that cannot be read is refused naming its path.
 #[test]
 fn an_unreadable_file_is_named() {
     let e = load_scene(std::path::Path::new("/nonexistent/scene.toml")).unwrap_err().to_string();

@@ -26,6 +26,7 @@ fn twists(physics: &Physics, thread: &Thread) -> Vec<f64> {
         .collect()
 }
 
+/// The shipped chain scene's start layout leaves no twist between neighbouring thread segments.
 #[test]
 fn the_shipped_start_layout_has_no_twist_between_neighbours() {
     let scene =
@@ -37,6 +38,8 @@ fn the_shipped_start_layout_has_no_twist_between_neighbours() {
     assert!(worst < 1e-6, "neighbours twisted by up to {worst} rad");
 }
 
+/// A twist-locked strand laid round square corners in three planes moves under 0.1 mm in 20 ms instead of
+/// being thrown about.
 #[test]
 fn a_strand_laid_round_corners_in_space_lies_still() {
     let params = ThreadParams { twist_free: false, ..ThreadParams::default() };

@@ -21,6 +21,8 @@ fn run(w: &mut SimWorld, steps: usize) {
     }
 }
 
+/// The start condition holds the needle in the right's jaws and the tail in the assist's, the thread through
+/// both flaps unstretched and the wound near its rest gap.
 #[test]
 fn the_start_condition_holds_needle_and_tail_through_the_stitch() {
     let mut w = world();
@@ -42,6 +44,8 @@ fn the_start_condition_holds_needle_and_tail_through_the_stitch() {
     assert!((-5e-4..1.2e-3).contains(&closed_by), "closed by {closed_by} m");
 }
 
+/// The wound's elastic load closes by the push over its stiffness within 15 % and reopens to its rest gap
+/// once the push stops.
 #[test]
 fn the_elastic_load_yields_to_a_pull_by_its_stiffness_and_reopens() {
     let mut w = world();
@@ -100,6 +104,8 @@ fn pull_tail(force_n: f64, steps: usize) -> (f64, [Option<usize>; 2], [Option<us
     (before - after, holes_before, chain(w.suture()).stitch().holes.map(|h| h.segment))
 }
 
+/// A 0.5 N pull on the tail slides the thread over 20 mm through the stitch, its points moving along the
+/// thread towards the needle.
 #[test]
 fn the_thread_slides_through_the_stitch_when_pulled() {
     let (slid, before, after) = pull_tail(0.5, 120);
@@ -114,6 +120,7 @@ fn the_thread_slides_through_the_stitch_when_pulled() {
     }
 }
 
+/// A 0.03 N pull, below the stitch's friction, draws the thread under 3 mm through it.
 #[test]
 fn stitch_friction_holds_a_pull_below_it() {
     // Two points at 0.05 N each: a 0.03 N pull does not drag the thread through.

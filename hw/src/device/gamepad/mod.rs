@@ -101,6 +101,8 @@ impl GamepadMapping {
 mod tests {
     use super::*;
 
+    /// The sticks move the handle at a rate, never inside the dead zone or past the reach; the buttons close
+    /// the gripper and press the emergency stop and assignable pedals.
     #[test]
     fn sticks_move_the_handle_at_a_rate_and_buttons_are_the_pedals() {
         let m = GamepadMapping::default();

@@ -226,6 +226,8 @@ impl SecondThrow {
 mod tests {
     use super::*;
 
+    /// The second throw points the left's jaws and fetches as the first unless given its own, fetches nothing
+    /// when the assist presents the tail or the left keeps it, and plans no further throw.
     #[test]
     fn the_second_throw_points_the_left_jaws_as_the_first_unless_told() {
         let first = TieGeometry { left_jaw_direction: Some([0.0, -1.0, 1.0]), ..TieGeometry::default() };
@@ -245,6 +247,8 @@ mod tests {
         assert_eq!(kept.applied_to(&first).left_fetches, None, "the left holds the tail already");
     }
 
+    /// The second throw's draw, run-down, pulls and hold take the first throw's settings unless it gives its
+    /// own, and then take exactly those.
     #[test]
     fn the_draw_and_run_down_are_the_first_throws_unless_told() {
         let first = TieGeometry { right_follows_draw: -0.6, ..TieGeometry::default() };
