@@ -44,6 +44,8 @@ pub struct Suture {
     radius_m: f64,
 }
 
+// One suture a world, held in place: the variants' sizes cost nothing.
+#[allow(clippy::large_enum_variant)]
 enum Model {
     Chain(ChainSuture),
     Rope(rope::RopeSuture),

@@ -161,7 +161,8 @@ pub(super) fn jaws_now<'a>(
                 closing: command_rad < jaw_closed_rad || command_rad < actual_rad - 1e-3,
                 slipped: arm.slipped(),
                 closed_empty: arm.closed_empty(),
-                open: !(actual_rad < 0.5 * SimWorld::JAW_OPEN_RAD),
+                open: actual_rad.partial_cmp(&(0.5 * SimWorld::JAW_OPEN_RAD))
+                    != Some(std::cmp::Ordering::Less),
             }
         })
         .collect()

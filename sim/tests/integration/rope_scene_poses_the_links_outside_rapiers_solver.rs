@@ -32,7 +32,7 @@ fn every_link_stands_where_the_kinematics_put_it_while_an_arm_moves() {
     }
     let poses = w.rig().tree.root_from_links(&positions);
     let (mut posed, mut kinematic) = (0, 0);
-    for i in 0..w.rig().tree.links.len() {
+    for (i, pose) in poses.iter().enumerate() {
         let Some(h) = w.link_body(i) else { continue };
         let b = &w.physics().bodies[h];
         let moving = w.rig().tree.path_to(i).iter().any(|&j| w.rig().tree.joints[j].limit.is_some());
@@ -45,7 +45,7 @@ fn every_link_stands_where_the_kinematics_put_it_while_an_arm_moves() {
         } else if b.is_kinematic() {
             kinematic += 1;
         }
-        let t = poses[i].translation.vector;
+        let t = pose.translation.vector;
         let at = b.position().translation;
         let off_m = ((at.x - t.x).powi(2) + (at.y - t.y).powi(2) + (at.z - t.z).powi(2)).sqrt();
         assert!(off_m < 1e-9, "{name} stands {off_m:.2e} m from where the kinematics put it");
