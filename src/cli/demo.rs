@@ -13,6 +13,7 @@ use knotlab_learner::demonstration::write_demonstration;
 use knotlab_scenarios::expert::{DemoRun, RecordOptions, demonstrate_with, load_tie_geometry};
 use knotlab_sim::scene::load_scene;
 
+use super::csv_file;
 use super::numbers::{Numbers, parse_list};
 use super::output::{Output, outln};
 use crate::rerun_log::{self, RerunArgs};
@@ -204,22 +205,14 @@ pub fn run(args: DemoArgs, out: &mut Output) -> anyhow::Result<ExitCode> {
             std::fs::write(&path, &snapshot.png).with_context(|| path.display().to_string())?;
             // The thread as `knotlab knot` reads it.
             let path = dir.join(format!("centreline-{t:.3}s.csv"));
-            let mut csv = String::from("x_m,y_m,z_m\n");
-            for p in &snapshot.centreline_m {
-                csv.push_str(&format!("{},{},{}\n", p.x, p.y, p.z));
-            }
-            std::fs::write(&path, csv).with_context(|| path.display().to_string())?;
+            let points = snapshot.centreline_m.iter().map(|p| (p.x, p.y, p.z));
+            csv_file::write_rows(&path, &["x_m", "y_m", "z_m"], points)?;
             // Where the thread lies on the instruments.
             let path = dir.join(format!("contacts-{t:.3}s.csv"));
-            let mut csv = String::from("segment,link\n");
-            for (segment, link) in &snapshot.contacts {
-                csv.push_str(&format!("{segment},{link}\n"));
-            }
-            std::fs::write(&path, csv).with_context(|| path.display().to_string())?;
+            csv_file::write_rows(&path, &["segment", "link"], &snapshot.contacts)?;
         }
         if args.knot_trace.is_some() {
-            let path = dir.join("knot-trace.csv");
-            std::fs::write(&path, knot_trace_csv(&run)).with_context(|| path.display().to_string())?;
+            write_knot_trace(&dir.join("knot-trace.csv"), &run)?;
         }
         let l = line(seed, &run, &dir);
         if !args.json {
@@ -262,40 +255,65 @@ pub fn run(args: DemoArgs, out: &mut Output) -> anyhow::Result<ExitCode> {
     Ok(ExitCode::SUCCESS)
 }
 
-/// The run's knot trace as CSV: one line per time, empty fields where there is no knot or leg.
-fn knot_trace_csv(run: &DemoRun) -> String {
-    let mut csv = String::from(
-        "time_s,knot,height_m,loop_outside_m,radius_m,exit_leg_thread_m,exit_leg_span_m,\
-         entry_leg_thread_m,entry_leg_span_m,exit_arc_m,entry_arc_m,wound_gap_m,left_force_n,right_force_n,assist_force_n,\
-         long_end_on_left,tail_on_left,long_end_on_right,tail_on_right,long_end_on_assist,tail_on_assist,\
-         long_end_bend_rad,tail_bend_rad\n",
-    );
+/// The knot trace's columns.
+const KNOT_TRACE: [&str; 23] = [
+    "time_s",
+    "knot",
+    "height_m",
+    "loop_outside_m",
+    "radius_m",
+    "exit_leg_thread_m",
+    "exit_leg_span_m",
+    "entry_leg_thread_m",
+    "entry_leg_span_m",
+    "exit_arc_m",
+    "entry_arc_m",
+    "wound_gap_m",
+    "left_force_n",
+    "right_force_n",
+    "assist_force_n",
+    "long_end_on_left",
+    "tail_on_left",
+    "long_end_on_right",
+    "tail_on_right",
+    "long_end_on_assist",
+    "tail_on_assist",
+    "long_end_bend_rad",
+    "tail_bend_rad",
+];
+
+/// Writes the run's knot trace as CSV: one row per time, empty fields where there is no knot or leg.
+fn write_knot_trace(path: &Path, run: &DemoRun) -> anyhow::Result<()> {
     let opt = |v: Option<f64>| v.map(|v| format!("{v:.5}")).unwrap_or_default();
-    for p in &run.knot_trace {
+    let rows = run.knot_trace.iter().map(|p| {
         let k = p.knot.as_ref();
         let leg =
-            |l: Option<knotlab_sim::knot::legs::Leg>| (opt(l.map(|l| l.thread_m)), opt(l.map(|l| l.span_m)));
-        let (exit_thread, exit_span) = leg(k.and_then(|k| k.exit_leg));
-        let (entry_thread, entry_span) = leg(k.and_then(|k| k.entry_leg));
-        csv.push_str(&format!(
-            "{:.3},{},{},{},{},{exit_thread},{exit_span},{entry_thread},{entry_span},{},{},{:.5},{:.3},{:.3},{:.3},{},{},{}\n",
-            p.time_s,
-            k.map_or("", |k| k.knot.name()),
+            |l: Option<knotlab_sim::knot::legs::Leg>| [opt(l.map(|l| l.thread_m)), opt(l.map(|l| l.span_m))];
+        let [exit_thread, exit_span] = leg(k.and_then(|k| k.exit_leg));
+        let [entry_thread, entry_span] = leg(k.and_then(|k| k.entry_leg));
+        let mut row = vec![
+            format!("{:.3}", p.time_s),
+            k.map_or("", |k| k.knot.name()).to_owned(),
             opt(k.and_then(|k| k.height_m)),
             opt(k.and_then(|k| k.loop_outside_m)),
             opt(k.and_then(|k| k.radius_m)),
+            exit_thread,
+            exit_span,
+            entry_thread,
+            entry_span,
             opt(p.stitch_arcs_m[0]),
             opt(p.stitch_arcs_m[1]),
-            p.wound_gap_m,
-            p.force_n[0],
-            p.force_n[1],
-            p.force_n[2],
-            p.ends_on_instruments.iter().flatten().map(|n| n.to_string()).collect::<Vec<_>>().join(","),
-            opt(k.and_then(|k| k.bending).map(|b| b.long_end_rad)),
-            opt(k.and_then(|k| k.bending).map(|b| b.tail_rad)),
-        ));
-    }
-    csv
+            format!("{:.5}", p.wound_gap_m),
+            format!("{:.3}", p.force_n[0]),
+            format!("{:.3}", p.force_n[1]),
+            format!("{:.3}", p.force_n[2]),
+        ];
+        row.extend(p.ends_on_instruments.iter().flatten().map(|n| n.to_string()));
+        row.push(opt(k.and_then(|k| k.bending).map(|b| b.long_end_rad)));
+        row.push(opt(k.and_then(|k| k.bending).map(|b| b.tail_rad)));
+        row
+    });
+    csv_file::write_rows(path, &KNOT_TRACE, rows)
 }
 
 /// The knot trace's period: more than 0 s.

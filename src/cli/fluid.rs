@@ -2,7 +2,6 @@
 //! instantiation of a 2D primitive by stirring a fluid (the built-in double wrap, or a path file), around
 //! obstacles given as boxes in the plane.
 
-use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
@@ -17,6 +16,7 @@ use knotlab_learner::fluid::{
     instantiate, run_cavity,
 };
 
+use super::csv_file;
 use super::numbers::{parse_list, parse_vector3};
 use super::output::{Output, outln};
 
@@ -271,14 +271,14 @@ fn cavity(args: &CavityArgs, out: &mut Output) -> anyhow::Result<ExitCode> {
         None => None,
     };
     let run = run_cavity(&config, |_| {}).map_err(flag_error)?;
-    let mut csv = String::from("profile,coord,value\n");
+    let mut rows = Vec::new();
     let mut max_error: Option<f64> = None;
     let profiles = GHIA_U_Y
         .iter()
         .map(|&y| ("u", y, run.u_centreline(y)))
         .chain(GHIA_V_X.iter().map(|&x| ("v", x, run.v_centreline(x))));
     for (profile, coord, value) in profiles {
-        let _ = writeln!(csv, "{profile},{coord},{value}");
+        rows.push((profile, coord, value));
         if let Some(table) = &reference {
             let want = table.iter().find(|(p, c, _)| p == profile && (c - coord).abs() < 1e-9).map(|r| r.2);
             if let Some(want) = want {
@@ -286,7 +286,7 @@ fn cavity(args: &CavityArgs, out: &mut Output) -> anyhow::Result<ExitCode> {
             }
         }
     }
-    std::fs::write(&args.out, csv).with_context(|| format!("writing {}", args.out.display()))?;
+    csv_file::write_rows(&args.out, &["profile", "coord", "value"], rows)?;
     let report = CavityReport {
         re: args.re,
         n: args.n,
@@ -339,17 +339,28 @@ fn read_reference(path: &Path, re: f64) -> anyhow::Result<Vec<(String, f64, f64)
     } else {
         bail!("--reference: the table has Re 100 and 1000 only, not {re}");
     };
-    let text = std::fs::read_to_string(path).with_context(|| format!("reading {}", path.display()))?;
+    let mut reader = csv::ReaderBuilder::new()
+        .comment(Some(b'#'))
+        .trim(csv::Trim::All)
+        .flexible(true)
+        .from_path(path)
+        .with_context(|| format!("reading {}", path.display()))?;
+    let header = reader.headers().with_context(|| format!("reading {}", path.display()))?.clone();
+    if header.iter().collect::<Vec<_>>() != ["profile", "coord", "re100", "re1000"] {
+        bail!("{}: the header must be profile,coord,re100,re1000", path.display());
+    }
     let mut rows = Vec::new();
-    for (number, line) in text.lines().enumerate() {
-        let line = line.trim();
-        if line.is_empty() || line.starts_with('#') || line.starts_with("profile") {
-            continue;
-        }
-        let fields: Vec<&str> = line.split(',').map(str::trim).collect();
-        let at = || format!("{}:{}", path.display(), number + 1);
+    for record in reader.records() {
+        let record = record.with_context(|| format!("reading {}", path.display()))?;
+        let line = record.position().map_or(0, csv::Position::line);
+        let at = || format!("{}:{line}", path.display());
+        let fields: Vec<&str> = record.iter().collect();
         if fields.len() != 4 || !(fields[0] == "u" || fields[0] == "v") {
-            bail!("{}: expected profile,coord,re100,re1000 with profile u or v, got '{line}'", at());
+            bail!(
+                "{}: expected profile,coord,re100,re1000 with profile u or v, got '{}'",
+                at(),
+                fields.join(",")
+            );
         }
         let parse = |s: &str, what: &str| {
             s.parse::<f64>()
@@ -553,28 +564,17 @@ fn read_obstacles(file: &Path) -> anyhow::Result<ObstacleFile> {
 }
 
 fn write_path(file: &Path, inst: &Instantiation) -> anyhow::Result<()> {
-    let mut csv = String::from("t_s,plane_x_m,plane_y_m,x_m,y_m,z_m\n");
-    for p in &inst.points {
-        let _ = writeln!(
-            csv,
-            "{},{},{},{},{},{}",
-            p.t_s, p.plane_m.x, p.plane_m.y, p.world_m.x, p.world_m.y, p.world_m.z
-        );
-    }
-    std::fs::write(file, csv).with_context(|| format!("writing {}", file.display()))
+    let rows =
+        inst.points.iter().map(|p| (p.t_s, p.plane_m.x, p.plane_m.y, p.world_m.x, p.world_m.y, p.world_m.z));
+    csv_file::write_rows(file, &["t_s", "plane_x_m", "plane_y_m", "x_m", "y_m", "z_m"], rows)
 }
 
 fn write_grid(file: &Path, inst: &Instantiation) -> anyhow::Result<()> {
     let region = inst.region;
-    let mut csv = String::from("i,j,plane_x_m,plane_y_m,blocked,u_mps,v_mps\n");
-    for j in 0..region.n {
-        for i in 0..region.n {
-            let centre = region.origin_m + Vector2::new(i as f64 + 0.5, j as f64 + 0.5) * region.cell_m;
-            let velocity = inst.cell_velocity_mps[j * region.n + i];
-            let blocked = u8::from(inst.mask.get(i, j));
-            let _ =
-                writeln!(csv, "{i},{j},{},{},{blocked},{},{}", centre.x, centre.y, velocity.x, velocity.y);
-        }
-    }
-    std::fs::write(file, csv).with_context(|| format!("writing {}", file.display()))
+    let rows = (0..region.n).flat_map(|j| (0..region.n).map(move |i| (i, j))).map(|(i, j)| {
+        let centre = region.origin_m + Vector2::new(i as f64 + 0.5, j as f64 + 0.5) * region.cell_m;
+        let velocity = inst.cell_velocity_mps[j * region.n + i];
+        (i, j, centre.x, centre.y, u8::from(inst.mask.get(i, j)), velocity.x, velocity.y)
+    });
+    csv_file::write_rows(file, &["i", "j", "plane_x_m", "plane_y_m", "blocked", "u_mps", "v_mps"], rows)
 }

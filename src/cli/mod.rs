@@ -1,5 +1,6 @@
 //! Command-line parsing and dispatch; each command group lives in its own file.
 
+mod csv_file;
 mod demo;
 mod fluid;
 mod knot;

@@ -20,6 +20,7 @@ use knotlab_learner::obstacles::{
 use knotlab_sim::scene::{SceneConfig, load_scene};
 use knotlab_sim::world::SimWorld;
 
+use super::csv_file;
 use super::numbers::parse_vector3;
 use super::output::{Output, outln};
 
@@ -247,8 +248,7 @@ fn obstacles(args: &ObstaclesArgs, out: &mut Output) -> anyhow::Result<()> {
     std::fs::create_dir_all(&args.out).with_context(|| format!("creating --out {}", args.out.display()))?;
     let csv_path = args.out.join("obstacles.csv");
     let png_path = args.out.join("obstacles.png");
-    std::fs::write(&csv_path, cells_csv(&run.result))
-        .with_context(|| format!("writing {}", csv_path.display()))?;
+    write_cells(&csv_path, &run.result)?;
     std::fs::write(&png_path, picture(&run.result)?)
         .with_context(|| format!("writing {}", png_path.display()))?;
     report(args, &run, default_plane, &csv_path, &png_path, out)
@@ -341,25 +341,28 @@ fn report(
     Ok(())
 }
 
-/// `i,j,x_m,y_m,z_m,verdict,virtual_obstacle,blocked` per cell: its centre in the world, what its
-/// subcells found, whether it is a virtual obstacle, and whether it is blocked after the fluid rules.
-fn cells_csv(r: &GridResult) -> String {
+/// Writes `i,j,x_m,y_m,z_m,verdict,virtual_obstacle,blocked` per cell: its centre in the world, what
+/// its subcells found, whether it is a virtual obstacle, and whether it is blocked after the fluid
+/// rules.
+fn write_cells(path: &Path, r: &GridResult) -> anyhow::Result<()> {
     let n = r.plane.cells;
-    let mut text = String::from("i,j,x_m,y_m,z_m,verdict,virtual_obstacle,blocked\n");
-    for (c, verdict) in r.cells.iter().enumerate() {
+    let rows = r.cells.iter().enumerate().map(|(c, verdict)| {
         let (i, j) = (c % n, c / n);
         let centre = r.plane.cell_centre_m(i, j);
-        text += &format!(
-            "{i},{j},{:.6},{:.6},{:.6},{},{},{}\n",
-            centre.x,
-            centre.y,
-            centre.z,
+        let at = |x: f64| format!("{x:.6}");
+        (
+            i,
+            j,
+            at(centre.x),
+            at(centre.y),
+            at(centre.z),
             verdict.as_str(),
             u8::from(r.raw.blocked[c]),
-            u8::from(r.mask.blocked[c])
-        );
-    }
-    text
+            u8::from(r.mask.blocked[c]),
+        )
+    });
+    let header = ["i", "j", "x_m", "y_m", "z_m", "verdict", "virtual_obstacle", "blocked"];
+    csv_file::write_rows(path, &header, rows)
 }
 
 /// The grid as an RGB picture, +x to the right and +y up: free white, colliding red, unreachable grey,
