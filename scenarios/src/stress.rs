@@ -12,7 +12,7 @@ use knotlab_hw::skill::profile::min_jerk;
 use nalgebra::{Point3, Vector3};
 use serde::Serialize;
 
-use knotlab_sim::thread::to_na;
+use knotlab_sim::convert::to_na;
 use knotlab_sim::tissue::Flap;
 use knotlab_sim::tunnelling::{Capsule, TunnellingMonitor};
 use knotlab_sim::world::SimWorld;

@@ -20,6 +20,7 @@
 //!   its centreline, the jaws' holds on it, its pull on the instruments, its self-crossing watch.
 //! - [`rope`]: the suture as an XPBD rope (the nominal model).
 //! - [`thread`]: the suture as a chain of capsules.
+//! - [`convert`]: between nalgebra's types and Rapier's, written once.
 //! - [`chords`]: points a fixed chord apart along a polyline, where a thread is laid.
 //! - [`tunnelling`]: detecting one capsule passing through another.
 //! - [`crossing`]: detecting a strand of the thread passing through another, for either model.
@@ -27,6 +28,7 @@
 
 pub mod backend;
 pub mod chords;
+pub mod convert;
 pub mod crossing;
 pub mod evaluate;
 pub mod gauge;

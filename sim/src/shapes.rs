@@ -3,11 +3,11 @@
 //! and pose, the thread's centreline, the needle, the stitch holes and the wound gap. Read from the
 //! colliders themselves, so what is drawn is what collides.
 
-use nalgebra::{IsometryMatrix3, Matrix3, Rotation3, Translation3, Vector3};
+use nalgebra::{IsometryMatrix3, Vector3};
 use rapier3d::prelude::*;
 
+use crate::convert::{to_isometry, to_na};
 use crate::groups::{ENVIRONMENT_GROUP, FLAP_GROUP, PAD_GROUP, THREAD_GROUP};
-use crate::thread::to_na;
 use crate::tissue::Flap;
 use crate::world::SimWorld;
 
@@ -111,7 +111,7 @@ pub fn scene_shapes(world: &SimWorld) -> SceneShapes {
         } else {
             continue;
         };
-        solids.push(Solid { owner, shape, world_from_solid: isometry(collider.position()) });
+        solids.push(Solid { owner, shape, world_from_solid: to_isometry(collider.position()) });
     }
     SceneShapes {
         solids,
@@ -122,14 +122,6 @@ pub fn scene_shapes(world: &SimWorld) -> SceneShapes {
         holes_m: Flap::ALONG_THREAD.iter().map(|&flap| world.tissue.hole_m(physics, flap)).collect(),
         wound_gap_m: world.wound_gap_m(),
     }
-}
-
-/// A Rapier pose as an nalgebra isometry.
-fn isometry(pose: &Pose) -> IsometryMatrix3<f64> {
-    let origin = to_na(pose.transform_point(Vector::ZERO));
-    let column = |axis: Vector| to_na(pose.transform_vector(axis));
-    let rotation = Matrix3::from_columns(&[column(Vector::X), column(Vector::Y), column(Vector::Z)]);
-    IsometryMatrix3::from_parts(Translation3::from(origin), Rotation3::from_matrix_unchecked(rotation))
 }
 
 impl Solid {

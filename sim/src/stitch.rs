@@ -16,6 +16,7 @@
 use nalgebra::Vector3;
 use rapier3d::prelude::*;
 
+use crate::convert::{to_na, to_rapier};
 use crate::physics::Physics;
 use crate::thread::Thread;
 use crate::tissue::{Flap, Tissue};
@@ -78,18 +79,10 @@ pub struct Stitch {
 /// centimetres a second).
 const SLIDE_PAST_END_M: f64 = 0.0005;
 
-fn to_na(v: Vector) -> Vector3<f64> {
-    Vector3::new(v.x, v.y, v.z)
-}
-
-fn to_vec(v: &Vector3<f64>) -> Vector {
-    Vector::new(v.x, v.y, v.z)
-}
-
 /// Where `hole_m` (world) lies along segment `i`'s axis, m from its centre (+ towards the tail).
 fn along_segment(physics: &Physics, thread: &Thread, i: usize, hole_m: &Vector3<f64>) -> f64 {
     let pose = physics.bodies[thread.segments[i]].position();
-    to_na(pose.inverse_transform_point(to_vec(hole_m))).x
+    to_na(pose.inverse_transform_point(to_rapier(hole_m))).x
 }
 
 impl Stitch {
@@ -125,7 +118,7 @@ impl Stitch {
                 .min_by(|a, b| a.1.total_cmp(&b.1));
             if let Some((i, _, on_axis)) = nearest {
                 let flap_from_world = physics.bodies[tissue.flap(hole.flap)].position().inverse();
-                let local = to_na(flap_from_world.transform_point(to_vec(&on_axis)));
+                let local = to_na(flap_from_world.transform_point(to_rapier(&on_axis)));
                 if hole.deep {
                     tissue.flap_from_deep_m[hole.flap.index()] = local;
                 } else {
@@ -157,7 +150,7 @@ impl Stitch {
         let reach_m = 0.5 * thread.segment_length_m + SLIDE_PAST_END_M;
         let joint = GenericJointBuilder::new(JointAxesMask::LIN_Y | JointAxesMask::LIN_Z)
             .local_frame1(Pose::IDENTITY)
-            .local_frame2(Pose::from_translation(to_vec(&hole.in_flap_m(tissue))))
+            .local_frame2(Pose::from_translation(to_rapier(&hole.in_flap_m(tissue))))
             .motor_model(JointAxis::LinX, MotorModel::ForceBased)
             .motor_velocity(JointAxis::LinX, 0.0, 1e3)
             .motor_max_force(JointAxis::LinX, friction_n)

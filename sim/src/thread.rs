@@ -22,6 +22,7 @@
 
 use rapier3d::prelude::*;
 
+use crate::convert::{to_na, to_rapier};
 use crate::groups::THREAD_GROUP;
 use crate::physics::Physics;
 
@@ -148,10 +149,6 @@ pub struct Thread {
     pub segment_length_m: f64,
 }
 
-fn to_vec(p: &nalgebra::Vector3<f64>) -> Vector {
-    Vector::new(p.x, p.y, p.z)
-}
-
 impl Thread {
     /// No segments: the chain's place in a scene whose suture is the rope (`thread.model = "rope"`).
     pub fn empty(segment_length_m: f64) -> Self {
@@ -169,7 +166,7 @@ impl Thread {
         let dir = direction.normalize();
         let half = 0.5 * seg;
         // Segment frames: x along the thread.
-        let rotation = Rotation::from_rotation_arc(Vector::X, to_vec(&dir));
+        let rotation = Rotation::from_rotation_arc(Vector::X, to_rapier(&dir));
         let segment_mass = params.mass_kg / params.segments as f64;
         // The capsule's cylinder spans the segment minus its caps, so neighbours just touch.
         let cylinder_half = (half - params.radius_m).max(0.25 * half);
@@ -177,7 +174,7 @@ impl Thread {
         for i in 0..params.segments {
             let centre = start_m + dir * (seg * (i as f64 + 0.5));
             let body = RigidBodyBuilder::dynamic()
-                .pose(Pose::from_parts(to_vec(&centre), rotation))
+                .pose(Pose::from_parts(to_rapier(&centre), rotation))
                 .linear_damping(params.linear_damping_per_s)
                 .can_sleep(false)
                 .build();
@@ -226,11 +223,11 @@ impl Thread {
         direction: &nalgebra::Vector3<f64>,
     ) {
         let dir = direction.normalize();
-        let rotation = Rotation::from_rotation_arc(Vector::X, to_vec(&dir));
+        let rotation = Rotation::from_rotation_arc(Vector::X, to_rapier(&dir));
         for (i, h) in self.segments.iter().enumerate() {
             let centre = start_m + dir * (self.segment_length_m * (i as f64 + 0.5));
             let body = &mut physics.bodies[*h];
-            body.set_position(Pose::from_parts(to_vec(&centre), rotation), true);
+            body.set_position(Pose::from_parts(to_rapier(&centre), rotation), true);
             body.set_linvel(Vector::ZERO, true);
             body.set_angvel(Vector::ZERO, true);
         }
@@ -249,11 +246,11 @@ impl Thread {
         let mut along = Vector::X;
         for (i, h) in self.segments.iter().enumerate() {
             let (a, b) = (points[i], points[i + 1]);
-            let dir = to_vec(&(b - a).normalize());
+            let dir = to_rapier(&(b - a).normalize());
             rotation = (Rotation::from_rotation_arc(along, dir) * rotation).normalize();
             along = dir;
             let body = &mut physics.bodies[*h];
-            body.set_position(Pose::from_parts(to_vec(&(0.5 * (a + b))), rotation), true);
+            body.set_position(Pose::from_parts(to_rapier(&(0.5 * (a + b))), rotation), true);
             body.set_linvel(Vector::ZERO, true);
             body.set_angvel(Vector::ZERO, true);
         }
@@ -298,9 +295,4 @@ impl Thread {
     pub fn segment_index(&self, body: RigidBodyHandle) -> Option<usize> {
         self.segments.iter().position(|h| *h == body)
     }
-}
-
-/// A Rapier vector as nalgebra f64.
-pub fn to_na(v: Vector) -> nalgebra::Vector3<f64> {
-    nalgebra::Vector3::new(v.x, v.y, v.z)
 }

@@ -10,6 +10,7 @@
 use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};
 use rapier3d::prelude::*;
 
+use crate::convert::{to_pose, to_rapier};
 use crate::groups::{FLAP_GROUP, PAD_GROUP, THREAD_GROUP};
 use crate::physics::Physics;
 use crate::scene::{StitchParams, TissueParams};
@@ -78,16 +79,6 @@ pub struct Tissue {
 /// The stitch's deep points lie this far in from each flap's inner face, m.
 const DEEP_INSET_M: f64 = 0.001;
 
-fn to_vec(v: &Vector3<f64>) -> Vector {
-    Vector::new(v.x, v.y, v.z)
-}
-
-fn to_pose(iso: &Isometry3<f64>) -> Pose {
-    let q = iso.rotation;
-    let t = iso.translation.vector;
-    Pose::from_parts(to_vec(&t), Rotation::from_xyzw(q.i, q.j, q.k, q.w))
-}
-
 impl Tissue {
     /// The tissue frame of a scene.
     pub fn frame(params: &TissueParams) -> Isometry3<f64> {
@@ -106,7 +97,7 @@ impl Tissue {
             world_from_tissue * nalgebra::Point3::new(0.0, 0.0, -thickness - 0.5 * PAD_THICKNESS_M);
         let pad = physics.bodies.insert(
             RigidBodyBuilder::fixed()
-                .pose(Pose::from_parts(to_vec(&pad_centre.coords), to_pose(&world_from_tissue).rotation)),
+                .pose(Pose::from_parts(to_rapier(&pad_centre.coords), to_pose(&world_from_tissue).rotation)),
         );
         physics.colliders.insert_with_parent(
             ColliderBuilder::cuboid(PAD_HALF_M, PAD_HALF_M, 0.5 * PAD_THICKNESS_M)
@@ -129,7 +120,7 @@ impl Tissue {
             let body = physics.bodies.insert(
                 RigidBodyBuilder::dynamic()
                     .pose(Pose::from_parts(
-                        to_vec(&world_centre.coords),
+                        to_rapier(&world_centre.coords),
                         to_pose(&world_from_tissue).rotation,
                     ))
                     .can_sleep(false)
@@ -151,7 +142,7 @@ impl Tissue {
             );
             // Outward is +y for A and -y for B; the joint's coordinate is the outward displacement.
             let joint = PrismaticJointBuilder::new(Vector::new(0.0, s, 0.0))
-                .local_anchor1(to_vec(&tissue_from_flap))
+                .local_anchor1(to_rapier(&tissue_from_flap))
                 .local_anchor2(Vector::ZERO)
                 .limits([-0.5 * params.rest_gap_m, FLAP_OUTWARD_TRAVEL_M])
                 .motor_position(0.0, params.opening_stiffness_n_per_m, params.opening_damping_n_s_per_m)
@@ -201,14 +192,14 @@ impl Tissue {
     /// Where the stitch passes through `flap`, world frame, m.
     pub fn hole_m(&self, physics: &Physics, flap: Flap) -> Vector3<f64> {
         let local = self.flap_from_hole_m[flap.index()];
-        let p = physics.bodies[self.flap(flap)].position().transform_point(to_vec(&local));
+        let p = physics.bodies[self.flap(flap)].position().transform_point(to_rapier(&local));
         Vector3::new(p.x, p.y, p.z)
     }
 
     /// Where the stitch runs deepest in `flap`, world frame, m.
     pub fn deep_m(&self, physics: &Physics, flap: Flap) -> Vector3<f64> {
         let local = self.flap_from_deep_m[flap.index()];
-        let p = physics.bodies[self.flap(flap)].position().transform_point(to_vec(&local));
+        let p = physics.bodies[self.flap(flap)].position().transform_point(to_rapier(&local));
         Vector3::new(p.x, p.y, p.z)
     }
 

@@ -10,10 +10,11 @@
 use std::ops::Range;
 
 use nalgebra::Vector3;
-use rapier3d::math::{Pose, Rotation, Vector};
+use rapier3d::math::{Pose, Rotation};
 use rapier3d::prelude::*;
 
 use super::{Ropes, Surroundings};
+use crate::convert::{to_na, to_rapier};
 
 /// Particles boxed together when the colliders' candidates are sought.
 const PARTICLES_PER_BOX: usize = 16;
@@ -77,7 +78,7 @@ impl Guide {
             .unwrap_or(strand.start);
         Self {
             body,
-            local_m: na(body_pose.inverse_transform_point(v(point_m))),
+            local_m: to_na(body_pose.inverse_transform_point(to_rapier(point_m))),
             at: nearest_on_rope(ropes, point_m, nearest, last),
         }
     }
@@ -105,16 +106,6 @@ pub struct RigidContacts {
     pub impulses: Vec<(RigidBodyHandle, Vector3<f64>, Vector3<f64>)>,
     /// Collider-particle pairs in contact in the last substep.
     pub contacts_last: usize,
-}
-
-/// Rapier's vector from nalgebra's.
-pub(super) fn v(p: &Vector3<f64>) -> Vector {
-    Vector::new(p.x, p.y, p.z)
-}
-
-/// nalgebra's vector from Rapier's.
-pub(super) fn na(p: Vector) -> Vector3<f64> {
-    Vector3::new(p.x, p.y, p.z)
 }
 
 /// Where `body` will be after `dt_s` as Rapier steps it: a kinematic body at its next pose, a
@@ -180,8 +171,8 @@ impl RigidContacts {
             if let Some(body) = bodies.get_mut(*handle)
                 && body.is_dynamic()
             {
-                body.apply_impulse(v(impulse), true);
-                body.apply_torque_impulse(v(moment), true);
+                body.apply_impulse(to_rapier(impulse), true);
+                body.apply_torque_impulse(to_rapier(moment), true);
             }
         }
     }
@@ -246,7 +237,7 @@ impl RigidContacts {
                 let points = &ropes.x[run.clone()];
                 let (lo, hi) =
                     points.iter().fold((points[0], points[0]), |(lo, hi), p| (lo.inf(p), hi.sup(p)));
-                (run, Aabb::new(v(&lo), v(&hi)))
+                (run, Aabb::new(to_rapier(&lo), to_rapier(&hi)))
             })
             .collect();
         self.colliders
@@ -260,7 +251,7 @@ impl RigidContacts {
                 runs.iter()
                     .filter(|(_, run_box)| aabb.intersects(run_box))
                     .flat_map(|(run, _)| run.clone())
-                    .filter(|p| !held[*p] && aabb.contains_local_point(v(&ropes.x[*p])))
+                    .filter(|p| !held[*p] && aabb.contains_local_point(to_rapier(&ropes.x[*p])))
                     .collect()
             })
             .collect()
@@ -329,7 +320,7 @@ impl Among<'_> {
             let particles = held.iter().map(|&k| self.contacts.attachments[k].particle);
             let (Some(first), Some(last)) = (particles.clone().min(), particles.max()) else { continue };
             let Some(t) = ropes.way_through(&(first..last + 1)) else { continue };
-            let target = |a: &Attachment| na(pose.transform_point(v(&a.local_m)));
+            let target = |a: &Attachment| to_na(pose.transform_point(to_rapier(&a.local_m)));
             // How far the attachments would move the run along the rope, mass-weighted (kg m):
             // over a substep, an impulse of (that / h).
             let (mut along, mut mass) = (0.0, 0.0);
@@ -347,11 +338,11 @@ impl Among<'_> {
             let give = t * ((along - along.signum() * most) / mass);
             for &k in &held {
                 let a = &mut self.contacts.attachments[k];
-                let to = na(pose.transform_point(v(&a.local_m))) - give;
-                a.local_m = na(pose.inverse_transform_point(v(&to)));
+                let to = to_na(pose.transform_point(to_rapier(&a.local_m))) - give;
+                a.local_m = to_na(pose.inverse_transform_point(to_rapier(&to)));
             }
-            let origin = na(pose.inverse_transform_point(v(&Vector3::zeros())));
-            let given = na(pose.inverse_transform_point(v(&-give))) - origin;
+            let origin = to_na(pose.inverse_transform_point(to_rapier(&Vector3::zeros())));
+            let given = to_na(pose.inverse_transform_point(to_rapier(&-give))) - origin;
             let grip = &mut self.contacts.grips[g];
             grip.slid_local_m += given;
             grip.sliding = true;
@@ -362,7 +353,7 @@ impl Among<'_> {
         let com = self
             .bodies
             .get(body)
-            .map(|b| na(b.center_of_mass() + b.linvel() * (self.dt_s * f)))
+            .map(|b| to_na(b.center_of_mass() + b.linvel() * (self.dt_s * f)))
             .unwrap_or(at);
         let impulses = &mut self.contacts.impulses;
         let k = match impulses.iter().position(|(h, _, _)| *h == body) {
@@ -412,11 +403,11 @@ impl Surroundings for Among<'_> {
                     continue;
                 }
                 let x = ropes.x[p];
-                if !aabb.contains_local_point(v(&x)) {
+                if !aabb.contains_local_point(to_rapier(&x)) {
                     continue;
                 }
-                let projection = collider.shape().project_point(&now, v(&x), false);
-                let to_surface = na(projection.point) - x;
+                let projection = collider.shape().project_point(&now, to_rapier(&x), false);
+                let to_surface = to_na(projection.point) - x;
                 let distance = to_surface.norm();
                 let (normal, depth) = if projection.is_inside {
                     if distance < 1e-12 {
@@ -431,7 +422,8 @@ impl Surroundings for Among<'_> {
                 touching += 1;
                 let mut dx = normal * depth;
                 // The surface under the particle moved this much over the substep.
-                let surface_moved = na(now.transform_point(then.inverse_transform_point(v(&x)))) - x;
+                let surface_moved =
+                    to_na(now.transform_point(then.inverse_transform_point(to_rapier(&x)))) - x;
                 let moved = (x + dx - x_before) - surface_moved;
                 let tangential = moved - normal * moved.dot(&normal);
                 let slip = tangential.norm();
@@ -450,7 +442,7 @@ impl Surroundings for Among<'_> {
         for k in 0..self.contacts.attachments.len() {
             let a = self.contacts.attachments[k];
             let Some(pose) = self.body_pose(a.body, f1) else { continue };
-            let target = na(pose.transform_point(v(&a.local_m)));
+            let target = to_na(pose.transform_point(to_rapier(&a.local_m)));
             let dx = target - ropes.x[a.particle];
             ropes.x[a.particle] = target;
             if ropes.w[a.particle] > 0.0 {
@@ -464,7 +456,7 @@ impl Surroundings for Among<'_> {
         for k in 0..self.contacts.guides.len() {
             let guide = self.contacts.guides[k];
             let Some(pose) = self.body_pose(guide.body, f1) else { continue };
-            let target = na(pose.transform_point(v(&guide.local_m)));
+            let target = to_na(pose.transform_point(to_rapier(&guide.local_m)));
             if let Some((dx_at, at)) = thread_through(ropes, guide.at, &target) {
                 for (p, dx) in dx_at {
                     if ropes.w[p] > 0.0 {

@@ -11,9 +11,10 @@ use nalgebra::Vector3;
 use rapier3d::math::{Pose, Rotation, Vector};
 use rapier3d::prelude::*;
 
-use super::rigid::{Attachment, RigidContacts, na, v};
+use super::rigid::{Attachment, RigidContacts};
 use super::slides::SlideStitch;
 use super::{RopeParams, Ropes};
+use crate::convert::{to_na, to_rapier};
 use crate::groups::{FLAP_GROUP, PAD_GROUP, THREAD_GROUP};
 use crate::needle::Needle;
 use crate::physics::Physics;
@@ -152,26 +153,29 @@ impl SceneRope {
     ) -> (Needle, RigidBodyHandle) {
         let geometry = Needle::geometry(params, 0.0);
         let (a, b) = (ropes.x[0], ropes.x[1]);
-        let rotation = Rotation::from_rotation_arc(Vector::X, v(&(b - a).normalize()));
+        let rotation = Rotation::from_rotation_arc(Vector::X, to_rapier(&(b - a).normalize()));
         let body = physics.bodies.insert(
             RigidBodyBuilder::dynamic()
-                .pose(Pose::from_parts(v(&a), rotation))
+                .pose(Pose::from_parts(to_rapier(&a), rotation))
                 .linear_damping(damping_per_s)
                 .can_sleep(false)
                 .build(),
         );
         let piece_mass = params.mass_kg / (geometry.arc_points_m.len() - 1) as f64;
         for pair in geometry.arc_points_m.windows(2) {
-            let capsule =
-                ColliderBuilder::new(SharedShape::capsule(v(&pair[0]), v(&pair[1]), params.wire_radius_m))
-                    .mass(piece_mass)
-                    .friction(0.3)
-                    .collision_groups(InteractionGroups::new(
-                        THREAD_GROUP,
-                        FLAP_GROUP | PAD_GROUP,
-                        InteractionTestMode::And,
-                    ))
-                    .build();
+            let capsule = ColliderBuilder::new(SharedShape::capsule(
+                to_rapier(&pair[0]),
+                to_rapier(&pair[1]),
+                params.wire_radius_m,
+            ))
+            .mass(piece_mass)
+            .friction(0.3)
+            .collision_groups(InteractionGroups::new(
+                THREAD_GROUP,
+                FLAP_GROUP | PAD_GROUP,
+                InteractionTestMode::And,
+            ))
+            .build();
             physics.colliders.insert_with_parent(capsule, body, &mut physics.bodies);
         }
         (Needle { body: Some(body), ..geometry }, body)
@@ -230,8 +234,8 @@ impl SceneRope {
         let (a, b) = (self.ropes.x[0], self.ropes.x[1]);
         let Some(along) = (b - a).try_normalize(1e-12) else { return };
         let x_now = now.rotation * Vector::X;
-        let rotation = (Rotation::from_rotation_arc(x_now, v(&along)) * now.rotation).normalize();
-        body.set_next_kinematic_position(Pose::from_parts(v(&a), rotation));
+        let rotation = (Rotation::from_rotation_arc(x_now, to_rapier(&along)) * now.rotation).normalize();
+        body.set_next_kinematic_position(Pose::from_parts(to_rapier(&a), rotation));
     }
 
     /// Takes the thread out of the stitch: it no longer slides through the flaps, which are Rapier's
@@ -249,11 +253,9 @@ impl SceneRope {
         let colliders = physics.bodies.get(body).map_or(&[][..], |b| b.colliders());
         for collider in colliders.iter().filter_map(|c| physics.colliders.get(*c)) {
             let aabb = collider.compute_aabb().loosened(self.ropes.params.radius_m + TOUCH_SLOP_M);
-            found.extend(
-                (0..self.ropes.x.len()).filter(|p| {
-                    aabb.contains_local_point(v(&self.ropes.x[*p])) && self.touches(collider, *p)
-                }),
-            );
+            found.extend((0..self.ropes.x.len()).filter(|p| {
+                aabb.contains_local_point(to_rapier(&self.ropes.x[*p])) && self.touches(collider, *p)
+            }));
         }
         found.sort_unstable();
         found.dedup();
@@ -264,8 +266,9 @@ impl SceneRope {
     /// of it).
     pub fn touches(&self, collider: &Collider, p: usize) -> bool {
         let x = self.ropes.x[p];
-        let projection = collider.shape().project_point(collider.position(), v(&x), true);
-        projection.is_inside || (na(projection.point) - x).norm() <= self.ropes.params.radius_m + TOUCH_SLOP_M
+        let projection = collider.shape().project_point(collider.position(), to_rapier(&x), true);
+        projection.is_inside
+            || (to_na(projection.point) - x).norm() <= self.ropes.params.radius_m + TOUCH_SLOP_M
     }
 
     /// The rope's centreline, needle end first, m.

@@ -9,7 +9,8 @@ use rand_chacha::ChaCha8Rng;
 use rapier3d::prelude::*;
 
 use super::arm::{JawState, SimArm};
-use super::{SimWorld, WorldError, start_joints, to_pose, trocar_of};
+use super::{SimWorld, WorldError, start_joints, trocar_of};
+use crate::convert::matrix_to_pose;
 use crate::groups::{ENVIRONMENT_GROUP, ROBOT_GROUP, THREAD_GROUP};
 use crate::physics::Physics;
 use crate::scene::SceneConfig;
@@ -112,14 +113,14 @@ impl SimWorld {
             } else {
                 (RigidBodyBuilder::fixed(), ENVIRONMENT_GROUP, Group::NONE)
             };
-            let body = physics.bodies.insert(builder.pose(to_pose(&poses[i])).build());
+            let body = physics.bodies.insert(builder.pose(matrix_to_pose(&poses[i])).build());
             if posed {
                 posed_links.push((i, body));
             }
             for c in &link.collisions {
                 let collider = shape_collider(&c.shape)
                     .enabled(!(own_contacts && moving))
-                    .position(to_pose(&c.link_from_shape))
+                    .position(matrix_to_pose(&c.link_from_shape))
                     .friction(0.8)
                     .active_hooks(if jaw { ActiveHooks::FILTER_CONTACT_PAIRS } else { ActiveHooks::empty() })
                     .collision_groups(InteractionGroups::new(group, filter, InteractionTestMode::And))

@@ -19,6 +19,7 @@ use nalgebra::{IsometryMatrix3, Point3, Vector3};
 use rand_chacha::ChaCha8Rng;
 use rapier3d::prelude::*;
 
+use crate::convert::matrix_to_pose;
 use crate::grasp::GraspEvent;
 pub use crate::grasp::{GRASP_REACH_M, JAW_CENTRE_OFFSET_M};
 use crate::physics::{HealthError, Physics};
@@ -89,12 +90,6 @@ pub struct SimWorld {
     pub(crate) grip_force_n: f64,
     /// The strain gauges' noise source.
     noise: ChaCha8Rng,
-}
-
-fn to_pose(iso: &IsometryMatrix3<f64>) -> Pose {
-    let q = nalgebra::UnitQuaternion::from_rotation_matrix(&iso.rotation);
-    let t = iso.translation.vector;
-    Pose::from_parts(Vector::new(t.x, t.y, t.z), Rotation::from_xyzw(q.i, q.j, q.k, q.w))
 }
 
 /// `next` with its quaternion in the same hemisphere as `current`'s: the same pose, but Rapier derives
@@ -351,7 +346,7 @@ impl SimWorld {
                 && self.physics.bodies[*h].is_kinematic()
             {
                 let link = &mut self.physics.bodies[*h];
-                let next = continuous_pose(to_pose(&poses[i]), link.position());
+                let next = continuous_pose(matrix_to_pose(&poses[i]), link.position());
                 link.set_next_kinematic_position(next);
             }
         }
@@ -368,7 +363,7 @@ impl SimWorld {
         })?;
         for (i, h) in &self.posed_links {
             let link = &mut self.physics.bodies[*h];
-            let next = continuous_pose(to_pose(&poses[*i]), link.position());
+            let next = continuous_pose(matrix_to_pose(&poses[*i]), link.position());
             link.set_position(next, false);
         }
         self.time_s += dt;

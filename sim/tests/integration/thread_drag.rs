@@ -3,8 +3,8 @@
 
 use crate::common::chain;
 use knotlab_hw::rig::{ArmName, Rig};
+use knotlab_sim::convert::to_na;
 use knotlab_sim::scene::parse_scene;
-use knotlab_sim::thread::to_na;
 use knotlab_sim::tunnelling::{Capsule, TunnellingMonitor};
 use knotlab_sim::world::SimWorld;
 use nalgebra::{Point3, Vector3};
