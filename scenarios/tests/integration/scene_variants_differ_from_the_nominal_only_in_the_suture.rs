@@ -32,6 +32,10 @@ fn the_chain_scene_differs_from_the_nominal_one_only_in_the_suture() {
     assert_eq!(chain.thread.rope_substeps, None);
     assert_eq!(chain.thread.rope_spacing_radii, None);
     assert_eq!((chain.solver.solver_iterations, chain.solver.pgs_iterations_per_substep), (8, 4));
+    // The chain's own keys, which a rope scene may not give.
+    assert_eq!((chain.thread.twist_free, chain.thread.bend_damping_n_m_s_per_rad), (false, 2e-7));
+    chain.thread.twist_free = nominal.thread.twist_free;
+    chain.thread.bend_damping_n_m_s_per_rad = nominal.thread.bend_damping_n_m_s_per_rad;
     chain.thread.model = ThreadModel::Rope;
     chain.thread.friction_on_itself = nominal.thread.friction_on_itself;
     chain.thread.length_m = nominal.thread.length_m;
