@@ -8,7 +8,7 @@
 //! knot, and a surgeon's knot over the wound within 0.2 mm where a rope without bending stiffness
 //! lets it open 2-7 mm (session 43; `cargo bench -p knotlab-lab --bench rope_knot`). [`rigid`]
 //! couples it to Rapier's bodies, [`grasp`] to jaws; `stretch` and `bend` solve a strand's lengths
-//! and its bending joints at once; its knot trials are in [`crate::lab`].
+//! and its bending joints at once; its knot trials are in the lab crate (`knotlab_lab::trials`).
 
 mod bend;
 mod broad_phase;
