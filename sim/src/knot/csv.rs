@@ -1,5 +1,6 @@
-//! Reading a centreline from a CSV file: `x,y,z` per line (metres), a header line allowed first, blank
-//! lines and `#` comments skipped. Every problem names the file, the line and the reason.
+//! Reading a centreline from a CSV file (on the csv crate): `x,y,z` per line (metres), a header line
+//! allowed first, blank lines and `#` comments skipped. Every problem names the file, the line and the
+//! reason.
 
 use std::path::Path;
 
@@ -75,15 +76,25 @@ pub fn parse_points(text: &str) -> Result<Vec<Vector3<f64>>, (usize, LineProblem
     let mut points: Vec<Vector3<f64>> = Vec::new();
     let mut previous_line = 0;
     let mut seen_content = false;
-    let mut last_line = 0;
-    for (index, raw) in text.lines().enumerate() {
-        let line = index + 1;
-        last_line = line;
-        let content = raw.trim();
-        if content.is_empty() || content.starts_with('#') {
+    let mut reader = csv::ReaderBuilder::new()
+        .has_headers(false)
+        .flexible(true)
+        .trim(csv::Trim::All)
+        .comment(Some(b'#'))
+        .from_reader(text.as_bytes());
+    let mut record = csv::StringRecord::new();
+    loop {
+        // The text is UTF-8 and the reader takes any field count: it has nothing to refuse.
+        let more = reader.read_record(&mut record).unwrap_or(false);
+        if !more {
+            break;
+        }
+        let line = record.position().map_or(0, |p| p.line() as usize);
+        let fields: Vec<&str> = record.iter().collect();
+        // A line of spaces, or a comment after them.
+        if fields == [""] || fields.first().is_some_and(|f| f.starts_with('#')) {
             continue;
         }
-        let fields: Vec<&str> = content.split(',').map(str::trim).collect();
         let first = !seen_content;
         seen_content = true;
         // A header: the first line with content, none of whose fields is a number.
@@ -109,7 +120,7 @@ pub fn parse_points(text: &str) -> Result<Vec<Vector3<f64>>, (usize, LineProblem
         previous_line = line;
     }
     if points.len() < MIN_POINTS {
-        return Err((last_line.max(1), LineProblem::TooFewPoints { count: points.len() }));
+        return Err((text.lines().count().max(1), LineProblem::TooFewPoints { count: points.len() }));
     }
     Ok(points)
 }
