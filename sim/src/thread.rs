@@ -150,11 +150,6 @@ pub struct Thread {
 }
 
 impl Thread {
-    /// No segments: the chain's place in a scene whose suture is the rope (`thread.model = "rope"`).
-    pub fn empty(segment_length_m: f64) -> Self {
-        Self { segments: Vec::new(), links: Vec::new(), segment_length_m }
-    }
-
     /// Lays a straight thread from `start_m` along `direction` in `physics`.
     pub fn build(
         physics: &mut Physics,

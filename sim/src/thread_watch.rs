@@ -33,8 +33,8 @@ pub struct ThreadWatch {
 }
 
 impl ThreadWatch {
-    /// Watches `thread`'s segments (none for a scene whose suture is the rope: its passes are
-    /// [`Self::record`]ed).
+    /// Watches the chain `thread`'s segments. (The rope finds its own passes: its watch starts
+    /// empty, [`Default`], and they are [`Self::record`]ed.)
     pub fn new(thread: &Thread) -> Self {
         let n = thread.segments.len();
         let segments = (0..n).map(|k| [k, k + 1]).collect();
