@@ -1,4 +1,5 @@
-//! The CSV files commands write: a header, then one serde record a row (fields in the header's order).
+//! The CSV files commands write: a header, then one serde record a row (fields in the header's order);
+//! and the line a record read from a text stands on.
 
 use std::path::Path;
 
@@ -17,4 +18,11 @@ pub fn write_rows<R: serde::Serialize>(
         writer.serialize(row).with_context(context)?;
     }
     writer.flush().with_context(context)
+}
+
+/// The 1-based line of `text` on which the record `reader` has just read ends. (The reader's own line
+/// count, and the position it gives a record, pass over the blank lines and comments before it.)
+pub fn line_of_record(text: &str, reader: &csv::Reader<&[u8]>) -> usize {
+    let end = usize::try_from(reader.position().byte()).map_or(text.len(), |b| b.min(text.len()));
+    text.get(..end).unwrap_or(text).trim_end_matches(['\n', '\r']).matches('\n').count() + 1
 }

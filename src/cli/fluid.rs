@@ -339,20 +339,20 @@ fn read_reference(path: &Path, re: f64) -> anyhow::Result<Vec<(String, f64, f64)
     } else {
         bail!("--reference: the table has Re 100 and 1000 only, not {re}");
     };
+    let text = std::fs::read_to_string(path).with_context(|| format!("reading {}", path.display()))?;
     let mut reader = csv::ReaderBuilder::new()
         .comment(Some(b'#'))
         .trim(csv::Trim::All)
         .flexible(true)
-        .from_path(path)
-        .with_context(|| format!("reading {}", path.display()))?;
+        .from_reader(text.as_bytes());
     let header = reader.headers().with_context(|| format!("reading {}", path.display()))?.clone();
     if header.iter().collect::<Vec<_>>() != ["profile", "coord", "re100", "re1000"] {
         bail!("{}: the header must be profile,coord,re100,re1000", path.display());
     }
     let mut rows = Vec::new();
-    for record in reader.records() {
-        let record = record.with_context(|| format!("reading {}", path.display()))?;
-        let line = record.position().map_or(0, csv::Position::line);
+    let mut record = csv::StringRecord::new();
+    while reader.read_record(&mut record).with_context(|| format!("reading {}", path.display()))? {
+        let line = csv_file::line_of_record(&text, &reader);
         let at = || format!("{}:{line}", path.display());
         let fields: Vec<&str> = record.iter().collect();
         if fields.len() != 4 || !(fields[0] == "u" || fields[0] == "v") {

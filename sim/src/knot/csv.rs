@@ -89,7 +89,10 @@ pub fn parse_points(text: &str) -> Result<Vec<Vector3<f64>>, (usize, LineProblem
         if !more {
             break;
         }
-        let line = record.position().map_or(0, |p| p.line() as usize);
+        // The record's own line (the reader's count, and the position it starts at, pass over the blank
+        // lines and comments before it): the lines of the text up to the record's end.
+        let end = usize::try_from(reader.position().byte()).map_or(text.len(), |b| b.min(text.len()));
+        let line = text.get(..end).unwrap_or(text).trim_end_matches(['\n', '\r']).matches('\n').count() + 1;
         let fields: Vec<&str> = record.iter().collect();
         // A line of spaces, or a comment after them.
         if fields == [""] || fields.first().is_some_and(|f| f.starts_with('#')) {
