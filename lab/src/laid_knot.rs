@@ -134,7 +134,7 @@ fn with_spare_thread(mut path: Vec<Vector3<f64>>, length_m: f64) -> Option<Vec<V
 /// round the long end, which runs the other way), then up and back along +y in a single helix of
 /// the other hand above it, and out over its flap; the long end the same the other way round, down
 /// to the exit point. (Laid, the thread classifies as `surgeons_knot`:
-/// `sim/tests/integration/laid_knot_lays_its_knot_through_the_stitch.rs`.)
+/// `lab/tests/integration/laid_knot_lays_its_knot_through_the_stitch.rs`.)
 fn surgeons_knot_path(tissue: &Tissue, physics: &Physics, params: &LaidKnotParams) -> Vec<Vector3<f64>> {
     let stitch = tissue.stitch_points_m(physics).map(|(_, p)| p);
     surgeons_knot_through(&tissue.world_from_tissue, stitch, params)

@@ -5,7 +5,7 @@
 //! the surgeon's knot (a double throw, then a single of the opposite hand), run down onto the first
 //! throw (session 38). It does not hold yet: the knot is capsized, and the tail lies over the right's
 //! instrument from the second draw on. Since the stitch's points stay on their segments
-//! (`sim/tests/integration/stitch_point_slid_past_its_segment_into_empty_space.rs`) the wound opens
+//! (`lab/tests/integration/stitch_point_slid_past_its_segment_into_empty_space.rs`) the wound opens
 //! 18 mm under the holding load instead of about 30, the throws end 11 mm apart instead of 3.4 and
 //! the exit's leg is nearly taut (see docs/knot-tying-notes.md).
 

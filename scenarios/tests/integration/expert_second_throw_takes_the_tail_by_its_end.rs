@@ -4,7 +4,7 @@
 //! is wound once round the left's open jaws. Until session 41 the left then took the presented tail on
 //! seed 1 and drew the turn onto the tail's standing part (not yet a knot: in the pulls the turn came
 //! off over the tail's free end); since the stitch's points stay on their segments (session 41,
-//! `sim/tests/integration/stitch_point_slid_past_its_segment_into_empty_space.rs`) it closes on nothing on seeds
+//! `lab/tests/integration/stitch_point_slid_past_its_segment_into_empty_space.rs`) it closes on nothing on seeds
 //! 0-4, and this branch of the expert is left as it is (see docs/knot-tying-notes.md).
 
 use super::common;

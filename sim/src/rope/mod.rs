@@ -4,9 +4,9 @@
 //! positions (below the static bound a contact's slip is undone entirely, so a wrap holds without
 //! creeping). The alternative to Rapier's capsule chain ([`crate::thread`]), chosen in the scene
 //! file (`thread.model = "rope"`, [`suture`]): the chain lets every laid knot slip, the more so the
-//! better its solver converges (session 42, `docs/knot-tying-notes.md`); this rope holds a square
+//! better its solver converges (`docs/knot-tying-notes.md`); this rope holds a square
 //! knot, and a surgeon's knot over the wound within 0.2 mm where a rope without bending stiffness
-//! lets it open 2-7 mm (session 43; `cargo bench -p knotlab-lab --bench rope_knot`). [`rigid`]
+//! lets it open 2-7 mm (`cargo bench -p knotlab-lab --bench rope_knot`). [`rigid`]
 //! couples it to Rapier's bodies, [`grasp`] to jaws; `stretch` and `bend` solve a strand's lengths
 //! and its bending joints at once; its knot trials are in the lab crate (`knotlab_lab::trials`).
 

@@ -1,6 +1,6 @@
 //! The second throw of the surgeon's knot: one turn the other way, laid on the first. A first throw
-//! alone cannot hold once the instruments let go (`sim/tests/integration/throw_holds_the_loop_only_while_its_ends_are_held.rs`);
-//! two throws can (`sim/tests/integration/square_knot_holds_its_free_ends_let_go.rs`). The expert plans it from
+//! alone cannot hold once the instruments let go (`lab/tests/integration/throw_holds_the_loop_only_while_its_ends_are_held.rs`);
+//! two throws can (`lab/tests/integration/square_knot_holds_its_free_ends_let_go.rs`). The expert plans it from
 //! the world the first throw left, as a surgeon looks before the next move: the assist takes the tail
 //! between the knot and the left's jaws, the left lets go of it, and the throw goes as the first
 //! ([`super::super::plan`]) with its own winding and pulls; or, with `left_retakes_from_end_m`, it is wound
