@@ -10,7 +10,6 @@ use anyhow::Context;
 use clap::Args;
 
 use knotlab_sim::scene::load_scene;
-use knotlab_sim::thread::ThreadModel;
 use knotlab_sim::validation::{Check, SutureUnderTest, figure_text, run_all};
 
 use super::output::{Output, outln};
@@ -56,14 +55,8 @@ fn table(checks: &[Check]) -> String {
 
 pub fn run(args: ValidateArgs, out: &mut Output) -> anyhow::Result<ExitCode> {
     let scene = load_scene(&args.suture_from)?;
-    if scene.thread.model != ThreadModel::Rope {
-        anyhow::bail!(
-            "{}: thread.model: the suite builds its experiments with the rope (\"rope\"), not the capsule \
-             chain this scene simulates (try scenarios/default.toml)",
-            args.suture_from.display()
-        );
-    }
-    let suture = SutureUnderTest::from_thread(&scene.thread, scene.solver.dt_s);
+    let suture = SutureUnderTest::from_scene(&scene)
+        .map_err(|e| anyhow::anyhow!("{}: {e}", args.suture_from.display()))?;
     let checks = run_all(&suture);
     let failed = checks.iter().filter(|c| c.passed == Some(false)).count();
     let judged = checks.iter().filter(|c| c.passed.is_some()).count();

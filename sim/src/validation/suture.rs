@@ -22,7 +22,26 @@ pub struct SutureUnderTest {
     pub dt_s: f64,
 }
 
+/// Why a scene's suture cannot be validated.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum NotValidated {
+    /// The suite builds its experiments with the rope; the scene simulates the capsule chain.
+    #[error(
+        "thread.model: the suite builds its experiments with the rope (\"rope\"), not the capsule chain \
+         this scene simulates (try scenarios/default.toml)"
+    )]
+    NotTheRope,
+}
+
 impl SutureUnderTest {
+    /// The suture of `scene`, if it is the rope the suite validates.
+    pub fn from_scene(scene: &crate::scene::SceneConfig) -> Result<Self, NotValidated> {
+        match scene.thread.model {
+            crate::thread::ThreadModel::Rope => Ok(Self::from_thread(&scene.thread, scene.solver.dt_s)),
+            crate::thread::ThreadModel::Chain => Err(NotValidated::NotTheRope),
+        }
+    }
+
     /// The suture of a scene's `thread`, stepped at `dt_s`.
     pub fn from_thread(thread: &ThreadParams, dt_s: f64) -> Self {
         Self {
