@@ -89,14 +89,8 @@ fn solve_tip(bencher: divan::Bencher, kind: &str) {
             c.target.orientation = TipOrientation::AlongShaft;
         }
     }
-    let mut next = 0;
-    bencher
-        .with_inputs(|| {
-            next = (next + 1) % cs.len();
-            next
-        })
-        .bench_local_values(|i| {
-            let c = &cs[i];
-            model.solve_tip(black_box(&c.target), black_box(&c.trocar), black_box(&c.seed))
-        });
+    bencher.with_inputs(knotlab_bench::round_robin(cs.len())).bench_local_values(|i| {
+        let c = &cs[i];
+        model.solve_tip(black_box(&c.target), black_box(&c.trocar), black_box(&c.seed))
+    });
 }

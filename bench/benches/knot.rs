@@ -107,11 +107,7 @@ fn classify_centreline(bencher: divan::Bencher, shape: &str) {
     let variants: Vec<Vec<V>> = (0..VARIANTS)
         .map(|_| points.iter().map(|p| p + V::from_fn(|_, _| rng.random_range(-1e-5..1e-5))).collect())
         .collect();
-    let mut next = 0;
     bencher
-        .with_inputs(|| {
-            next = (next + 1) % variants.len();
-            next
-        })
+        .with_inputs(knotlab_bench::round_robin(variants.len()))
         .bench_local_values(|i| classify(black_box(&variants[i])));
 }

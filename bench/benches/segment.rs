@@ -43,12 +43,8 @@ fn demonstrations(pattern: &TaskPattern, rate_hz: f64) -> Vec<(Demonstration, Fe
 fn features(bencher: divan::Bencher, rate_hz: f64) {
     let pattern = pattern();
     let demos = demonstrations(&pattern, rate_hz);
-    let mut next = 0;
     bencher
-        .with_inputs(|| {
-            next = (next + 1) % demos.len();
-            next
-        })
+        .with_inputs(knotlab_bench::round_robin(demos.len()))
         .bench_local_values(|i| detect(black_box(&demos[i].0), &pattern.detector));
 }
 
@@ -57,12 +53,8 @@ fn features(bencher: divan::Bencher, rate_hz: f64) {
 fn matching(bencher: divan::Bencher, rate_hz: f64) {
     let pattern = pattern();
     let demos = demonstrations(&pattern, rate_hz);
-    let mut next = 0;
     bencher
-        .with_inputs(|| {
-            next = (next + 1) % demos.len();
-            next
-        })
+        .with_inputs(knotlab_bench::round_robin(demos.len()))
         .bench_local_values(|i| decompose(&pattern, black_box(&demos[i].1)));
 }
 
@@ -77,14 +69,8 @@ fn extraction(bencher: divan::Bencher, rate_hz: f64) {
             (demo, features, d)
         })
         .collect();
-    let mut next = 0;
-    bencher
-        .with_inputs(|| {
-            next = (next + 1) % demos.len();
-            next
-        })
-        .bench_local_values(|i| {
-            let (demo, features, d) = &demos[i];
-            extract(black_box(demo), &pattern, features, d)
-        });
+    bencher.with_inputs(knotlab_bench::round_robin(demos.len())).bench_local_values(|i| {
+        let (demo, features, d) = &demos[i];
+        extract(black_box(demo), &pattern, features, d)
+    });
 }

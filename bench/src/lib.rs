@@ -10,13 +10,23 @@ pub fn shipped_scene() -> knotlab_sim::scene::SceneConfig {
     scene_or_exit(include_str!("../../scenarios/default.toml"), "scenarios/default.toml")
 }
 
-/// The scene in `text` (read from `name`), or exit with its error.
-fn scene_or_exit(text: &str, name: &str) -> knotlab_sim::scene::SceneConfig {
+/// The scene in `text` (read from `name`), or exit with its error (for benchmarks).
+pub fn scene_or_exit(text: &str, name: &str) -> knotlab_sim::scene::SceneConfig {
     match knotlab_sim::scene::parse_scene(text, name) {
         Ok(scene) => scene,
         Err(e) => {
             eprintln!("{e}");
             std::process::exit(1);
         }
+    }
+}
+
+/// Indices 1, 2, ..., `len - 1`, 0, 1, ... in turn: a benchmark's inputs taken one after another from a
+/// set of `len` (at least one).
+pub fn round_robin(len: usize) -> impl FnMut() -> usize {
+    let mut next = 0;
+    move || {
+        next = (next + 1) % len.max(1);
+        next
     }
 }

@@ -38,7 +38,7 @@ fn main() {
         (60, 1.0, 16, 4),
     ];
     for (segments, dt_ms, iterations, sweeps) in points {
-        let mut scene = knotlab_lab::scenes::shipped_scene();
+        let mut scene = knotlab_bench::shipped_scene();
         scene.thread.segments = segments;
         scene.solver.dt_s = dt_ms * 1e-3;
         scene.solver.solver_iterations = iterations;

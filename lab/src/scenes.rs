@@ -1,10 +1,7 @@
-//! The scenes the experiments start from, compiled in, and the chain made finer.
+//! The scenes the experiments start from, compiled in, and the chain made finer. (The shipped
+//! nominal scene is `knotlab_bench::shipped_scene`.)
 
-/// The shipped nominal scene (`scenarios/default.toml`, compiled in); exits with the scene's error
-/// if it does not parse.
-pub fn shipped_scene() -> knotlab_sim::scene::SceneConfig {
-    scene_or_exit(include_str!("../../scenarios/default.toml"), "scenarios/default.toml")
-}
+use knotlab_bench::scene_or_exit;
 
 /// The capsule chain's scene (`scenarios/chain.toml`, compiled in: the nominal scene with Rapier's
 /// chain as the suture, and Rapier's solver at the 8 substeps of 4 sweeps its joints need) for the
@@ -20,17 +17,6 @@ pub fn short_suture_scene() -> knotlab_sim::scene::SceneConfig {
         include_str!("../../scenarios/short-suture-friction-0.5.toml"),
         "scenarios/short-suture-friction-0.5.toml",
     )
-}
-
-/// The scene in `text` (read from `name`), or exit with its error.
-fn scene_or_exit(text: &str, name: &str) -> knotlab_sim::scene::SceneConfig {
-    match knotlab_sim::scene::parse_scene(text, name) {
-        Ok(scene) => scene,
-        Err(e) => {
-            eprintln!("{e}");
-            std::process::exit(1);
-        }
-    }
 }
 
 /// The shipped solver and thread with segments `k` times shorter: the bending stiffness and damping

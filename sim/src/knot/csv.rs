@@ -40,6 +40,13 @@ pub enum LineProblem {
         /// Line of the point it repeats.
         previous_line: usize,
     },
+    /// The CSV reader could not read the line (it reads any field count of UTF-8 text, so this names
+    /// what it said rather than dropping the rest of the file).
+    #[error("unreadable: {reason}")]
+    Unreadable {
+        /// What the reader said.
+        reason: String,
+    },
     /// The file ends before enough points.
     #[error("end of file after only {count} point(s); a centreline needs at least {MIN_POINTS}")]
     TooFewPoints {
@@ -84,10 +91,13 @@ pub fn parse_points(text: &str) -> Result<Vec<Vector3<f64>>, (usize, LineProblem
         .from_reader(text.as_bytes());
     let mut record = csv::StringRecord::new();
     loop {
-        // The text is UTF-8 and the reader takes any field count: it has nothing to refuse.
-        let more = reader.read_record(&mut record).unwrap_or(false);
-        if !more {
-            break;
+        match reader.read_record(&mut record) {
+            Ok(true) => {}
+            Ok(false) => break,
+            Err(e) => {
+                let line = e.position().map_or(0, |p| p.line() as usize);
+                return Err((line, LineProblem::Unreadable { reason: e.to_string() }));
+            }
         }
         // The record's own line (the reader's count, and the position it starts at, pass over the blank
         // lines and comments before it): the lines of the text up to the record's end.

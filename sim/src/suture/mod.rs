@@ -40,7 +40,6 @@ pub struct Suture {
     model: Model,
     needle: Needle,
     watch: ThreadWatch,
-    spacing_m: f64,
     radius_m: f64,
 }
 
@@ -107,12 +106,11 @@ impl Suture {
         instruments: &[ColliderHandle],
         arms: usize,
     ) -> Self {
-        let (model, needle, watch, spacing_m) = match config.thread.model {
+        let (model, needle, watch) = match config.thread.model {
             ThreadModel::Chain => {
                 let (chain, needle) = ChainSuture::build(config, layout, physics, tissue);
                 let watch = ThreadWatch::new(chain.thread());
-                let spacing_m = chain.thread().segment_length_m;
-                (Model::Chain(chain), needle, watch, spacing_m)
+                (Model::Chain(chain), needle, watch)
             }
             ThreadModel::Rope => {
                 let (mut rope, needle) = SceneRope::build(
@@ -127,11 +125,10 @@ impl Suture {
                 if let Some(stitch) = &mut rope.stitch {
                     stitch.slide_friction_n = config.stitch.slide_friction_n;
                 }
-                let spacing_m = rope.spacing_m;
-                (Model::Rope(rope::RopeSuture::new(rope, arms)), needle, ThreadWatch::default(), spacing_m)
+                (Model::Rope(rope::RopeSuture::new(rope, arms)), needle, ThreadWatch::default())
             }
         };
-        Self { model, needle, watch, spacing_m, radius_m: config.thread.radius_m }
+        Self { model, needle, watch, radius_m: config.thread.radius_m }
     }
 
     /// The chain, if the suture is the chain (for experiments on that model).
@@ -167,7 +164,10 @@ impl Suture {
     /// The distance between neighbouring points of the centreline, m: the chain's segment length or
     /// the rope's particle spacing.
     pub fn spacing_m(&self) -> f64 {
-        self.spacing_m
+        match &self.model {
+            Model::Chain(chain) => chain.thread().segment_length_m,
+            Model::Rope(rope) => rope.rope.spacing_m,
+        }
     }
 
     /// The centreline, needle end first, m: the chain's segment ends or the rope's particles.
