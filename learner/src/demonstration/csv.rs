@@ -1,9 +1,11 @@
-//! One instrument's CSV file: a header naming the columns, then one sample per line. Reading checks
-//! every row (field count, numbers, NaN, the grasp word, time increasing, unit quaternions) and names the
+//! One instrument's CSV file (on the csv crate, one serde record a row): a header naming the
+//! columns, then one sample per line. Reading checks every row (field count, numbers, NaN, the grasp word, time increasing, unit quaternions) and names the
 //! line and the column of the first problem; writing prints every number so it reads back to the same
 //! bits.
 
+use ::csv::{ReaderBuilder, StringRecord, WriterBuilder};
 use nalgebra::Vector3;
+use serde::{Deserialize, Serialize};
 
 use super::error::DemoError;
 use super::{GraspState, Sample};
@@ -22,33 +24,54 @@ pub const QUATERNION_NORM_TOLERANCE: f64 = 1e-3;
 /// The jaw angle's allowed range, rad.
 pub const JAW_RANGE_RAD: (f64, f64) = (-0.5, std::f64::consts::PI);
 
-/// The CSV text of a sample list, header included, every line ended by a newline.
-pub fn render_samples(samples: &[Sample]) -> String {
-    let mut out = String::with_capacity(samples.len() * 200 + 100);
-    out.push_str(&COLUMNS.join(","));
-    out.push('\n');
-    for s in samples {
-        let p = s.position_m;
-        let q = s.quaternion_xyzw;
-        let f = s.force_n;
-        out.push_str(&format!(
-            "{:?},{:?},{:?},{:?},{:?},{:?},{:?},{:?},{:?},{},{:?},{:?},{:?}\n",
-            s.time_s,
-            p.x,
-            p.y,
-            p.z,
-            q[0],
-            q[1],
-            q[2],
-            q[3],
-            s.jaw_rad,
-            s.grasp.as_str(),
-            f.x,
-            f.y,
-            f.z
-        ));
+/// One sample as a CSV row, its columns named as in [`COLUMNS`].
+#[derive(Debug, Serialize, Deserialize)]
+struct Row {
+    time_s: f64,
+    x_m: f64,
+    y_m: f64,
+    z_m: f64,
+    qx: f64,
+    qy: f64,
+    qz: f64,
+    qw: f64,
+    jaw_rad: f64,
+    grasp: String,
+    fx_n: f64,
+    fy_n: f64,
+    fz_n: f64,
+}
+
+impl Row {
+    fn of(s: &Sample) -> Self {
+        let (p, q, f) = (s.position_m, s.quaternion_xyzw, s.force_n);
+        Self {
+            time_s: s.time_s,
+            x_m: p.x,
+            y_m: p.y,
+            z_m: p.z,
+            qx: q[0],
+            qy: q[1],
+            qz: q[2],
+            qw: q[3],
+            jaw_rad: s.jaw_rad,
+            grasp: s.grasp.as_str().to_owned(),
+            fx_n: f.x,
+            fy_n: f.y,
+            fz_n: f.z,
+        }
     }
-    out
+}
+
+/// Writes a sample list as CSV into `out`: the header, then one row a sample, every line ended by a
+/// newline and every number in the shortest form that reads back to the same bits.
+pub fn write_samples(out: impl std::io::Write, samples: &[Sample]) -> std::io::Result<()> {
+    let mut writer = WriterBuilder::new().has_headers(false).from_writer(out);
+    writer.write_record(COLUMNS)?;
+    for s in samples {
+        writer.serialize(Row::of(s))?;
+    }
+    writer.flush()
 }
 
 /// Parses one instrument's CSV text; `file` names it in errors, `expected_samples` is the count the
@@ -63,90 +86,57 @@ pub fn parse_samples(
     if text.is_empty() {
         return Err(err(1, "(header)", "empty file".to_owned()));
     }
-    let ends_with_newline = text.ends_with('\n');
-    let lines: Vec<&str> = text.strip_suffix('\n').unwrap_or(text).split('\n').collect();
-    let last_line = lines.len();
-    let trim = |l: &str| l.strip_suffix('\r').unwrap_or(l).to_owned();
-
-    let header: Vec<String> = trim(lines[0]).split(',').map(|h| h.trim().to_owned()).collect();
-    if !ends_with_newline && last_line == 1 {
-        return Err(err(1, "(header)", "the file ends inside its header line: truncated".to_owned()));
-    }
+    check_lines(text, file)?;
+    let mut reader = ReaderBuilder::new().has_headers(true).flexible(true).from_reader(text.as_bytes());
+    let unreadable = |line: usize, e: ::csv::Error| err(line, "(row)", format!("unreadable: {e}"));
+    let header: Vec<String> =
+        reader.headers().map_err(|e| unreadable(1, e))?.iter().map(|h| h.trim().to_owned()).collect();
     for (k, name) in header.iter().enumerate() {
         if header[..k].contains(name) {
             return Err(err(1, name, "column appears twice".to_owned()));
         }
     }
-    let mut index = [0usize; COLUMNS.len()];
-    for (slot, column) in index.iter_mut().zip(COLUMNS) {
-        *slot = header.iter().position(|h| h == column).ok_or_else(|| {
-            err(1, column, format!("missing column (the header has: {})", header.join(",")))
-        })?;
+    for column in COLUMNS {
+        if !header.iter().any(|h| h == column) {
+            return Err(err(1, column, format!("missing column (the header has: {})", header.join(","))));
+        }
     }
+    let header_record = StringRecord::from(header.clone());
 
     let mut samples = Vec::with_capacity(expected_samples.min(10_000_000));
-    for (k, raw) in lines.iter().enumerate().skip(1) {
-        let line = k + 1;
-        let is_last = line == last_line;
-        let row = trim(raw);
-        let fields: Vec<&str> = row.split(',').collect();
-        if is_last && !ends_with_newline {
-            // The field the file ends in (a required one, or the header's name of another).
-            let cut = fields.len() - 1;
-            let field = COLUMNS
-                .iter()
-                .zip(index)
-                .find(|(_, i)| *i == cut)
-                .map_or_else(|| header.get(cut).map_or("(row)", String::as_str), |(c, _)| c);
+    let mut record = StringRecord::new();
+    let mut line = 1;
+    loop {
+        match reader.read_record(&mut record) {
+            Ok(false) => break,
+            Ok(true) => {}
+            Err(e) => return Err(unreadable(line + 1, e)),
+        }
+        // Every line holds one row (no blank lines, no quoted line breaks: `check_lines`).
+        line = record.position().map_or(line + 1, |p| p.line() as usize);
+        if record.len() != header.len() {
+            let missing = COLUMNS.iter().find(|c| header.iter().position(|h| h == *c) >= Some(record.len()));
             return Err(err(
                 line,
-                field,
-                format!(
-                    "the file ends inside this row ({} of {} fields, no final newline): truncated",
-                    fields.len(),
-                    header.len()
-                ),
+                missing.copied().unwrap_or("(row)"),
+                format!("{} fields, the header has {}", record.len(), header.len()),
             ));
         }
-        if row.trim().is_empty() {
-            return Err(err(line, "(row)", "empty line".to_owned()));
-        }
-        if fields.len() != header.len() {
-            let missing = COLUMNS.iter().zip(index).find(|(_, i)| *i >= fields.len()).map(|(c, _)| *c);
-            return Err(err(
-                line,
-                missing.unwrap_or("(row)"),
-                format!("{} fields, the header has {}", fields.len(), header.len()),
-            ));
-        }
-        let number = |c: usize| -> Result<f64, DemoError> {
-            let text = fields[index[c]].trim();
-            let x: f64 =
-                text.parse().map_err(|_| err(line, COLUMNS[c], format!("not a number: '{text}'")))?;
-            if x.is_nan() {
-                return Err(err(line, COLUMNS[c], "NaN".to_owned()));
-            }
-            if !x.is_finite() {
-                return Err(err(line, COLUMNS[c], format!("not finite: {text}")));
-            }
-            Ok(x)
-        };
-        let grasp_text = fields[index[9]].trim();
-        let grasp = GraspState::parse(grasp_text).ok_or_else(|| {
-            err(line, "grasp", format!("'{grasp_text}' is not one of open, holding, closed_empty"))
+        record.trim();
+        let row: Row = record.deserialize(Some(&header_record)).map_err(|e| {
+            let field = match e.kind() {
+                ::csv::ErrorKind::Deserialize { err, .. } => err.field(),
+                _ => None,
+            };
+            let column = field.and_then(|i| header.get(i as usize)).map_or("(row)", String::as_str);
+            let text = field.and_then(|i| record.get(i as usize)).unwrap_or("");
+            err(line, column, format!("not a number: '{text}'"))
         })?;
-        samples.push(Sample {
-            time_s: number(0)?,
-            position_m: Vector3::new(number(1)?, number(2)?, number(3)?),
-            quaternion_xyzw: [number(4)?, number(5)?, number(6)?, number(7)?],
-            jaw_rad: number(8)?,
-            grasp,
-            force_n: Vector3::new(number(10)?, number(11)?, number(12)?),
-        });
+        samples.push(sample_of(row, line, &err)?);
     }
     if samples.len() < expected_samples {
         return Err(err(
-            last_line + 1,
+            line + 1,
             "(rows)",
             format!(
                 "the file ends after {} samples, demo.toml says {expected_samples}: truncated",
@@ -163,6 +153,83 @@ pub fn parse_samples(
     }
     validate_samples(&samples, file, sample_rate_hz)?;
     Ok(samples)
+}
+
+/// The checks the CSV reader does not make, on the text itself: the header is a whole line, no line
+/// is blank (the reader would pass over it), and the file ends with a newline (one that does not was
+/// cut inside its last row). A cut row names the field it ends in.
+fn check_lines(text: &str, file: &str) -> Result<(), DemoError> {
+    let err = |line: usize, field: &str, reason: String| DemoError::format(file, line, field, reason);
+    let ends_with_newline = text.ends_with('\n');
+    let lines: Vec<&str> = text.strip_suffix('\n').unwrap_or(text).split('\n').collect();
+    let trim = |l: &str| l.strip_suffix('\r').unwrap_or(l).to_owned();
+    let header: Vec<String> = trim(lines[0]).split(',').map(|h| h.trim().to_owned()).collect();
+    if !ends_with_newline && lines.len() == 1 {
+        return Err(err(1, "(header)", "the file ends inside its header line: truncated".to_owned()));
+    }
+    for (k, raw) in lines.iter().enumerate().skip(1) {
+        let line = k + 1;
+        let row = trim(raw);
+        if line == lines.len() && !ends_with_newline {
+            // The field the file ends in (a required one, or the header's name of another).
+            let cut = row.split(',').count() - 1;
+            let field = COLUMNS
+                .iter()
+                .find(|c| header.iter().position(|h| h == *c) == Some(cut))
+                .copied()
+                .unwrap_or_else(|| header.get(cut).map_or("(row)", String::as_str));
+            return Err(err(
+                line,
+                field,
+                format!(
+                    "the file ends inside this row ({} of {} fields, no final newline): truncated",
+                    cut + 1,
+                    header.len()
+                ),
+            ));
+        }
+        if row.trim().is_empty() {
+            return Err(err(line, "(row)", "empty line".to_owned()));
+        }
+    }
+    Ok(())
+}
+
+/// A row's sample: every number finite, the grasp one of its words.
+fn sample_of(
+    row: Row,
+    line: usize,
+    err: &impl Fn(usize, &str, String) -> DemoError,
+) -> Result<Sample, DemoError> {
+    let values = [
+        ("time_s", row.time_s),
+        ("x_m", row.x_m),
+        ("y_m", row.y_m),
+        ("z_m", row.z_m),
+        ("qx", row.qx),
+        ("qy", row.qy),
+        ("qz", row.qz),
+        ("qw", row.qw),
+        ("jaw_rad", row.jaw_rad),
+    ];
+    if let Some((name, x)) = values.iter().find(|(_, x)| !x.is_finite()) {
+        return Err(err(line, name, if x.is_nan() { "NaN".to_owned() } else { format!("not finite: {x}") }));
+    }
+    let grasp = GraspState::parse(&row.grasp).ok_or_else(|| {
+        err(line, "grasp", format!("'{}' is not one of open, holding, closed_empty", row.grasp))
+    })?;
+    let forces = [("fx_n", row.fx_n), ("fy_n", row.fy_n), ("fz_n", row.fz_n)];
+    if let Some((name, x)) = forces.iter().find(|(_, x)| !x.is_finite()) {
+        return Err(err(line, name, if x.is_nan() { "NaN".to_owned() } else { format!("not finite: {x}") }));
+    }
+    Ok(Sample {
+        time_s: row.time_s,
+        position_m: Vector3::new(row.x_m, row.y_m, row.z_m),
+        quaternion_xyzw: [row.qx, row.qy, row.qz, row.qw],
+        jaw_rad: row.jaw_rad,
+        grasp,
+        force_n: Vector3::new(row.fx_n, row.fy_n, row.fz_n),
+    })
 }
 
 /// Checks a sample list: at least two samples, finite values, time strictly increasing without gaps,

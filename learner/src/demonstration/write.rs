@@ -4,7 +4,7 @@
 use std::path::Path;
 
 use super::Demonstration;
-use super::csv::render_samples;
+use super::csv::write_samples;
 use super::error::DemoError;
 use super::metadata::{METADATA_FILE, render_metadata};
 
@@ -17,16 +17,18 @@ pub fn write_demonstration(dir: &Path, demo: &Demonstration) -> Result<(), DemoE
         action: "cannot create directory",
         error,
     })?;
+    let io_error = |path: &Path| {
+        let file = path.display().to_string();
+        move |error| DemoError::Io { file, action: "cannot write", error }
+    };
     let write = |name: &str, text: String| {
         let path = dir.join(name);
-        std::fs::write(&path, text).map_err(|error| DemoError::Io {
-            file: path.display().to_string(),
-            action: "cannot write",
-            error,
-        })
+        std::fs::write(&path, text).map_err(io_error(&path))
     };
     for record in &demo.instruments {
-        write(&record.file_name(), render_samples(&record.samples))?;
+        let path = dir.join(record.file_name());
+        let file = std::fs::File::create(&path).map_err(io_error(&path))?;
+        write_samples(std::io::BufWriter::new(file), &record.samples).map_err(io_error(&path))?;
     }
     // The metadata last: a directory whose writing was interrupted has no demo.toml, or one that
     // counts samples its CSV files do hold.

@@ -125,6 +125,29 @@ fn nan_is_named_with_its_line_and_column() {
     assert_names(&dir.load_error(), "left.csv", 77, "fy_n", "NaN");
 }
 
+/// A word where a number belongs is refused naming its line, its column (`z_m`) and the text.
+#[test]
+fn a_word_for_a_number_is_named_with_its_line_column_and_text() {
+    let dir = TempDir::with_demo("word");
+    dir.edit("right.csv", |text| {
+        replace_line(&text, 40, |l| {
+            let mut fields: Vec<String> = l.split(',').map(str::to_owned).collect();
+            fields[3] = "deep".to_owned(); // z_m
+            fields.join(",")
+        })
+    });
+    assert_names(&dir.load_error(), "right.csv", 40, "z_m", "not a number: 'deep'");
+}
+
+/// A blank line among the rows is refused with its line, not passed over as the CSV reader would:
+/// the rows after it would then be counted one line short of where they are.
+#[test]
+fn a_blank_line_is_refused_with_its_line() {
+    let dir = TempDir::with_demo("blank");
+    dir.edit("assist.csv", |text| replace_line(&text, 12, |_| String::new()));
+    assert_names(&dir.load_error(), "assist.csv", 12, "(row)", "empty line");
+}
+
 /// A row whose time does not increase on the row before is refused naming its line and `time_s`.
 #[test]
 fn time_going_back_is_named_with_its_line() {
