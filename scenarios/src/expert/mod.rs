@@ -8,15 +8,18 @@ pub mod diagnose;
 pub mod geometry;
 pub mod geometry_file;
 pub mod motion;
+mod phases;
 pub mod plan;
 pub mod record;
 pub mod tail;
 pub mod turn_thread;
+pub mod variation;
 
 pub use geometry::{LeftFetch, SecondThrow, TieGeometry};
 pub use geometry_file::{GeometryFileError, load_tie_geometry, parse_tie_geometry};
 pub use plan::{
-    Planner, Variation, plan_instrument_tie, plan_second_tail_take, plan_second_throw, plan_tail_hand_over,
+    Planner, plan_instrument_tie, plan_second_tail_take, plan_second_throw, plan_tail_hand_over,
     plan_tail_take,
 };
 pub use record::{DemoRun, ExpertError, RecordOptions, demonstrate, demonstrate_with, record_demonstration};
+pub use variation::Variation;
