@@ -13,6 +13,7 @@ use crate::knot::{
     Verdict, classify, judge,
 };
 pub use crate::scene::EvaluationParams;
+use crate::thread_watch::Stretch;
 use crate::tissue::Flap;
 use crate::world::SimWorld;
 
@@ -41,6 +42,10 @@ pub struct KnotEvaluation {
     /// How often the thread passed through itself during the run (a solver failure; the knot of a
     /// run with any is not a real thread's).
     pub thread_self_crossings: usize,
+    /// The suture at its most stretched over the run and its holding test (its most stretched
+    /// segment beyond its rest length, a fraction of it, and when): an inextensible suture's solver
+    /// error under load. Not part of the verdict.
+    pub thread_most_stretched: Option<Stretch>,
     /// How much of each free end the knot drew in during the holding test, if it ran and the two ends
     /// touched before and after: a knot that slips draws in the end it lets through.
     pub slid: Option<Slid>,
@@ -185,6 +190,7 @@ pub fn evaluate_knot_watched(
         gap_before_m,
         gap_after_m: None,
         thread_self_crossings: world.suture().self_crossings().len(),
+        thread_most_stretched: world.suture().most_stretched(),
         slid: None,
     };
     let Some(site) = stitch_site(world) else {
@@ -217,7 +223,9 @@ pub fn evaluate_knot_watched(
     }
     // The holding test: every jaw opens, the load pulls the wound open for the settle time.
     let free_before = free_ends_now(world);
-    if hold_watched(world, params, observe).is_none() {
+    let held = hold_watched(world, params, observe);
+    result.thread_most_stretched = world.suture().most_stretched();
+    if held.is_none() {
         result.verdict = Verdict::Failure(FailureMode::ThreadUnstable);
         return result;
     }

@@ -18,7 +18,17 @@ pub struct SelfCrossing {
     pub segments: (usize, usize),
 }
 
-/// The thread's self-crossings so far. Moving the thread by hand between steps (`Thread::lay_straight`,
+/// The suture at its most stretched: how far its most stretched segment (the chain: its widest
+/// joint gap) reached beyond its rest length, as a fraction of it, and when.
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct Stretch {
+    /// The stretch, a fraction of the segment's rest length.
+    pub ratio: f64,
+    /// When, s of simulated time.
+    pub time_s: f64,
+}
+
+/// The thread's self-crossings and its largest stretch so far. Moving the thread by hand between steps (`Thread::lay_straight`,
 /// `lay_along`) looks like passes: experiments that do so should not read the count.
 #[derive(Clone, Debug, Default)]
 pub struct ThreadWatch {
@@ -30,6 +40,8 @@ pub struct ThreadWatch {
     pairs: Vec<(usize, usize)>,
     /// Every crossing seen, in order.
     pub crossings: Vec<SelfCrossing>,
+    /// The largest stretch seen after a step.
+    most_stretched: Option<Stretch>,
 }
 
 impl ThreadWatch {
@@ -39,7 +51,19 @@ impl ThreadWatch {
         let n = thread.segments.len();
         let segments = (0..n).map(|k| [k, k + 1]).collect();
         let pairs = (0..n).flat_map(|i| (i + 2..n).map(move |j| (i, j))).collect();
-        Self { swept: CrossingWatch::default(), segments, pairs, crossings: Vec::new() }
+        Self { swept: CrossingWatch::default(), segments, pairs, crossings: Vec::new(), most_stretched: None }
+    }
+
+    /// Notes the suture's stretch after the step that ended at `time_s`.
+    pub fn note_stretch(&mut self, time_s: f64, ratio: f64) {
+        if self.most_stretched.is_none_or(|s| ratio > s.ratio) {
+            self.most_stretched = Some(Stretch { ratio, time_s });
+        }
+    }
+
+    /// The largest stretch seen after a step (none before the first step).
+    pub fn most_stretched(&self) -> Option<Stretch> {
+        self.most_stretched
     }
 
     /// Records passes another watch found at `time_s` (the rope's, by segment pairs).

@@ -103,6 +103,9 @@ struct RunLine {
     /// The first few of them: when (s of the scene's simulated time) and which two segments (needle
     /// end counting from 0), to find the move that forced the thread through itself.
     first_self_crossings: Vec<knotlab_sim::thread_watch::SelfCrossing>,
+    /// The suture at its most stretched (its most stretched segment beyond its rest length, a
+    /// fraction of it, and when); not part of the verdict.
+    thread_most_stretched: Option<knotlab_sim::thread_watch::Stretch>,
     fault: Option<String>,
     simulated_s: f64,
     wall_s: f64,
@@ -143,6 +146,7 @@ fn line(seed: u64, run: &DemoRun, dir: &Path) -> RunLine {
         slid: e.slid,
         thread_self_crossings: e.thread_self_crossings,
         first_self_crossings: run.first_self_crossings().to_vec(),
+        thread_most_stretched: e.thread_most_stretched,
         fault: run.fault.clone(),
         simulated_s: run.simulated_s,
         wall_s: run.wall_s,

@@ -93,6 +93,9 @@ struct Report {
     thread_self_crossings: usize,
     /// The first ten of them: when (s of the scene's simulated time) and which two segments.
     first_self_crossings: Vec<knotlab_sim::thread_watch::SelfCrossing>,
+    /// The suture at its most stretched (its most stretched segment beyond its rest length, a
+    /// fraction of it, and when); not part of the verdict.
+    thread_most_stretched: Option<knotlab_sim::thread_watch::Stretch>,
     method: &'static str,
     seed: u64,
     scene: String,
@@ -257,6 +260,7 @@ pub fn run(args: RunArgs, out: &mut Output) -> anyhow::Result<ExitCode> {
         knot_slid: e.slid,
         thread_self_crossings: e.thread_self_crossings,
         first_self_crossings: trial.run.first_self_crossings().to_vec(),
+        thread_most_stretched: e.thread_most_stretched,
         method: args.method.as_str(),
         seed: args.seed,
         scene: scene_name,

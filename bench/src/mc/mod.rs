@@ -103,6 +103,11 @@ pub struct TrialLine {
     pub knot: Option<String>,
     /// The wound gap at the end, m (none when the trial could not be set up).
     pub wound_gap_m: Option<f64>,
+    /// The suture's largest stretch over the trial (its most stretched segment beyond its rest
+    /// length, a fraction of it; not part of the verdict); none when the trial could not be set up,
+    /// or in lines written before it was recorded.
+    #[serde(default)]
+    pub thread_max_stretch: Option<f64>,
     /// How often the thread passed through itself (a solver failure, not part of the verdict); none
     /// when the trial could not be set up, or in lines written before it was counted.
     #[serde(default)]
@@ -187,6 +192,7 @@ fn run_one(options: &McOptions, trial: u64, method: Method, runner: &TrialRunner
                 verdict: e.verdict.label().to_owned(),
                 knot: e.knot_before.map(|k| k.name().to_owned()),
                 wound_gap_m: Some(e.gap_after_m.unwrap_or(e.gap_before_m)),
+                thread_max_stretch: e.thread_most_stretched.map(|s| s.ratio),
                 thread_self_crossings: Some(e.thread_self_crossings),
                 first_self_crossing: t.run.self_crossings.first().copied(),
                 slid: e.slid,
@@ -203,6 +209,7 @@ fn run_one(options: &McOptions, trial: u64, method: Method, runner: &TrialRunner
             verdict: Verdict::Failure(knotlab_sim::knot::FailureMode::Unreachable).label().to_owned(),
             knot: None,
             wound_gap_m: None,
+            thread_max_stretch: None,
             thread_self_crossings: None,
             first_self_crossing: None,
             slid: None,

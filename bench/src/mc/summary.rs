@@ -56,6 +56,9 @@ pub struct MethodSummary {
     /// How often the thread passed through itself (a solver failure, not a verdict): in how many
     /// trials, and how often in all, over the trials whose lines count it.
     pub thread_self_crossings: SelfCrossings,
+    /// How far the suture stretched (a solver error: the suture is inextensible; not a verdict),
+    /// over the trials whose lines record it.
+    pub thread_stretch: ThreadStretch,
     /// Success against each drawn parameter, in 4 equal bins over its drawn range: the stitch's
     /// displacement (m) and turn (|rad|), the play (rad), the largest calibration error drawn over the
     /// arms' joints (rad), the thread's friction and bending stiffness (N m/rad), the sensor noise (N).
@@ -80,6 +83,36 @@ pub fn self_crossings(lines: &[&TrialLine]) -> SelfCrossings {
         counted_trials: counts.len(),
         trials_with_any: counts.iter().filter(|&&n| n > 0).count(),
         total: counts.iter().sum(),
+    }
+}
+
+/// The stretch a trial's suture may reach before the summary counts it apart, a fraction of a
+/// segment's rest length: at 5 % a 0.2 m suture would be a centimetre longer, a loop of a knot
+/// several of its diameters wider.
+pub const STRETCH_NOTED: f64 = 0.05;
+
+/// The suture's largest stretch over a method's trials.
+#[derive(Clone, Debug, Default, PartialEq, Serialize)]
+pub struct ThreadStretch {
+    /// Trials whose line records it (lines written before it was recorded do not).
+    pub measured_trials: usize,
+    /// The median over those trials of each trial's largest stretch, a fraction of the rest length.
+    pub median: Option<f64>,
+    /// The largest over them.
+    pub max: Option<f64>,
+    /// Trials whose suture stretched beyond [`STRETCH_NOTED`].
+    pub trials_over_5_percent: usize,
+}
+
+/// The [`ThreadStretch`] of `lines`.
+pub fn thread_stretch(lines: &[&TrialLine]) -> ThreadStretch {
+    let mut ratios: Vec<f64> = lines.iter().filter_map(|l| l.thread_max_stretch).collect();
+    ratios.sort_by(f64::total_cmp);
+    ThreadStretch {
+        measured_trials: ratios.len(),
+        median: (!ratios.is_empty()).then(|| ratios[ratios.len() / 2]),
+        max: ratios.last().copied(),
+        trials_over_5_percent: ratios.iter().filter(|&&r| r > STRETCH_NOTED).count(),
     }
 }
 
@@ -197,6 +230,7 @@ pub fn summarize(scene: &str, seed: u64, trials: u64, methods: &[Method], lines:
                 wilson_95,
                 verdicts,
                 thread_self_crossings: self_crossings(&mine),
+                thread_stretch: thread_stretch(&mine),
                 bins: binned(&mine),
             }
         })
@@ -219,6 +253,24 @@ mod tests {
         let (lo, hi) = wilson_interval(50, 50);
         assert!((lo - 0.9286).abs() < 1e-4 && hi == 1.0, "{lo} {hi}");
         assert_eq!(wilson_interval(0, 0), (0.0, 1.0));
+    }
+
+    /// The stretch tally takes the median and the largest of the lines that record it, and counts
+    /// those beyond 5 %.
+    #[test]
+    fn thread_stretch_takes_median_and_max_and_counts_the_large_ones() {
+        let stretched = |trial, ratio| TrialLine { thread_max_stretch: ratio, ..line(trial, Some(0)) };
+        let lines =
+            [stretched(0, Some(0.01)), stretched(1, Some(0.2)), stretched(2, None), stretched(3, Some(0.04))];
+        let refs: Vec<&TrialLine> = lines.iter().collect();
+        let expected = ThreadStretch {
+            measured_trials: 3,
+            median: Some(0.04),
+            max: Some(0.2),
+            trials_over_5_percent: 1,
+        };
+        assert_eq!(thread_stretch(&refs), expected);
+        assert_eq!(thread_stretch(&[]), ThreadStretch::default());
     }
 
     fn line(trial: u64, crossings: Option<usize>) -> TrialLine {

@@ -95,6 +95,15 @@ pub fn method_tables(stats: &[MethodStats]) -> String {
             "<tr><th>thread self-crossings (solver failures)</th><td>{} in {} of {} trials counted</td></tr>\n",
             x.total, x.trials_with_any, x.counted_trials
         ));
+        let t = &s.thread_stretch;
+        let pct = |r: Option<f64>| r.map_or("&ndash;".to_owned(), |r| format!("{:.1} %", 100.0 * r));
+        out.push_str(&format!(
+            "<tr><th>thread stretch (solver error)</th><td>median {}, largest {}; over 5 % in {} of {} trials measured</td></tr>\n",
+            pct(t.median),
+            pct(t.max),
+            t.trials_over_5_percent,
+            t.measured_trials
+        ));
         out.push_str("</table>\n");
     }
     out.push_str("</div>\n");

@@ -6,7 +6,7 @@ use std::collections::{BTreeMap, BTreeSet};
 use serde::Serialize;
 
 use crate::mc::TrialLine;
-use crate::mc::summary::{SelfCrossings, Tally, self_crossings, tally};
+use crate::mc::summary::{SelfCrossings, Tally, ThreadStretch, self_crossings, tally, thread_stretch};
 
 /// The verdict of a knot accepted.
 pub const SUCCESS: &str = "success";
@@ -67,6 +67,8 @@ pub struct MethodStats {
     pub tally: Tally,
     /// How often the thread passed through itself (a solver failure, not a verdict).
     pub thread_self_crossings: SelfCrossings,
+    /// How far the suture stretched over the trials that record it.
+    pub thread_stretch: ThreadStretch,
 }
 
 /// The figures of each of `methods` in `lines`.
@@ -79,6 +81,7 @@ pub fn method_stats(lines: &[TrialLine], methods: &[String]) -> Vec<MethodStats>
                 method: m.clone(),
                 tally: tally(&mine),
                 thread_self_crossings: self_crossings(&mine),
+                thread_stretch: thread_stretch(&mine),
             }
         })
         .collect()

@@ -181,6 +181,7 @@ pub(crate) fn test_line(method: &str, draw: serde_json::Value, verdict: &str) ->
         verdict: verdict.to_owned(),
         knot: None,
         wound_gap_m: None,
+        thread_max_stretch: None,
         thread_self_crossings: None,
         first_self_crossing: None,
         slid: None,

@@ -341,6 +341,7 @@ pub fn record_demonstration(
             gap_before_m: world.wound_gap_m(),
             gap_after_m: None,
             thread_self_crossings: world.suture().self_crossings().len(),
+            thread_most_stretched: world.suture().most_stretched(),
             slid: None,
         }
     } else {

@@ -9,7 +9,8 @@
 //! - The shipped scenes: [`scene_variants_differ_from_the_nominal_only_in_the_suture`],
 //!   [`short_suture_scene_is_the_chain_one_with_less_thread`].
 //! - The lab's workflow: [`lab_session`].
-//! - The stress sequence, the same twice: [`scene_determinism`].
+//! - The stress sequence, the same twice: [`scene_determinism`]; the suture's stretch watch against it:
+//!   [`suture_stretch_watch`].
 //! - [`common`]: the expert runs the second-throw tests share.
 
 mod common;
@@ -29,3 +30,4 @@ mod lab_session;
 mod scene_determinism;
 mod scene_variants_differ_from_the_nominal_only_in_the_suture;
 mod short_suture_scene_is_the_chain_one_with_less_thread;
+mod suture_stretch_watch;

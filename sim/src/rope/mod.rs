@@ -454,15 +454,6 @@ impl Ropes {
     pub fn polyline(&self, strand: usize) -> Vec<Vector3<f64>> {
         self.x[self.strands[strand].clone()].to_vec()
     }
-
-    /// The largest stretch of any segment, as a fraction of its rest length.
-    pub fn max_stretch(&self) -> f64 {
-        self.segments
-            .iter()
-            .zip(&self.rest_m)
-            .map(|([a, b], rest)| ((self.x[*b] - self.x[*a]).norm() - rest) / rest)
-            .fold(0.0, f64::max)
-    }
 }
 
 #[cfg(test)]

@@ -31,7 +31,7 @@ use crate::rope::suture::SceneRope;
 use crate::scene::SceneConfig;
 use crate::stitch::StitchEvent;
 use crate::thread::ThreadModel;
-use crate::thread_watch::{SelfCrossing, ThreadWatch};
+use crate::thread_watch::{SelfCrossing, Stretch, ThreadWatch};
 use crate::tissue::{Flap, Tissue};
 use crate::tunnelling::Capsule;
 
@@ -243,6 +243,11 @@ impl Suture {
         }
     }
 
+    /// The suture at its most stretched so far (none before the first step).
+    pub fn most_stretched(&self) -> Option<Stretch> {
+        self.watch.most_stretched()
+    }
+
     /// Every time the suture passed through itself, in order.
     pub fn self_crossings(&self) -> &[SelfCrossing] {
         &self.watch.crossings
@@ -388,13 +393,15 @@ impl Suture {
         }
     }
 
-    /// After Rapier's step that ended at `time_s`: the watch judges the step, the chain's stitch
-    /// follows the thread.
+    /// After Rapier's step that ended at `time_s`: the watch judges the step and notes the
+    /// stretch, the chain's stitch follows the thread.
     pub fn after_step(&mut self, physics: &mut Physics, tissue: &Tissue, time_s: f64) {
         match &mut self.model {
             Model::Chain(chain) => chain.after_step(physics, tissue, &mut self.watch, time_s),
             Model::Rope(rope) => self.watch.record(time_s, rope.rope.ropes.crossed_last_step()),
         }
+        let ratio = self.max_stretch_ratio(physics);
+        self.watch.note_stretch(time_s, ratio);
     }
 
     /// Adds the suture's pull on an instrument (its `bodies`, its jaws' `hold`) over the last step
