@@ -1,22 +1,26 @@
-//! Every expert file shipped under `scenarios/experts/` loads: work-in-progress recipes that no run
-//! test pins (say `two-throws-drawn-ahead.toml`) are still read through the same checks (keys,
+//! Every expert file loads, the shipped ones under `scenarios/experts/` and the tests' recipes under
+//! `scenarios/tests/experts/`: work-in-progress recipes that no run test pins (say `two-throws-drawn-ahead.toml`) are still read through the same checks (keys,
 //! ranges, combinations) as the ones that are, so a renamed or re-ranged key cannot leave one behind.
 
 use knotlab_scenarios::expert::load_tie_geometry;
 
-/// Every shipped expert file loads through the geometry checks, none goes missing, and each derived recipe
+use super::common::expert_path;
+
+/// Every expert file loads through the geometry checks, none goes missing, and each derived recipe
 /// stays the one it is built from with only its stated changes.
 #[test]
 fn every_expert_file_loads() {
-    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("experts");
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
     let mut names = Vec::new();
-    for entry in std::fs::read_dir(&dir).expect("scenarios/experts") {
-        let path = entry.expect("a directory entry").path();
-        if path.extension().is_some_and(|e| e == "toml") {
-            if let Err(e) = load_tie_geometry(&path) {
-                panic!("{} does not load: {e}", path.display());
+    for dir in [root.join("experts"), root.join("tests/experts")] {
+        for entry in std::fs::read_dir(&dir).expect("an expert directory") {
+            let path = entry.expect("a directory entry").path();
+            if path.extension().is_some_and(|e| e == "toml") {
+                if let Err(e) = load_tie_geometry(&path) {
+                    panic!("{} does not load: {e}", path.display());
+                }
+                names.push(path.file_name().unwrap().to_string_lossy().into_owned());
             }
-            names.push(path.file_name().unwrap().to_string_lossy().into_owned());
         }
     }
     names.sort();
@@ -35,32 +39,32 @@ fn every_expert_file_loads() {
         assert!(names.iter().any(|n| n == expected), "{expected} missing from {names:?}");
     }
     // The drawn-ahead recipe is the tail-end one with the right drawing the turn off ahead.
-    let ahead = load_tie_geometry(&dir.join("two-throws-drawn-ahead.toml")).unwrap();
+    let ahead = load_tie_geometry(&expert_path("two-throws-drawn-ahead.toml")).unwrap();
     let second = ahead.second_throw.expect("a second throw");
     assert_eq!(second.tail_hold_from_end_m, Some(0.004));
     assert_eq!(second.tail_end_offered_m, Some(0.005));
     assert_eq!(second.right_draws_to_m, Some([0.035, -0.015, 0.02]));
     // The looking recipe's first throw is looks-at-the-tail's; its second fetch looks, square to the
     // tail, the right staying where it wound.
-    let looking = load_tie_geometry(&dir.join("two-throws-looking.toml")).unwrap();
-    let first = load_tie_geometry(&dir.join("looks-at-the-tail.toml")).unwrap();
+    let looking = load_tie_geometry(&expert_path("two-throws-looking.toml")).unwrap();
+    let first = load_tie_geometry(&expert_path("looks-at-the-tail.toml")).unwrap();
     let second = looking.second_throw.clone().expect("a second throw");
     assert_eq!(knotlab_scenarios::expert::TieGeometry { second_throw: None, ..looking }, first);
     let fetch = second.left_fetches.expect("the second throw's own fetch");
     assert!(fetch.looks && fetch.hinge_along_tail && fetch.right_follows == 0.0, "{fetch:?}");
     // The cinching recipe is looks-at-the-tail's with pulls that go on to their set force.
-    let cinches = load_tie_geometry(&dir.join("looks-and-cinches.toml")).unwrap();
+    let cinches = load_tie_geometry(&expert_path("looks-and-cinches.toml")).unwrap();
     let expected = knotlab_scenarios::expert::TieGeometry {
         pull_on_m: 0.2,
         pulls_stop_together: true,
         tail_pull_force_n: Some(1.0),
         hold_through_release: true,
-        ..load_tie_geometry(&dir.join("looks-at-the-tail.toml")).unwrap()
+        ..load_tie_geometry(&expert_path("looks-at-the-tail.toml")).unwrap()
     };
     assert_eq!(cinches, expected);
     // The shipped plan, cinched by both ends: looks-at-the-tail's with each pull going on to its own
     // set force, slower, and the right going the left's way as it draws the tail back.
-    let both = load_tie_geometry(&dir.join("instrument-tie.toml")).unwrap();
+    let both = load_tie_geometry(&expert_path("instrument-tie.toml")).unwrap();
     let expected = knotlab_scenarios::expert::TieGeometry {
         pull_s: 5.0,
         pulls_stop_together: false,
@@ -71,7 +75,7 @@ fn every_expert_file_loads() {
     };
     assert_eq!(both, expected);
     // The cinched two-throw recipe: that first throw (its pulls on 0.12 m), the left letting go of it.
-    let cinched = load_tie_geometry(&dir.join("two-throws-cinched.toml")).unwrap();
+    let cinched = load_tie_geometry(&expert_path("two-throws-cinched.toml")).unwrap();
     let second = cinched.second_throw.clone().expect("a second throw");
     assert!(second.left_lets_go_first && second.tail_held_taut == Some(0.9), "{second:?}");
     let fetch = second.left_fetches.as_ref().expect("the second throw's own fetch");

@@ -15,7 +15,7 @@ fn scene() -> knotlab_sim::scene::SceneConfig {
     parse_scene(include_str!("../../chain.toml"), "chain.toml").expect("the chain scene")
 }
 
-/// The experimental expert file `experts/coils-on-the-left.toml`.
+/// The experimental expert file `tests/experts/coils-on-the-left.toml`.
 fn coils_on_the_left() -> TieGeometry {
     common::expert("coils-on-the-left.toml")
 }

@@ -1,4 +1,4 @@
-//! The first second throw of the other hand (`scenarios/experts/two-throws-leg-behind.toml`; issue
+//! The first second throw of the other hand (`scenarios/tests/experts/two-throws-leg-behind.toml`; issue
 //! 6, session 37): the left's jaws ahead of the knot along the wound, the long end wound once round
 //! them as a helix advancing towards their tips, so that its knot leg joins the turn from behind, and
 //! the tail taken where it is presented within the jaws. As the instruments let go the thread holds

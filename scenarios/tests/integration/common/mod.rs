@@ -5,10 +5,17 @@
 use knotlab_scenarios::expert::{DemoRun, RecordOptions, TieGeometry, demonstrate_with, load_tie_geometry};
 use knotlab_sim::scene::{SceneConfig, parse_scene};
 
-/// An expert file of `scenarios/experts/`.
+/// An expert file: the test fixtures of `scenarios/tests/experts/`, or the shipped ones of
+/// `scenarios/experts/`.
 pub fn expert(name: &str) -> TieGeometry {
-    let file = format!("{}/experts/{name}", env!("CARGO_MANIFEST_DIR"));
-    load_tie_geometry(std::path::Path::new(&file)).expect("the expert file")
+    load_tie_geometry(&expert_path(name)).expect("the expert file")
+}
+
+/// Where the expert file `name` is (`scenarios/tests/experts/` first).
+pub fn expert_path(name: &str) -> std::path::PathBuf {
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    let fixture = root.join("tests/experts").join(name);
+    if fixture.exists() { fixture } else { root.join("experts").join(name) }
 }
 
 /// The scene the second throw is worked out on (`scenarios/short-suture-friction-0.5.toml`).
@@ -27,7 +34,7 @@ pub fn event_segment(event: &str) -> Option<usize> {
     event.split("segment: ").nth(1)?.split(',').next()?.parse().ok()
 }
 
-/// A recorded run of the expert file `name` (`scenarios/experts/`) on the two-throw scene, with the
+/// A recorded run of the expert file `name` ([`expert`]) on the two-throw scene, with the
 /// human-like variation of `seed`: sampled every 10 cycles, snapshots at `snapshot_times_s`, stopped
 /// at `stop_after_s`. It must run to there without a fault.
 pub fn two_throw_run(name: &str, seed: u64, snapshot_times_s: Vec<f64>, stop_after_s: f64) -> DemoRun {
