@@ -12,6 +12,7 @@ use knotlab_hw::geometry::segment_distance;
 use nalgebra::Vector3;
 use rapier3d::prelude::*;
 
+use knotlab_sim::convert::to_na;
 use knotlab_sim::hooks::ThreadOnItself;
 use knotlab_sim::physics::{HealthError, Physics, SolverParams};
 use knotlab_sim::thread::{Thread, ThreadParams};
@@ -399,7 +400,7 @@ pub fn run_capstan(
     })?;
     let a_line = a.centreline(&physics);
     let end_m = physics.bodies[last].translation();
-    let end_m = Vector3::new(end_m.x, end_m.y, end_m.z);
+    let end_m = to_na(end_m);
     let end_from_a_m = a_line
         .windows(2)
         .map(|w| segment_distance(&w[0], &w[1], &end_m, &end_m))

@@ -14,6 +14,7 @@ use nalgebra::{Isometry3, Point3, Vector3};
 use rapier3d::prelude::*;
 
 use crate::reef::loose_knot;
+use knotlab_sim::convert::to_rapier;
 use knotlab_sim::evaluate::{hold, knot_now};
 use knotlab_sim::knot::KnotType;
 use knotlab_sim::physics::Physics;
@@ -326,7 +327,7 @@ pub fn run_laid_knot(
 fn push(world: &mut SimWorld, body: RigidBodyHandle, force_n: Vector3<f64>) {
     let body = &mut world.physics_mut().bodies[body];
     body.reset_forces(true);
-    body.add_force(Vector::new(force_n.x, force_n.y, force_n.z), true);
+    body.add_force(to_rapier(&force_n), true);
 }
 
 /// Why a laid-knot trial could not run.

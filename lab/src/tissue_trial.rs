@@ -11,6 +11,7 @@ use rapier3d::prelude::*;
 
 use crate::laid_knot::{LaidKnotParams, surgeons_knot_through};
 use crate::wound::{Moment, SPACING_M, WoundOutcome, WoundTrialParams, length_m, observe, thread_between_m};
+use knotlab_sim::convert::to_rapier;
 use knotlab_sim::physics::Physics;
 use knotlab_sim::rope::rigid::{Guide, RigidContacts};
 use knotlab_sim::rope::{RopeParams, Ropes};
@@ -95,7 +96,7 @@ pub fn laid_surgeons_knot_in_tissue(
     for flap in Flap::ALONG_THREAD {
         let outward = frame.rotation * Vector3::new(0.0, flap.side(), 0.0) * trial.holding_load_n;
         let body = &mut physics.bodies[tissue.flaps[flap.index()]];
-        body.add_force(Vector::new(outward.x, outward.y, outward.z), true);
+        body.add_force(to_rapier(&outward), true);
     }
     for _ in 0..(trial.settle_s / dt_s).round() as usize {
         if !step(&mut ropes, &mut contacts, &mut physics) {

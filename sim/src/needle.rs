@@ -8,6 +8,7 @@
 use nalgebra::Vector3;
 use rapier3d::prelude::*;
 
+use crate::convert::{to_na, to_rapier};
 use crate::groups::{FLAP_GROUP, PAD_GROUP, THREAD_GROUP};
 use crate::physics::Physics;
 use crate::scene::NeedleParams;
@@ -50,8 +51,8 @@ impl Needle {
         for pair in needle.arc_points_m.windows(2) {
             let (a, b) = (pair[0], pair[1]);
             let capsule = ColliderBuilder::new(SharedShape::capsule(
-                Vector::new(a.x, a.y, a.z),
-                Vector::new(b.x, b.y, b.z),
+                to_rapier(&a),
+                to_rapier(&b),
                 params.wire_radius_m,
             ))
             .mass(piece_mass)
@@ -75,12 +76,6 @@ impl Needle {
         let Some(body) = self.body.or(carrier) else { return Vec::new() };
         let Some(body) = physics.bodies.get(body) else { return Vec::new() };
         let pose = body.position();
-        self.arc_points_m
-            .iter()
-            .map(|p| {
-                let w = pose.transform_point(Vector::new(p.x, p.y, p.z));
-                Vector3::new(w.x, w.y, w.z)
-            })
-            .collect()
+        self.arc_points_m.iter().map(|p| to_na(pose.transform_point(to_rapier(p)))).collect()
     }
 }

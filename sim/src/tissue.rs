@@ -10,7 +10,7 @@
 use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};
 use rapier3d::prelude::*;
 
-use crate::convert::{to_pose, to_rapier};
+use crate::convert::{to_na, to_pose, to_rapier};
 use crate::groups::{FLAP_GROUP, PAD_GROUP, THREAD_GROUP};
 use crate::physics::Physics;
 use crate::scene::{StitchParams, TissueParams};
@@ -192,15 +192,13 @@ impl Tissue {
     /// Where the stitch passes through `flap`, world frame, m.
     pub fn hole_m(&self, physics: &Physics, flap: Flap) -> Vector3<f64> {
         let local = self.flap_from_hole_m[flap.index()];
-        let p = physics.bodies[self.flap(flap)].position().transform_point(to_rapier(&local));
-        Vector3::new(p.x, p.y, p.z)
+        to_na(physics.bodies[self.flap(flap)].position().transform_point(to_rapier(&local)))
     }
 
     /// Where the stitch runs deepest in `flap`, world frame, m.
     pub fn deep_m(&self, physics: &Physics, flap: Flap) -> Vector3<f64> {
         let local = self.flap_from_deep_m[flap.index()];
-        let p = physics.bodies[self.flap(flap)].position().transform_point(to_rapier(&local));
-        Vector3::new(p.x, p.y, p.z)
+        to_na(physics.bodies[self.flap(flap)].position().transform_point(to_rapier(&local)))
     }
 
     /// The stitch point of `flap` in that flap's frame, m.

@@ -12,6 +12,7 @@ use rapier3d::prelude::*;
 
 use super::Ropes;
 use super::rigid::{Attachment, Grip, RigidContacts};
+use crate::convert::{to_na, to_rapier};
 use crate::grasp::JawFaces;
 use knotlab_hw::geometry::segment_distance;
 
@@ -55,12 +56,8 @@ impl RopeGrasp {
         let run = Self::run_between(ropes, (hinge_m, tip_m), reach_m, faces)?;
         for p in run.clone() {
             let x = ropes.x[p];
-            let local = body_pose.inverse_transform_point(Vector::new(x.x, x.y, x.z));
-            contacts.attachments.push(Attachment {
-                particle: p,
-                body,
-                local_m: Vector3::new(local.x, local.y, local.z),
-            });
+            let local = body_pose.inverse_transform_point(to_rapier(&x));
+            contacts.attachments.push(Attachment { particle: p, body, local_m: to_na(local) });
             contacts.attachment_impulses.push(Vector3::zeros());
         }
         Some(Self { body, particles: run })
@@ -152,8 +149,7 @@ impl RopeGrasp {
         }
         let strand = ropes.strand_holding(self.particles.start)?;
         let origin = body_pose.transform_point(Vector::ZERO);
-        let slid_world = body_pose.transform_point(Vector::new(slid.x, slid.y, slid.z)) - origin;
-        let slid_world = Vector3::new(slid_world.x, slid_world.y, slid_world.z);
+        let slid_world = to_na(body_pose.transform_point(to_rapier(&slid)) - origin);
         // The particles that have come to where the held ones were lie back against the slide.
         let forward = ropes.way_through(&self.particles)?.dot(&slid_world) < 0.0;
         let run = if forward {

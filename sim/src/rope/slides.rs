@@ -12,6 +12,7 @@ use rapier3d::prelude::*;
 
 use super::rigid::{nearest_on_rope, thread_through_held};
 use super::{Ropes, Surroundings};
+use crate::convert::to_rapier;
 use crate::scene::TissueParams;
 use crate::tissue::{FLAP_OUTWARD_TRAVEL_M, Flap, Tissue};
 
@@ -111,7 +112,7 @@ impl SlideStitch {
         for slide in &self.slides {
             let shift = slide.outward * slide.u_m;
             let mut pose = slide.rest;
-            pose.translation += Vector::new(shift.x, shift.y, shift.z);
+            pose.translation += to_rapier(&shift);
             physics.bodies[slide.body].set_next_kinematic_position(pose);
         }
     }

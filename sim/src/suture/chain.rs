@@ -8,6 +8,7 @@ use nalgebra::{IsometryMatrix3, Point3, Vector3};
 use rapier3d::prelude::*;
 
 use super::JawsNow;
+use crate::convert::to_na;
 use crate::grasp::{GRASP_REACH_M, JAW_CENTRE_OFFSET_M};
 use crate::hooks::{ContactFilter, ThreadOnItself};
 use crate::needle::Needle;
@@ -157,7 +158,7 @@ impl ChainSuture {
                 let clearance = HELD_CLEARANCE_M + self.thread.segment_length_m;
                 for (i, h) in self.thread.segments.iter().enumerate() {
                     let t = physics.bodies[*h].translation();
-                    if (Vector3::new(t.x, t.y, t.z) - centre).norm() < clearance {
+                    if (to_na(t) - centre).norm() < clearance {
                         near.push(i);
                     }
                 }

@@ -23,6 +23,7 @@ pub use chain::{ChainSuture, HELD_CLEARANCE_M};
 pub use hold::Hold;
 pub use rope::{JAW_CLEAR_M, SLIP_OUT_FACTOR};
 
+use crate::convert::to_rapier;
 use crate::grasp::{Grasp, JAW_CENTRE_OFFSET_M, JawFaces};
 use crate::hooks::ContactFilter;
 use crate::needle::Needle;
@@ -437,7 +438,7 @@ impl Suture {
             let outward = tissue.world_from_tissue.rotation * Vector3::new(0.0, flap.side(), 0.0);
             let f = outward * outward_n;
             let body = &mut physics.bodies[tissue.flaps[flap.index()]];
-            body.add_force(Vector::new(f.x, f.y, f.z), true);
+            body.add_force(to_rapier(&f), true);
         }
     }
 

@@ -5,6 +5,7 @@ use nalgebra::Vector3;
 use rand_distr::{Distribution, Normal};
 
 use super::SimWorld;
+use crate::convert::to_na;
 
 impl SimWorld {
     /// Reads each instrument's gauge after a step.
@@ -18,7 +19,7 @@ impl SimWorld {
                         let impulse = pair.total_impulse();
                         // The impulse pushes collider 1 away from collider 2 along the normal.
                         let sign = if pair.collider1 == c { -1.0 } else { 1.0 };
-                        total += Vector3::new(impulse.x, impulse.y, impulse.z) * (sign / dt);
+                        total += to_na(impulse) * (sign / dt);
                     }
                 }
             }
