@@ -18,14 +18,23 @@ pub struct SelfCrossing {
     pub segments: (usize, usize),
 }
 
+/// A stretch beyond which the suture's stretch is counted apart ([`Stretch::over_5_percent_s`]), a
+/// fraction of a segment's rest length: at 5 % a 0.2 m suture would be a centimetre longer, a knot's
+/// loop several of its diameters wider.
+pub const STRETCH_NOTED: f64 = 0.05;
+
 /// The suture at its most stretched: how far its most stretched segment (the chain: its widest
-/// joint gap) reached beyond its rest length, as a fraction of it, and when.
+/// joint gap) reached beyond its rest length, as a fraction of it, and when; and how long it was
+/// stretched beyond [`STRETCH_NOTED`] in all.
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Stretch {
     /// The stretch, a fraction of the segment's rest length.
     pub ratio: f64,
     /// When, s of simulated time.
     pub time_s: f64,
+    /// The simulated time over which the suture was stretched beyond [`STRETCH_NOTED`], s (the
+    /// steps after which it was, each counted for its length).
+    pub over_5_percent_s: f64,
 }
 
 /// The thread's self-crossings and its largest stretch so far. Moving the thread by hand between steps (`Thread::lay_straight`,
@@ -42,6 +51,8 @@ pub struct ThreadWatch {
     pub crossings: Vec<SelfCrossing>,
     /// The largest stretch seen after a step.
     most_stretched: Option<Stretch>,
+    /// When the last step the stretch was noted after ended, s.
+    stretch_noted_s: f64,
 }
 
 impl ThreadWatch {
@@ -51,14 +62,21 @@ impl ThreadWatch {
         let n = thread.segments.len();
         let segments = (0..n).map(|k| [k, k + 1]).collect();
         let pairs = (0..n).flat_map(|i| (i + 2..n).map(move |j| (i, j))).collect();
-        Self { swept: CrossingWatch::default(), segments, pairs, crossings: Vec::new(), most_stretched: None }
+        Self { swept: CrossingWatch::default(), segments, pairs, crossings: Vec::new(), ..Self::default() }
     }
 
     /// Notes the suture's stretch after the step that ended at `time_s`.
     pub fn note_stretch(&mut self, time_s: f64, ratio: f64) {
-        if self.most_stretched.is_none_or(|s| ratio > s.ratio) {
-            self.most_stretched = Some(Stretch { ratio, time_s });
-        }
+        let step_s = time_s - self.stretch_noted_s;
+        self.stretch_noted_s = time_s;
+        let over_s = if ratio > STRETCH_NOTED { step_s } else { 0.0 };
+        self.most_stretched = Some(match self.most_stretched {
+            None => Stretch { ratio, time_s, over_5_percent_s: over_s },
+            Some(s) if ratio > s.ratio => {
+                Stretch { ratio, time_s, over_5_percent_s: s.over_5_percent_s + over_s }
+            }
+            Some(s) => Stretch { over_5_percent_s: s.over_5_percent_s + over_s, ..s },
+        });
     }
 
     /// The largest stretch seen after a step (none before the first step).
@@ -89,5 +107,25 @@ impl ThreadWatch {
         let passes = self.swept.crossed().to_vec();
         self.record(time_s, &passes);
         passes.len()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The stretch noted keeps the largest reading and when it came, and adds up the steps after
+    /// which the suture was stretched beyond 5 %, each for its length.
+    #[test]
+    fn the_stretch_keeps_the_largest_and_adds_up_the_time_beyond_five_percent() {
+        let mut watch = ThreadWatch::default();
+        assert_eq!(watch.most_stretched(), None);
+        for (time_s, ratio) in [(0.001, 0.08), (0.002, 0.01), (0.004, 0.3), (0.005, 0.06), (0.006, 0.02)] {
+            watch.note_stretch(time_s, ratio);
+        }
+        let s = watch.most_stretched().expect("noted");
+        assert_eq!((s.ratio, s.time_s), (0.3, 0.004));
+        // 1 ms at 8 %, 2 ms at 30 % (the step from 2 to 4 ms), 1 ms at 6 %.
+        assert!((s.over_5_percent_s - 0.004).abs() < 1e-12, "{s:?}");
     }
 }

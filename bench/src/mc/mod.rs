@@ -108,6 +108,10 @@ pub struct TrialLine {
     /// or in lines written before it was recorded.
     #[serde(default)]
     pub thread_max_stretch: Option<f64>,
+    /// How long the suture was stretched beyond 5 % over the trial, s; none as
+    /// `thread_max_stretch`.
+    #[serde(default)]
+    pub thread_stretched_s: Option<f64>,
     /// How often the thread passed through itself (a solver failure, not part of the verdict); none
     /// when the trial could not be set up, or in lines written before it was counted.
     #[serde(default)]
@@ -193,6 +197,7 @@ fn run_one(options: &McOptions, trial: u64, method: Method, runner: &TrialRunner
                 knot: e.knot_before.map(|k| k.name().to_owned()),
                 wound_gap_m: Some(e.gap_after_m.unwrap_or(e.gap_before_m)),
                 thread_max_stretch: e.thread_most_stretched.map(|s| s.ratio),
+                thread_stretched_s: e.thread_most_stretched.map(|s| s.over_5_percent_s),
                 thread_self_crossings: Some(e.thread_self_crossings),
                 first_self_crossing: t.run.self_crossings.first().copied(),
                 slid: e.slid,
@@ -210,6 +215,7 @@ fn run_one(options: &McOptions, trial: u64, method: Method, runner: &TrialRunner
             knot: None,
             wound_gap_m: None,
             thread_max_stretch: None,
+            thread_stretched_s: None,
             thread_self_crossings: None,
             first_self_crossing: None,
             slid: None,

@@ -5,6 +5,7 @@
 use std::collections::BTreeMap;
 
 use knotlab_learner::synthesis::Method;
+use knotlab_sim::thread_watch::STRETCH_NOTED;
 use serde::Serialize;
 
 use super::TrialLine;
@@ -86,11 +87,6 @@ pub fn self_crossings(lines: &[&TrialLine]) -> SelfCrossings {
     }
 }
 
-/// The stretch a trial's suture may reach before the summary counts it apart, a fraction of a
-/// segment's rest length: at 5 % a 0.2 m suture would be a centimetre longer, a loop of a knot
-/// several of its diameters wider.
-pub const STRETCH_NOTED: f64 = 0.05;
-
 /// The suture's largest stretch over a method's trials.
 #[derive(Clone, Debug, Default, PartialEq, Serialize)]
 pub struct ThreadStretch {
@@ -102,17 +98,25 @@ pub struct ThreadStretch {
     pub max: Option<f64>,
     /// Trials whose suture stretched beyond [`STRETCH_NOTED`].
     pub trials_over_5_percent: usize,
+    /// The median over the trials of the time each trial's suture spent stretched beyond
+    /// [`STRETCH_NOTED`], s.
+    pub median_over_5_percent_s: Option<f64>,
 }
 
 /// The [`ThreadStretch`] of `lines`.
 pub fn thread_stretch(lines: &[&TrialLine]) -> ThreadStretch {
+    let median = |mut values: Vec<f64>| {
+        values.sort_by(f64::total_cmp);
+        (!values.is_empty()).then(|| values[values.len() / 2])
+    };
     let mut ratios: Vec<f64> = lines.iter().filter_map(|l| l.thread_max_stretch).collect();
     ratios.sort_by(f64::total_cmp);
     ThreadStretch {
         measured_trials: ratios.len(),
-        median: (!ratios.is_empty()).then(|| ratios[ratios.len() / 2]),
+        median: median(ratios.clone()),
         max: ratios.last().copied(),
         trials_over_5_percent: ratios.iter().filter(|&&r| r > STRETCH_NOTED).count(),
+        median_over_5_percent_s: median(lines.iter().filter_map(|l| l.thread_stretched_s).collect()),
     }
 }
 
@@ -255,11 +259,15 @@ mod tests {
         assert_eq!(wilson_interval(0, 0), (0.0, 1.0));
     }
 
-    /// The stretch tally takes the median and the largest of the lines that record it, and counts
-    /// those beyond 5 %.
+    /// The stretch tally takes the median and the largest of the lines that record it, counts those
+    /// beyond 5 % and takes the median of their time beyond it.
     #[test]
     fn thread_stretch_takes_median_and_max_and_counts_the_large_ones() {
-        let stretched = |trial, ratio| TrialLine { thread_max_stretch: ratio, ..line(trial, Some(0)) };
+        let stretched = |trial, ratio: Option<f64>| TrialLine {
+            thread_max_stretch: ratio,
+            thread_stretched_s: ratio.map(|r| if r > 0.05 { 0.5 } else { 0.0 }),
+            ..line(trial, Some(0))
+        };
         let lines =
             [stretched(0, Some(0.01)), stretched(1, Some(0.2)), stretched(2, None), stretched(3, Some(0.04))];
         let refs: Vec<&TrialLine> = lines.iter().collect();
@@ -268,6 +276,7 @@ mod tests {
             median: Some(0.04),
             max: Some(0.2),
             trials_over_5_percent: 1,
+            median_over_5_percent_s: Some(0.0),
         };
         assert_eq!(thread_stretch(&refs), expected);
         assert_eq!(thread_stretch(&[]), ThreadStretch::default());

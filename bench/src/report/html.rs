@@ -98,11 +98,12 @@ pub fn method_tables(stats: &[MethodStats]) -> String {
         let t = &s.thread_stretch;
         let pct = |r: Option<f64>| r.map_or("&ndash;".to_owned(), |r| format!("{:.1} %", 100.0 * r));
         out.push_str(&format!(
-            "<tr><th>thread stretch (solver error)</th><td>median {}, largest {}; over 5 % in {} of {} trials measured</td></tr>\n",
+            "<tr><th>thread stretch (solver error)</th><td>median {}, largest {}; over 5 % in {} of {} trials measured, for {} (median)</td></tr>\n",
             pct(t.median),
             pct(t.max),
             t.trials_over_5_percent,
-            t.measured_trials
+            t.measured_trials,
+            t.median_over_5_percent_s.map_or("&ndash;".to_owned(), |s| format!("{s:.3} s"))
         ));
         out.push_str("</table>\n");
     }

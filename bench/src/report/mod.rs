@@ -182,6 +182,7 @@ pub(crate) fn test_line(method: &str, draw: serde_json::Value, verdict: &str) ->
         knot: None,
         wound_gap_m: None,
         thread_max_stretch: None,
+        thread_stretched_s: None,
         thread_self_crossings: None,
         first_self_crossing: None,
         slid: None,

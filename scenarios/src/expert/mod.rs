@@ -1,5 +1,7 @@
 //! The scripted expert: a surgeon played by a program. It plans the knot-tying task as a Skill
-//! ([`plan`]), with human-like motion ([`motion`]): the controller runs it on the simulated devices,
+//! ([`plan`]), each throw a sequence of phases (`phases/`, one file each: the approach, the wind,
+//! the fetch or the presented tail, the draw, the run-down, the pull...), with human-like motion
+//! ([`motion`]) varied from run to run ([`variation`]): the controller runs it on the simulated devices,
 //! and what the devices read meanwhile is the demonstration ([`record`]); [`diagnose`] measures what a run
 //! did to the thread.
 
