@@ -1,4 +1,4 @@
-//! `knot::drawn_through` checked against the physics it stands in for (issue 6, session 34): just after
+//! `knot::drawn_through` checked against the physics it stands in for: just after
 //! the left takes the tail in the first throw the thread reads `unknot`; with the tail drawn straight
 //! back along the left's jaws from where they hold it, through the coils, it reads `surgeons`, the knot
 //! the run's own draw and pulls make. Drawn the other way (out past the tips, missing the coils) it

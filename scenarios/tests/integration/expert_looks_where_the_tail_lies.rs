@@ -1,5 +1,5 @@
 //! The expert looks where the tail lies before the left closes on it (`[left_fetches] looks`,
-//! `scenarios/tests/experts/looks-at-the-tail.toml`; issue 6, session 44): the first throw's plan stops with
+//! `scenarios/tests/experts/looks-at-the-tail.toml`): the first throw's plan stops with
 //! the left's jaws over the tail, and the descent is planned from the tail as it lies then. On the
 //! rope scene a slack tail sagged 4-8 mm off the straight line the base plan aims at, and on seed 1
 //! the left closed on its own coils instead. The jaws close on the tail where it is clear of the

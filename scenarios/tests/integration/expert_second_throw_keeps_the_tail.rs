@@ -1,5 +1,5 @@
 //! The expert's second throw with the left keeping the tail (`[second_throw] left_keeps_tail`,
-//! `scenarios/tests/experts/two-throws.toml`; issue 6, session 32): the long end is wound once round the
+//! `scenarios/tests/experts/two-throws.toml`): the long end is wound once round the
 //! left's closed jaws while they hold the tail from the first throw, with no hand-over to the assist.
 //! (Not yet a throw: drawn off the jaws' tips, the turn catches on the right's jaws instead of the
 //! tail; see docs/knot-tying-notes.md.)

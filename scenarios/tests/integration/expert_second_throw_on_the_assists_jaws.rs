@@ -1,5 +1,5 @@
 //! The expert's second throw wound on the assist's jaws (`[second_throw] left_retakes_from_end_m`,
-//! `scenarios/tests/experts/two-throws-on-the-assist.toml`; issue 6, session 36): after the first throw the
+//! `scenarios/tests/experts/two-throws-on-the-assist.toml`): after the first throw the
 //! assist takes the tail by its end and draws it up, the left takes it back nearer the knot and the
 //! assist lets go; the long end is wound once round the assist's jaws (level along -x, where the
 //! left's cannot point), the left presents the tail and the assist takes it. (Not yet a second throw:

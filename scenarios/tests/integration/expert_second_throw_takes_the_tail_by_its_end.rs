@@ -1,5 +1,5 @@
 //! The expert's second throw round empty jaws, the tail taken by its end (`[second_throw]
-//! tail_hold_from_end_m`, `scenarios/tests/experts/two-throws-tail-end.toml`; issue 6, session 33): after the
+//! tail_hold_from_end_m`, `scenarios/tests/experts/two-throws-tail-end.toml`): after the
 //! first throw the assist takes the tail near its free end, the left lets go of it, and the long end
 //! is wound once round the left's open jaws. Until session 41 the left then took the presented tail on
 //! seed 1 and drew the turn onto the tail's standing part (not yet a knot: in the pulls the turn came
