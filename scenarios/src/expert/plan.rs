@@ -2,14 +2,14 @@
 //!
 //! Everything is placed in the stitch (tissue) frame of the scene (x along the wound, y across it
 //! towards the tail's flap, z out of the tissue) and turned into world-frame keys, so the same plan
-//! ties at any stitch. A throw is a sequence of [`super::phases`], the canonical task of
+//! ties at any stitch. A throw is a sequence of phases (`expert/phases/`), the canonical task of
 //! `scenarios/patterns/knot_tying.toml`: L1 to the winding point (the right takes up the long end
 //! meanwhile), the left's jaws close; R2 winds the long end twice around them; the assist presents
 //! the tail in front of the left's jaws, which open; L3 to the tail (over it and, when the left looks,
 //! L4 down onto it), close; the assist lets go and retreats (A1); the left draws the tail up and back
 //! over its flap (L5, L6) with the right going along (R3, R4), running the knot down onto the wound;
 //! then the ends are pulled apart until the set force (R5 the right's pull) and let go. Which phases
-//! a plan holds depends on its [`Stage`]: where in the knot it starts and what the instruments hold.
+//! a plan holds depends on its stage: where in the knot it starts and what the instruments hold.
 
 use knotlab_hw::skill::Skill;
 use knotlab_sim::world::SimWorld;
