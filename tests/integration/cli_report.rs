@@ -207,3 +207,29 @@ fn a_directory_without_results_or_with_a_bad_line_is_named() {
     assert!(stderr.contains("results.jsonl") && stderr.contains("line 2"), "{stderr}");
     std::fs::remove_dir_all(&d).ok();
 }
+
+/// Guards against the report hanging on a drawn value it cannot chart (a play of 1e308 rad, infinite in
+/// mrad, left the chart's axis to tick for ever): such a line is refused, naming the file, the line,
+/// the field and its value, and what is allowed, before any chart is drawn; a stitch offset that is not
+/// three numbers is refused the same way.
+#[test]
+fn a_draw_the_report_cannot_show_is_refused_with_its_line() {
+    let d = dir("huge-draw");
+    let mut lines = hand_made_lines(false);
+    lines[3]["draw"]["play_rad"] = json!(1e308);
+    write_results(&d, &lines);
+    let (code, _, stderr) = knotlab(&["report", d.to_str().unwrap()]);
+    assert_eq!(code, 1, "{stderr}");
+    for part in ["results.jsonl line 4", "draw.play_rad = 1e+308", "at most 1e300"] {
+        assert!(stderr.contains(part), "'{part}' missing from: {stderr}");
+    }
+    assert!(!d.join("report.html").exists());
+
+    let mut lines = hand_made_lines(false);
+    lines[0]["draw"]["stitch_offset_m"] = json!([0.001, 0.002]);
+    write_results(&d, &lines);
+    let (code, _, stderr) = knotlab(&["report", d.to_str().unwrap()]);
+    assert_eq!(code, 1, "{stderr}");
+    assert!(stderr.contains("results.jsonl line 1") && stderr.contains("draw.stitch_offset_m"), "{stderr}");
+    std::fs::remove_dir_all(&d).ok();
+}

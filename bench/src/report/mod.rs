@@ -36,6 +36,18 @@ pub enum ReportError {
     /// No lines were given.
     #[error("no finished trials to report")]
     NoTrials,
+    /// A trial's drawn parameter is not one the report can show.
+    #[error(
+        "{at}: draw.{field} = {value}: a drawn value must be finite and at most {MAX_DRAWN_SI:e} in magnitude"
+    )]
+    Draw {
+        /// Which line (`FILE line N`) or trial (`trial N (method)`).
+        at: String,
+        /// The draw's field.
+        field: &'static str,
+        /// The value as written.
+        value: String,
+    },
     /// A chart could not be drawn.
     #[error(transparent)]
     Chart(#[from] PlotError),
@@ -47,6 +59,29 @@ pub enum ReportError {
         /// Why.
         reason: String,
     },
+}
+
+/// The largest magnitude of a drawn parameter the report shows, SI: the charts show it in thousandths
+/// (mrad, mm), and their ranges must stay finite.
+pub const MAX_DRAWN_SI: f64 = 1e300;
+
+/// The first of `lines` whose draw holds a parameter the report sweeps but cannot show (not a
+/// number, not finite, or beyond [`MAX_DRAWN_SI`]), with the field and its value as written; `at`
+/// names the line by its place among `lines`.
+fn check_draws(lines: &[TrialLine], at: impl Fn(usize, &TrialLine) -> String) -> Result<(), ReportError> {
+    for (k, line) in lines.iter().enumerate() {
+        for parameter in Parameter::ALL {
+            let Some(written) = line.draw.get(parameter.field()) else { continue };
+            if parameter.value_si(line).is_none_or(|v| v.abs() > MAX_DRAWN_SI) {
+                return Err(ReportError::Draw {
+                    at: at(k, line),
+                    field: parameter.field(),
+                    value: written.to_string(),
+                });
+            }
+        }
+    }
+    Ok(())
 }
 
 /// What was reported.
@@ -77,6 +112,8 @@ pub fn write_report(dir: &Path, out: &Path) -> Result<ReportSummary, ReportError
     if lines.is_empty() {
         return Err(ReportError::Input { file, reason: "holds no finished trial".to_owned() });
     }
+    // `read_results` keeps every line in order (but a last one cut short, after them all).
+    check_draws(&lines, |k, _| format!("{file} line {}", k + 1))?;
     let scene = scene_of(dir);
     let title = format!("Monte Carlo run {}", dir.display());
     let (text, run, methods) = render(&lines, &title, scene.as_deref())?;
@@ -117,6 +154,7 @@ fn render(
     title: &str,
     scene: Option<&str>,
 ) -> Result<(String, RunOverview, Vec<MethodStats>), ReportError> {
+    check_draws(lines, |_, l| format!("trial {} ({})", l.trial, l.method))?;
     let lines = unique_lines(lines);
     let info = run_overview(&lines).ok_or(ReportError::NoTrials)?;
     let stats = method_stats(&lines, &info.methods);
