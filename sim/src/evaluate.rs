@@ -43,8 +43,8 @@ pub struct KnotEvaluation {
     /// run with any is not a real thread's).
     pub thread_self_crossings: usize,
     /// The suture at its most stretched over the run and its holding test (its most stretched
-    /// segment beyond its rest length, a fraction of it, and when): an inextensible suture's solver
-    /// error under load. Not part of the verdict.
+    /// segment beyond its rest length, a fraction of it, and when; and how long it was beyond 5 %):
+    /// an inextensible suture's solver error under load. Not part of the verdict.
     pub thread_most_stretched: Option<Stretch>,
     /// How much of each free end the knot drew in during the holding test, if it ran and the two ends
     /// touched before and after: a knot that slips draws in the end it lets through.

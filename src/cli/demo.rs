@@ -104,7 +104,7 @@ struct RunLine {
     /// end counting from 0), to find the move that forced the thread through itself.
     first_self_crossings: Vec<knotlab_sim::thread_watch::SelfCrossing>,
     /// The suture at its most stretched (its most stretched segment beyond its rest length, a
-    /// fraction of it, and when); not part of the verdict.
+    /// fraction of it, and when; and how long it was beyond 5 %); not part of the verdict.
     thread_most_stretched: Option<knotlab_sim::thread_watch::Stretch>,
     fault: Option<String>,
     simulated_s: f64,

@@ -94,7 +94,7 @@ struct Report {
     /// The first ten of them: when (s of the scene's simulated time) and which two segments.
     first_self_crossings: Vec<knotlab_sim::thread_watch::SelfCrossing>,
     /// The suture at its most stretched (its most stretched segment beyond its rest length, a
-    /// fraction of it, and when); not part of the verdict.
+    /// fraction of it, and when; and how long it was beyond 5 %); not part of the verdict.
     thread_most_stretched: Option<knotlab_sim::thread_watch::Stretch>,
     method: &'static str,
     seed: u64,
