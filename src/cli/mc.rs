@@ -180,6 +180,15 @@ pub fn run(mut args: McArgs, out: &mut Output) -> anyhow::Result<ExitCode> {
     {
         anyhow::bail!("--until {t}: must be a positive number of seconds");
     }
+    if args.trials == 0 {
+        anyhow::bail!("--trials 0: a run needs at least 1 trial (it runs trials 0 to N-1)");
+    }
+    if args.jobs == Some(0) {
+        anyhow::bail!("--jobs 0: needs at least 1 thread (leave it out for one per core)");
+    }
+    if let Some(t) = args.record_trials.iter().find(|t| **t >= args.trials) {
+        anyhow::bail!("--record-trials {t}: no such trial in a run of trials 0 to {}", args.trials - 1);
+    }
     let out_dir = out_dir(&args);
     let mut scene = load_scene(&args.scene)?;
     if let Some(preset) = &args.preset {
@@ -188,8 +197,7 @@ pub fn run(mut args: McArgs, out: &mut Output) -> anyhow::Result<ExitCode> {
     let learned = args.source.learned()?;
     let mut methods = args.methods.clone();
     methods.dedup();
-    let jobs =
-        args.jobs.unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get())).max(1);
+    let jobs = args.jobs.unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()));
     let options = McOptions {
         scene,
         scene_name: args.scene.display().to_string(),

@@ -252,3 +252,22 @@ fn another_runs_directory_and_an_unknown_preset_are_named() {
         std::fs::remove_dir_all(&d).ok();
     }
 }
+
+/// Guards against a run that measures nothing or silently does less than asked: `--trials 0` (it
+/// reported 0.0 % and exited 0), `--jobs 0` (quietly one thread) and `--record-trials` past the last
+/// trial (quietly none recorded) are refused, naming the flag and the value, before any trial runs.
+#[test]
+fn zero_trials_zero_jobs_and_a_trial_to_record_beyond_the_run_are_refused() {
+    let out = dir("refused-counts");
+    for (trials, jobs, more, says) in [
+        (0, 1, &[][..], "--trials 0"),
+        (2, 0, &[][..], "--jobs 0"),
+        (2, 1, &["--record-trials", "5"][..], "--record-trials 5"),
+    ] {
+        let (code, text) = mc_with(&out, trials, jobs, more);
+        assert_eq!(code, 1, "{text}");
+        assert!(text.contains(says), "'{says}' missing from: {text}");
+        assert!(!out.join("results.jsonl").exists(), "no trial may run: {text}");
+    }
+    std::fs::remove_dir_all(&out).ok();
+}
