@@ -172,7 +172,8 @@ fn ctrl_c_stops_cleanly_and_the_run_resumes() {
 }
 
 /// Two shards merged give the single run's summary.json and lines; a merge with a shard missing, or with
-/// another seed's shard, is refused, naming what is missing or differs.
+/// another seed's shard, a shard given twice or an output that is a shard, is refused, naming what is
+/// missing, differs or repeats.
 #[test]
 fn two_shards_merged_give_the_single_run() {
     let (whole, s0, s1, merged) = (dir("whole"), dir("shard0"), dir("shard1"), dir("merged"));
@@ -209,6 +210,15 @@ fn two_shards_merged_give_the_single_run() {
     let (code, _, stderr) = knotlab(&["mc", "merge", &s0s, &other.display().to_string(), "--out", &ms]);
     assert_eq!(code, 1);
     assert!(stderr.contains("seed: 7 here, 8 asked"), "{stderr}");
+    // A shard given twice, or an output that is one of the shards, is refused and nothing is written.
+    let before = std::fs::read(s0.join("results.jsonl")).expect("shard 0's results");
+    let (code, _, stderr) = knotlab(&["mc", "merge", &s0s, &s1s, &s0s, "--out", &ms]);
+    assert_eq!(code, 1);
+    assert!(stderr.contains(&s0s) && stderr.contains("given twice"), "{stderr}");
+    let (code, _, stderr) = knotlab(&["mc", "merge", &s0s, &s1s, "--out", &s0s]);
+    assert_eq!(code, 1);
+    assert!(stderr.contains("is one of the shards being merged"), "{stderr}");
+    assert_eq!(std::fs::read(s0.join("results.jsonl")).expect("shard 0's results"), before);
     for d in [whole, s0, s1, merged, other] {
         std::fs::remove_dir_all(&d).ok();
     }

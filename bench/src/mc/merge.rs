@@ -37,6 +37,23 @@ pub fn merge(dirs: &[PathBuf], out: &Path) -> Result<MergeOutcome, McError> {
     let Some(first) = dirs.first() else {
         return Err(error("knotlab mc merge", "no directories given"));
     };
+    // The same directory twice would count its trials twice; an output that is an input would be
+    // overwritten while it is read.
+    let same = |a: &Path, b: &Path| {
+        let canonical = |p: &Path| std::fs::canonicalize(p).unwrap_or_else(|_| p.to_path_buf());
+        canonical(a) == canonical(b)
+    };
+    for (k, dir) in dirs.iter().enumerate() {
+        if dirs[..k].iter().any(|d| same(d, dir)) {
+            return Err(error(dir.display().to_string(), "given twice: merge each shard once"));
+        }
+        if same(dir, out) {
+            return Err(error(
+                out.display().to_string(),
+                "is one of the shards being merged, which the merge would overwrite: give another --out",
+            ));
+        }
+    }
     let info_of = |dir: &Path| -> Result<RunInfo, McError> {
         RunInfo::read(dir)?.ok_or_else(|| {
             error(RunInfo::path(dir).display().to_string(), "missing: not a knotlab mc run directory")
