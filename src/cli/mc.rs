@@ -146,6 +146,20 @@ fn print_summary(out: &mut Output, summary: &knotlab_bench::mc::Summary) -> anyh
             100.0 * m.wilson_95[1],
             m.verdicts.iter().map(|(v, n)| format!("{v} {n}")).collect::<Vec<_>>().join(", ")
         );
+        let (x, t) = (&m.thread_self_crossings, &m.thread_stretch);
+        if let (Some(median), Some(max)) = (t.median, t.max) {
+            outln!(
+                out,
+                "  the thread passed through itself in {} of {} trials; stretched beyond 5 % in {} of {} (median {:.1} s), at most {:.0} % (median {:.0} %)",
+                x.trials_with_any,
+                x.counted_trials,
+                t.trials_over_5_percent,
+                t.measured_trials,
+                t.median_over_5_percent_s.unwrap_or(0.0),
+                100.0 * max,
+                100.0 * median
+            );
+        }
     }
     Ok(())
 }

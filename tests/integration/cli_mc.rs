@@ -79,11 +79,15 @@ fn lines(out: &Path) -> Vec<serde_json::Value> {
 }
 
 /// A Monte Carlo run of one seed writes a byte-identical summary.json with one job and with two, its draws
-/// varying by trial, each line counting the thread's self-crossings and naming the first.
+/// varying by trial, each line counting the thread's self-crossings and naming the first and saying how far
+/// the thread stretched, the summary (and the console's) tallying the stretch.
 #[test]
 fn the_same_seed_gives_the_same_summary_with_one_or_two_jobs() {
     let (a, b) = (dir("jobs1"), dir("jobs2"));
-    assert_eq!(mc(&a, 3, 1).0, 0);
+    let (code, text) = mc(&a, 3, 1);
+    assert_eq!(code, 0, "{text}");
+    // The console's summary says how far the thread stretched, as summary.json does.
+    assert!(text.contains("stretched beyond 5 % in") && text.contains("of 3 (median"), "{text}");
     assert_eq!(mc(&b, 3, 2).0, 0);
     let (sa, sb) =
         (std::fs::read(a.join("summary.json")).unwrap(), std::fs::read(b.join("summary.json")).unwrap());
@@ -99,7 +103,12 @@ fn the_same_seed_gives_the_same_summary_with_one_or_two_jobs() {
         // ... and names the first, when there is one.
         let first = &l["first_self_crossing"];
         assert_eq!(first.is_null(), l["thread_self_crossings"] == 0, "{l}");
+        // ... and how far the thread stretched, and how long beyond 5 %.
+        assert!(l["thread_max_stretch"].as_f64().is_some_and(|r| r >= 0.0), "{l}");
+        assert!(l["thread_stretched_s"].as_f64().is_some_and(|s| s >= 0.0), "{l}");
     }
+    let stretch = &summary["methods"][0]["thread_stretch"];
+    assert_eq!(stretch["measured_trials"], 3, "{summary}");
     std::fs::remove_dir_all(&a).ok();
     std::fs::remove_dir_all(&b).ok();
 }
