@@ -43,6 +43,15 @@ fn replace_line(text: &str, n: usize, f: impl FnOnce(&str) -> String) -> String 
     lines.join("\n") + "\n"
 }
 
+/// Sets field `index` (0-based) of line `n` (1-based) of a text to `value`.
+fn replace_field(text: &str, n: usize, index: usize, value: &str) -> String {
+    replace_line(text, n, |l| {
+        let mut fields: Vec<String> = l.split(',').map(str::to_owned).collect();
+        fields[index] = value.to_owned();
+        fields.join(",")
+    })
+}
+
 fn assert_names(error: &DemoError, file_suffix: &str, line: usize, field: &str, reason_part: &str) {
     let text = error.to_string();
     assert!(error.file().ends_with(file_suffix), "file: {text}");
@@ -115,13 +124,7 @@ fn a_missing_column_is_named_on_the_header_line() {
 #[test]
 fn nan_is_named_with_its_line_and_column() {
     let dir = TempDir::with_demo("nan");
-    dir.edit("left.csv", |text| {
-        replace_line(&text, 77, |l| {
-            let mut fields: Vec<String> = l.split(',').map(str::to_owned).collect();
-            fields[11] = "NaN".to_owned(); // fy_n
-            fields.join(",")
-        })
-    });
+    dir.edit("left.csv", |text| replace_field(&text, 77, 11, "NaN")); // fy_n
     assert_names(&dir.load_error(), "left.csv", 77, "fy_n", "NaN");
 }
 
@@ -129,13 +132,7 @@ fn nan_is_named_with_its_line_and_column() {
 #[test]
 fn a_word_for_a_number_is_named_with_its_line_column_and_text() {
     let dir = TempDir::with_demo("word");
-    dir.edit("right.csv", |text| {
-        replace_line(&text, 40, |l| {
-            let mut fields: Vec<String> = l.split(',').map(str::to_owned).collect();
-            fields[3] = "deep".to_owned(); // z_m
-            fields.join(",")
-        })
-    });
+    dir.edit("right.csv", |text| replace_field(&text, 40, 3, "deep")); // z_m
     assert_names(&dir.load_error(), "right.csv", 40, "z_m", "not a number: 'deep'");
 }
 
@@ -199,13 +196,7 @@ fn other_malformations_are_named_too() {
 
     // A quaternion that is not a rotation.
     let dir = TempDir::with_demo("quaternion");
-    dir.edit("left.csv", |text| {
-        replace_line(&text, 20, |l| {
-            let mut fields: Vec<String> = l.split(',').map(str::to_owned).collect();
-            fields[7] = "3.0".to_owned();
-            fields.join(",")
-        })
-    });
+    dir.edit("left.csv", |text| replace_field(&text, 20, 7, "3.0")); // qw
     assert_names(&dir.load_error(), "left.csv", 20, "qx,qy,qz,qw", "not a unit quaternion");
 
     // A gap in the recording.
