@@ -27,6 +27,8 @@ pub(super) struct Scratch {
 
 /// Projects every run of consecutive joints (a strand's: each joint's first particle one after the
 /// previous joint's) of `joints` onto its constraints at once, moving `x` by the inverse masses `w`.
+/// What a pinned particle (`w` 0) would have been moved by, times its mass, is added to its entry
+/// of `pinned_pull` (as `x`).
 /// Returns false where a run's matrix is singular (a pivot not positive, as when a joint's three
 /// particles are all pinned and it has no compliance), leaving that run as it was.
 pub(super) fn project(
@@ -35,6 +37,7 @@ pub(super) fn project(
     x: &mut [Vector3<f64>],
     w: &[f64],
     scratch: &mut Scratch,
+    pinned_pull: &mut [Vector3<f64>],
 ) -> bool {
     let mut ok = true;
     let mut start = 0;
@@ -43,7 +46,7 @@ pub(super) fn project(
         while end < joints.len() && joints[end].p[0] == joints[end - 1].p[0] + 1 {
             end += 1;
         }
-        ok &= project_run(&joints[start..end], &mut lambda[start..end], x, w, scratch);
+        ok &= project_run(&joints[start..end], &mut lambda[start..end], x, w, scratch, pinned_pull);
         start = end;
     }
     ok
@@ -56,6 +59,7 @@ fn project_run(
     x: &mut [Vector3<f64>],
     w: &[f64],
     scratch: &mut Scratch,
+    pinned_pull: &mut [Vector3<f64>],
 ) -> bool {
     let n = run.len();
     let Scratch { pivot, l1, l2, lambda } = scratch;
@@ -124,6 +128,9 @@ fn project_run(
     for ((b, l), total) in run.iter().zip(lambda.iter()).zip(total.iter_mut()) {
         *total += l;
         for (p, g) in b.p.into_iter().zip(b.g) {
+            if w[p] == 0.0 {
+                pinned_pull[p] += l * g;
+            }
             x[p] += l * (w[p] * g);
         }
     }
@@ -218,7 +225,8 @@ mod tests {
         }
         let mut scratch = Scratch::default();
         let mut lambda = vec![Vector3::zeros(); n];
-        assert!(project(&joints, &mut lambda, &mut ropes.x, &ropes.w, &mut scratch));
+        let mut pull = vec![Vector3::zeros(); ropes.x.len()];
+        assert!(project(&joints, &mut lambda, &mut ropes.x, &ropes.w, &mut scratch, &mut pull));
         let worst = ropes.x.iter().zip(&expected).map(|(a, b)| (a - b).norm()).fold(0.0, f64::max);
         assert!(worst < 1e-12, "differs from the dense solve by {worst:e} m");
     }

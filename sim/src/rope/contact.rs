@@ -177,6 +177,9 @@ pub(super) fn solve_contacts(
         let depth = two_r - dist;
         for (p, k) in weights {
             ropes.x[p] += n * (ropes.w[p] * k * depth / wsum);
+            if ropes.w[p] == 0.0 && k != 0.0 {
+                ropes.held_pull[p] += n * (k * depth / wsum);
+            }
         }
         // Friction: the contact points' relative displacement over the substep, across the normal.
         let moved = |p: usize| ropes.x[p] - x_prev[p];
@@ -188,6 +191,9 @@ pub(super) fn solve_contacts(
                 if slip < mu_s * depth { tangential } else { tangential * (mu_k * depth / slip).min(1.0) };
             for (p, k) in weights {
                 ropes.x[p] -= undo * (ropes.w[p] * k / wsum);
+                if ropes.w[p] == 0.0 && k != 0.0 {
+                    ropes.held_pull[p] -= undo * (k / wsum);
+                }
             }
         }
         // The pair's particles moved: their segments' bounds take it in.

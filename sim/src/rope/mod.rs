@@ -23,9 +23,25 @@ use std::ops::Range;
 
 use nalgebra::Vector3;
 
-/// What the rope lies in: after the rope's own constraints in each substep, it resolves the rope
-/// against itself (contacts, reactions) and steps itself.
+/// What the rope lies in: before the rope's own constraints in each substep it puts the particles it
+/// holds where it holds them; after them, it resolves the rope against itself (contacts, reactions)
+/// and steps itself.
 pub trait Surroundings {
+    /// Before the rope's constraints in a substep of `h_s` seconds: puts each particle a body holds where the body
+    /// holds it at the substep's end, and marks it in `held` (as `ropes.x`). The rope's lengths,
+    /// joints and contacts then leave the held particles there and move the others, and what
+    /// they would have moved a held particle by is the pull on its body
+    /// ([`Ropes::unheld_m`]). None by default.
+    fn hold(&mut self, _ropes: &mut Ropes, _held: &mut [bool], _h_s: f64) {}
+
+    /// After the rope's lengths and joints were solved with the held particles pinned: unmarks in
+    /// `held` the particles of any hold that the pull on them ([`Ropes::unheld_m`]) would make
+    /// slip, and says whether it did (the solve is then done again with them free). None by
+    /// default.
+    fn slipping(&mut self, _ropes: &Ropes, _held: &mut [bool], _h_s: f64) -> bool {
+        false
+    }
+
     /// After the rope's constraints in a substep of `h_s` seconds that started from `x_prev`.
     fn after(&mut self, ropes: &mut Ropes, x_prev: &[Vector3<f64>], h_s: f64);
 }
@@ -37,6 +53,16 @@ impl Surroundings for () {
 
 /// Surroundings that may be gone (a stitch the thread was taken out of).
 impl<S: Surroundings> Surroundings for Option<S> {
+    fn hold(&mut self, ropes: &mut Ropes, held: &mut [bool], h_s: f64) {
+        if let Some(s) = self {
+            s.hold(ropes, held, h_s);
+        }
+    }
+
+    fn slipping(&mut self, ropes: &Ropes, held: &mut [bool], h_s: f64) -> bool {
+        self.as_mut().is_some_and(|s| s.slipping(ropes, held, h_s))
+    }
+
     fn after(&mut self, ropes: &mut Ropes, x_prev: &[Vector3<f64>], h_s: f64) {
         if let Some(s) = self {
             s.after(ropes, x_prev, h_s);
@@ -98,7 +124,9 @@ pub struct RopeParams {
     /// compliant XPBD constraint (infinite: inextensible, the default). Suture is elastic: a 3-0
     /// braided silk's EA is some 150-300 N, a polypropylene's 50-100 N. Inextensible and held by a
     /// position-controlled instrument, a rope whose knot jams takes the whole draw in one step: a
-    /// grip read 1.9 N, then 6.5 N, and slipped (session 44).
+    /// grip read 1.9 N, then 6.5 N, and slipped (session 44). Elastic, the rope is held exactly
+    /// where bodies hold it ([`rigid`]); inextensible, it is held softly (its held particles solved
+    /// with the rest and put back), which leaves their segments stretched by the pull.
     pub axial_stiffness_n: f64,
 }
 
@@ -158,6 +186,18 @@ pub struct Ropes {
     bends: Bends,
     /// Contacts that touched in the last substep.
     pub contacts_last: usize,
+    /// The particles held by the surroundings this substep ([`Surroundings::hold`]).
+    held: Vec<bool>,
+    /// The inverse masses the substep's solve uses: [`Self::w`], held particles 0.
+    w_solve: Vec<f64>,
+    /// What the substep's solve would have moved each held particle by, times its mass, kg m (0
+    /// for the free ones).
+    held_pull: Vec<Vector3<f64>>,
+    /// Where each particle was carried by its velocity and force in the substep, before a body
+    /// held it, m.
+    x_free: Vec<Vector3<f64>>,
+    /// The particles as the surroundings held them, before the solve, m.
+    x_held: Vec<Vector3<f64>>,
     /// The watch for strands passing through each other.
     crossing: crate::crossing::CrossingWatch,
 }
@@ -229,6 +269,11 @@ impl Ropes {
             rest_m: Vec::new(),
             bends: Bends::default(),
             contacts_last: 0,
+            held: Vec::new(),
+            w_solve: Vec::new(),
+            held_pull: Vec::new(),
+            x_free: Vec::new(),
+            x_held: Vec::new(),
             crossing: crate::crossing::CrossingWatch::default(),
         }
     }
@@ -314,21 +359,32 @@ impl Ropes {
                     self.x[i] += self.v[i] * h;
                 }
             }
-            let bending = self.params.bending_stiffness_n_m2 > 0.0;
-            if bending {
-                self.start_bending(h);
+            // The held particles where their bodies hold them, and pinned for the solve: the
+            // lengths next to them hold, and the pull on them is the solve's reaction there.
+            let n = self.x.len();
+            let mut held = std::mem::take(&mut self.held);
+            held.clear();
+            held.resize(n, false);
+            self.x_free.clone_from(&self.x);
+            surroundings.hold(self, &mut held, h);
+            self.held = held;
+            self.x_held.clone_from(&self.x);
+            self.solve_held(h);
+            // A hold that would slip under that pull lets its particles go for the substep: solved
+            // again with them free, they are put back afterwards, and the hold gives way.
+            let mut held = std::mem::take(&mut self.held);
+            let slipping = surroundings.slipping(self, &mut held, h);
+            self.held = held;
+            if slipping {
+                self.x.clone_from(&self.x_held);
+                self.solve_held(h);
             }
-            for _ in 0..self.params.constraint_passes.max(1) {
-                for _ in 0..self.params.stretch_iterations {
-                    self.solve_stretch(h);
-                }
-                if bending {
-                    self.solve_bending();
-                }
-            }
+            // The contacts move the held particles no more than the lengths did.
+            std::mem::swap(&mut self.w, &mut self.w_solve);
             for pass in 0..self.params.contact_passes.max(1) {
                 self.contacts_last = contact::solve_contacts(self, &mut watch, &x_prev, pass == 0);
             }
+            std::mem::swap(&mut self.w, &mut self.w_solve);
             surroundings.after(self, &x_prev, h);
             let damp = 1.0 / (1.0 + h * self.params.damping_per_s);
             for ((v, x), x_prev) in self.v.iter_mut().zip(&self.x).zip(&x_prev) {
@@ -339,6 +395,34 @@ impl Ropes {
         self.watch = watch;
         self.crossing = crossing;
         self.x_prev = x_prev;
+    }
+
+    /// The lengths and joints solved over a substep of `h_s` seconds with the held particles
+    /// pinned, the pull on them summed anew.
+    fn solve_held(&mut self, h_s: f64) {
+        let n = self.x.len();
+        self.w_solve.clone_from(&self.w);
+        for (w, held) in self.w_solve.iter_mut().zip(&self.held) {
+            if *held {
+                *w = 0.0;
+            }
+        }
+        self.held_pull.clear();
+        self.held_pull.resize(n, Vector3::zeros());
+        std::mem::swap(&mut self.w, &mut self.w_solve);
+        let bending = self.params.bending_stiffness_n_m2 > 0.0;
+        if bending {
+            self.start_bending(h_s);
+        }
+        for _ in 0..self.params.constraint_passes.max(1) {
+            for _ in 0..self.params.stretch_iterations {
+                self.solve_stretch(h_s);
+            }
+            if bending {
+                self.solve_bending();
+            }
+        }
+        std::mem::swap(&mut self.w, &mut self.w_solve);
     }
 
     /// Readies the joints for a substep of `h_s` seconds: their constants (worked out anew when the
@@ -362,7 +446,7 @@ impl Ropes {
         let Bends { joints, lambda, .. } = &mut self.bends;
         if self.params.direct_bending {
             // A run it cannot solve (every particle pinned, no compliance) cannot move either.
-            bend::project(joints, lambda, &mut self.x, &self.w, &mut self.bend_scratch);
+            bend::project(joints, lambda, &mut self.x, &self.w, &mut self.bend_scratch, &mut self.held_pull);
             return;
         }
         for (bend, lambda) in joints.iter().zip(lambda.iter_mut()) {
@@ -373,6 +457,9 @@ impl Ropes {
             let dlambda = -(turn + *lambda * bend.compliance) / (weight + bend.compliance);
             *lambda += dlambda;
             for (p, g) in bend.p.into_iter().zip(g) {
+                if self.w[p] == 0.0 {
+                    self.held_pull[p] += dlambda * g;
+                }
                 self.x[p] += dlambda * (self.w[p] * g);
             }
         }
@@ -396,6 +483,7 @@ impl Ropes {
                     &self.rest_m[first_segment..first_segment + count],
                     compliance_per_m,
                     &mut self.stretch_scratch,
+                    &mut self.held_pull[range.clone()],
                 );
             }
             if !singular {
@@ -419,6 +507,13 @@ impl Ropes {
             let c = len - rest;
             self.x[a] += n * (wa * c / wsum);
             self.x[b] -= n * (wb * c / wsum);
+            // A pinned end's share, as a mass times the move: the pull on what pins it.
+            if wa == 0.0 {
+                self.held_pull[a] += n * (c / wsum);
+            }
+            if wb == 0.0 {
+                self.held_pull[b] -= n * (c / wsum);
+            }
         }
     }
 
@@ -432,6 +527,18 @@ impl Ropes {
             let ([a, b], [c, _]) = (segments[i], segments[j]);
             strand_of[a] == strand_of[c] && c <= b + 1
         });
+    }
+
+    /// Where particle `p` would have gone in the last substep had no body held it
+    /// ([`Surroundings::hold`]), m: carried by its velocity and force, then moved by the solve of the
+    /// lengths as the pull on it over its mass. A body holding it there gives it the difference
+    /// (times its mass, over the substep) as an impulse. Its place, for a particle not held.
+    pub fn unheld_m(&self, p: usize) -> Vector3<f64> {
+        if !self.held.get(p).copied().unwrap_or(false) {
+            return self.x[p];
+        }
+        let pull = self.held_pull.get(p).copied().unwrap_or_else(Vector3::zeros);
+        self.x_free[p] + pull * self.w.get(p).copied().unwrap_or(0.0)
     }
 
     /// The segment pairs (by segment index, smaller first) that passed through each other in the

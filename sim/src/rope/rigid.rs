@@ -1,7 +1,13 @@
 //! The rope among Rapier's rigid bodies: each substep, every particle near a collider is pushed out
 //! of it to the rope's radius, with Coulomb friction against the collider's own motion over the
 //! substep (the rope's contact rule, `super::contact`, against a solid), and particles attached to
-//! a body (a grasp, the needle's eye) follow it. The bodies move as Rapier will move them in the
+//! a body follow it. On an elastic rope (a finite axial stiffness) they are put where the body
+//! holds them (the jaws' grasp, the needle's swage) before the rope's lengths are solved, which
+//! then move only the rest of the rope: the pull on the body is what that solve would have moved
+//! its particles by (moved and put back instead, the lengths next to them were left stretched by
+//! the pull, and by twice their rest under a hard one). On an inextensible rope, which has no
+//! solution drawn taut between two such holds, they are solved with the rope and put on the body
+//! afterwards. The bodies move as Rapier will move them in the
 //! step (a kinematic body from its pose to its next one, a dynamic body on its velocities), and
 //! what the rope does to each body is summed as an impulse: applied to the dynamic ones before
 //! their step ([`RigidContacts::apply_impulses`]), read as the instruments' gauges would on the
@@ -306,32 +312,49 @@ impl Among<'_> {
 
     /// Each grip's attachment points give way along the rope where holding them would pull it
     /// harder than the grip's limit over this substep of `h_s` (the body at fraction `f` of the step).
+    /// The grip's run of the rope at fraction `f` of the step: its attachments, the rope's way
+    /// through it, its mass, and how far the attachments would move the run along the rope,
+    /// mass-weighted (kg m: over a substep `h`, an impulse of that over `h`), from where the rope
+    /// would have taken it ([`Ropes::unheld_m`]).
+    fn grip_run(
+        &mut self,
+        ropes: &Ropes,
+        grip: &Grip,
+        f: f64,
+    ) -> Option<(Vec<usize>, Vector3<f64>, f64, f64)> {
+        let pose = self.body_pose(grip.body, f)?;
+        let held: Vec<usize> = (0..self.contacts.attachments.len())
+            .filter(|&k| {
+                let a = &self.contacts.attachments[k];
+                a.body == grip.body && ropes.w[a.particle] > 0.0
+            })
+            .collect();
+        let particles = held.iter().map(|&k| self.contacts.attachments[k].particle);
+        let (first, last) = (particles.clone().min()?, particles.max()?);
+        let t = ropes.way_through(&(first..last + 1))?;
+        let (mut along, mut mass) = (0.0, 0.0);
+        for &k in &held {
+            let a = self.contacts.attachments[k];
+            let m = 1.0 / ropes.w[a.particle];
+            let target = to_na(pose.transform_point(to_rapier(&a.local_m)));
+            along += m * t.dot(&(target - ropes.unheld_m(a.particle)));
+            mass += m;
+        }
+        (mass > 0.0).then_some((held, t, mass, along))
+    }
+
+    /// [`Self::grip_run`]'s pull along the rope, kg m.
+    fn pull_along_grip(&mut self, ropes: &Ropes, grip: &Grip, f: f64) -> Option<f64> {
+        self.grip_run(ropes, grip, f).map(|(_, _, _, along)| along)
+    }
+
     fn give_way_in_grips(&mut self, ropes: &Ropes, h_s: f64, f: f64) {
         for g in 0..self.contacts.grips.len() {
             let grip = self.contacts.grips[g].clone();
             let Some(pose) = self.body_pose(grip.body, f) else { continue };
-            let held: Vec<usize> = (0..self.contacts.attachments.len())
-                .filter(|&k| {
-                    let a = &self.contacts.attachments[k];
-                    a.body == grip.body && ropes.w[a.particle] > 0.0
-                })
-                .collect();
-            // The rope's way through the grip.
-            let particles = held.iter().map(|&k| self.contacts.attachments[k].particle);
-            let (Some(first), Some(last)) = (particles.clone().min(), particles.max()) else { continue };
-            let Some(t) = ropes.way_through(&(first..last + 1)) else { continue };
-            let target = |a: &Attachment| to_na(pose.transform_point(to_rapier(&a.local_m)));
-            // How far the attachments would move the run along the rope, mass-weighted (kg m):
-            // over a substep, an impulse of (that / h).
-            let (mut along, mut mass) = (0.0, 0.0);
-            for &k in &held {
-                let a = self.contacts.attachments[k];
-                let m = 1.0 / ropes.w[a.particle];
-                along += m * t.dot(&(target(&a) - ropes.x[a.particle]));
-                mass += m;
-            }
+            let Some((held, t, mass, along)) = self.grip_run(ropes, &grip, f) else { continue };
             let most = grip.limit_n * h_s * h_s;
-            if mass <= 0.0 || along.abs() <= most {
+            if along.abs() <= most {
                 continue;
             }
             // The points slide back along the rope, towards the pull, until the rest is the limit.
@@ -369,6 +392,59 @@ impl Among<'_> {
 }
 
 impl Surroundings for Among<'_> {
+    fn hold(&mut self, ropes: &mut Ropes, held: &mut [bool], h_s: f64) {
+        let f1 = (self.substep + 1) as f64 / self.substeps as f64;
+        // Held exactly only where the rope can give: an inextensible rope drawn taut between two
+        // such holds has no solution (its projection threw particles metres), so it is held as a
+        // dynamic body holds it.
+        let elastic = ropes.params.axial_stiffness_n.is_finite();
+        for k in 0..self.contacts.attachments.len() {
+            if !elastic {
+                break;
+            }
+            let a = self.contacts.attachments[k];
+            let Some(pose) = self.body_pose(a.body, f1) else { continue };
+            if let (Some(x), Some(h)) = (ropes.x.get_mut(a.particle), held.get_mut(a.particle)) {
+                *x = to_na(pose.transform_point(to_rapier(&a.local_m)));
+                *h = true;
+            }
+        }
+        // The rope through its guides, before its lengths are solved (after them, the guides'
+        // moves across it were left as stretch).
+        for k in 0..self.contacts.guides.len() {
+            let guide = self.contacts.guides[k];
+            let Some(pose) = self.body_pose(guide.body, f1) else { continue };
+            let target = to_na(pose.transform_point(to_rapier(&guide.local_m)));
+            if let Some((dx_at, at)) = thread_through(ropes, guide.at, &target) {
+                for (p, dx) in dx_at {
+                    if ropes.w[p] > 0.0 {
+                        self.push(guide.body, -dx / (ropes.w[p] * h_s), target, f1);
+                    }
+                }
+                self.contacts.guides[k].at = at;
+            }
+        }
+        self.more.hold(ropes, held, h_s);
+    }
+
+    fn slipping(&mut self, ropes: &Ropes, held: &mut [bool], h_s: f64) -> bool {
+        let f1 = (self.substep + 1) as f64 / self.substeps as f64;
+        let mut any = false;
+        for g in 0..self.contacts.grips.len() {
+            let grip = self.contacts.grips[g].clone();
+            let Some(along) = self.pull_along_grip(ropes, &grip, f1) else { continue };
+            if along.abs() > grip.limit_n * h_s * h_s {
+                for a in self.contacts.attachments.iter().filter(|a| a.body == grip.body) {
+                    if let Some(h) = held.get_mut(a.particle) {
+                        any |= *h;
+                        *h = false;
+                    }
+                }
+            }
+        }
+        any
+    }
+
     fn after(&mut self, ropes: &mut Ropes, x_prev: &[Vector3<f64>], h_s: f64) {
         let (f0, f1) =
             (self.substep as f64 / self.substeps as f64, (self.substep + 1) as f64 / self.substeps as f64);
@@ -443,7 +519,8 @@ impl Surroundings for Among<'_> {
             let a = self.contacts.attachments[k];
             let Some(pose) = self.body_pose(a.body, f1) else { continue };
             let target = to_na(pose.transform_point(to_rapier(&a.local_m)));
-            let dx = target - ropes.x[a.particle];
+            // The body's pull on its particle: from where the rope would have taken it.
+            let dx = target - ropes.unheld_m(a.particle);
             ropes.x[a.particle] = target;
             if ropes.w[a.particle] > 0.0 {
                 let impulse = -dx / (ropes.w[a.particle] * h_s);
@@ -451,19 +528,6 @@ impl Surroundings for Among<'_> {
                 if let Some(held) = self.contacts.attachment_impulses.get_mut(k) {
                     *held -= impulse;
                 }
-            }
-        }
-        for k in 0..self.contacts.guides.len() {
-            let guide = self.contacts.guides[k];
-            let Some(pose) = self.body_pose(guide.body, f1) else { continue };
-            let target = to_na(pose.transform_point(to_rapier(&guide.local_m)));
-            if let Some((dx_at, at)) = thread_through(ropes, guide.at, &target) {
-                for (p, dx) in dx_at {
-                    if ropes.w[p] > 0.0 {
-                        self.push(guide.body, -dx / (ropes.w[p] * h_s), target, f1);
-                    }
-                }
-                self.contacts.guides[k].at = at;
             }
         }
         self.more.after(ropes, x_prev, h_s);

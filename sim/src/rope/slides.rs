@@ -45,6 +45,8 @@ pub struct SlideStitch {
     points: [(usize, Vector3<f64>, f64); 4],
     /// The flaps' joints, disabled while the slides move the flaps.
     joints: [ImpulseJointHandle; 2],
+    /// The thread's pull on each flap over the substep's solve, N ([B, A]).
+    outward_n: [f64; 2],
 }
 
 /// Enables or disables the joints.
@@ -91,6 +93,7 @@ impl SlideStitch {
             slide_friction_n: 0.0,
             points,
             joints: tissue.joints,
+            outward_n: [0.0; 2],
         }
     }
 
@@ -130,7 +133,22 @@ impl SlideStitch {
 }
 
 impl Surroundings for SlideStitch {
-    fn after(&mut self, ropes: &mut Ropes, _x_prev: &[Vector3<f64>], h_s: f64) {
+    /// The thread put through the stitch points before the rope's lengths are solved (after them, the
+    /// points' moves across the thread stretched it, by some 8 % next to them under a cinch's pull).
+    fn hold(&mut self, ropes: &mut Ropes, _held: &mut [bool], h_s: f64) {
+        self.thread_through_points(ropes, h_s);
+    }
+
+    /// The flaps moved on their slides by the thread's pull through the points and their springs.
+    fn after(&mut self, _ropes: &mut Ropes, _x_prev: &[Vector3<f64>], h_s: f64) {
+        self.move_flaps(h_s);
+    }
+}
+
+impl SlideStitch {
+    /// The thread put through the stitch points (moved across itself onto each, held along itself
+    /// by the flap's friction), the pull on each flap summed.
+    fn thread_through_points(&mut self, ropes: &mut Ropes, h_s: f64) {
         let mut outward_n = [0.0; 2];
         for k in 0..4 {
             let (flap, rest_at, at) = self.points[k];
@@ -147,6 +165,12 @@ impl Surroundings for SlideStitch {
             }
             self.points[k].2 = now_at;
         }
+        self.outward_n = outward_n;
+    }
+
+    /// The flaps moved on their slides by the thread's pull and their springs.
+    fn move_flaps(&mut self, h_s: f64) {
+        let outward_n = std::mem::take(&mut self.outward_n);
         let closed = -0.5 * self.tissue.rest_gap_m;
         for (flap, slide) in self.slides.iter_mut().enumerate() {
             let spring_n = -self.tissue.opening_stiffness_n_per_m * slide.u_m

@@ -19,8 +19,11 @@ pub struct Scratch {
 /// as little as their masses allow; with `compliance_per_m` > 0 each segment is a compliant XPBD
 /// constraint of compliance (over the substep) `rest_m * compliance_per_m`, 1/kg, and gives way
 /// to a pull as a spring would.
-/// Returns false, moving nothing, where the system is singular (a denominator vanished or a
-/// multiplier came out non-finite); the caller then falls back to Gauss-Seidel.
+/// What a pinned particle (`w` 0) would have been moved by, times its mass (kg m: the pull on
+/// what pins it, times the substep squared), is added to its entry of `pinned_pull` (as `x`).
+/// Returns false, moving nothing, where the system is singular (a denominator vanished, a
+/// multiplier came out non-finite, or a particle would move ten segments' lengths or more);
+/// the caller then falls back to Gauss-Seidel.
 ///
 /// The system, row `k` the segment `k`: `diag_k = w_k + w_k+1` (plus its compliance), the
 /// off-diagonal between `k` and `k + 1` `-w_k+1 (dir_k . dir_k+1)`, the right-hand side the
@@ -32,6 +35,7 @@ pub fn project_strand(
     rest_m: &[f64],
     compliance_per_m: f64,
     scratch: &mut Scratch,
+    pinned_pull: &mut [Vector3<f64>],
 ) -> bool {
     let n = rest_m.len();
     if n == 0 {
@@ -78,13 +82,26 @@ pub fn project_strand(
     }
     // dx_i = w_i (grad_i C_(i-1) lambda_(i-1) + grad_i C_i lambda_i), grad_i C_i = -dir_i,
     // grad_(i+1) C_i = dir_i.
-    for i in 0..=n {
+    let push = |i: usize| {
         let mut push = Vector3::zeros();
         if i < n {
             push -= dir[i] * lambda[i];
         }
         if i > 0 {
             push += dir[i - 1] * lambda[i - 1];
+        }
+        push
+    };
+    // Near singular (a straight strand drawn taut between two pinned particles), the multipliers
+    // are finite but would throw a particle ten segments' lengths or more: refused as singular.
+    let most_m = 10.0 * rest_m.iter().copied().fold(0.0, f64::max);
+    if (0..=n).any(|i| (push(i) * w[i]).norm() > most_m) {
+        return false;
+    }
+    for i in 0..=n {
+        let push = push(i);
+        if w[i] == 0.0 {
+            pinned_pull[i] += push;
         }
         x[i] += push * w[i];
     }
@@ -125,7 +142,14 @@ mod tests {
         let rest = [1.0; 4];
         // Newton's method: the error falls 0.11, 0.021, 6e-4, 4e-7, 2e-13.
         for _ in 0..5 {
-            assert!(project_strand(&mut x, &w, &rest, 0.0, &mut Scratch::default()));
+            assert!(project_strand(
+                &mut x,
+                &w,
+                &rest,
+                0.0,
+                &mut Scratch::default(),
+                &mut [Vector3::zeros(); 5]
+            ));
         }
         assert_eq!(x[0], Vector3::zeros());
         for k in 0..4 {
@@ -140,14 +164,28 @@ mod tests {
     fn one_segment_is_put_back_at_once_and_a_pinned_one_stays() {
         // One segment (the first row is also the last): its two ends share the correction.
         let mut x = vec![Vector3::zeros(), Vector3::new(1.5, 0.0, 0.0)];
-        assert!(project_strand(&mut x, &[1.0, 1.0], &[1.0], 0.0, &mut Scratch::default()));
+        assert!(project_strand(
+            &mut x,
+            &[1.0, 1.0],
+            &[1.0],
+            0.0,
+            &mut Scratch::default(),
+            &mut [Vector3::zeros(); 2]
+        ));
         assert!((x[0].x - 0.25).abs() < 1e-12 && (x[1].x - 1.25).abs() < 1e-12, "{x:?}");
         // The first segment's both ends pinned (its row the identity), the rest free.
         let mut x: Vec<Vector3<f64>> = (0..4).map(|i| Vector3::new(1.2 * i as f64, 0.0, 0.0)).collect();
         let pinned = [x[0], x[1]];
         let mut scratch = Scratch::default();
         for _ in 0..3 {
-            assert!(project_strand(&mut x, &[0.0, 0.0, 1.0, 1.0], &[1.0; 3], 0.0, &mut scratch));
+            assert!(project_strand(
+                &mut x,
+                &[0.0, 0.0, 1.0, 1.0],
+                &[1.0; 3],
+                0.0,
+                &mut scratch,
+                &mut [Vector3::zeros(); 4]
+            ));
         }
         assert_eq!([x[0], x[1]], pinned);
         for k in 1..3 {
@@ -164,7 +202,14 @@ mod tests {
         // nothing, and the caller falls back to Gauss-Seidel.
         let mut x: Vec<Vector3<f64>> = (0..3).map(|i| Vector3::new(1.2 * i as f64, 0.0, 0.0)).collect();
         let before = x.clone();
-        let ok = project_strand(&mut x, &[0.0, 1.0, 0.0], &[1.0, 1.0], 0.0, &mut Scratch::default());
+        let ok = project_strand(
+            &mut x,
+            &[0.0, 1.0, 0.0],
+            &[1.0, 1.0],
+            0.0,
+            &mut Scratch::default(),
+            &mut [Vector3::zeros(); 3],
+        );
         assert!(!ok, "a singular system was projected: {x:?}");
         assert_eq!(x, before, "a refused projection moved the strand");
     }

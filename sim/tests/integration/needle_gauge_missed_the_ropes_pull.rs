@@ -49,15 +49,18 @@ fn drawn_taut(own_rope: bool) -> (Vec<(f64, f64, f64)>, Option<f64>) {
 }
 
 /// At the rope's own resolution the right's gauge reads the long end's pull on the needle it holds, about
-/// what the assist reads on the tail.
+/// what the assist reads on the tail, as the thread draws taut and until the assist's grip gives.
 #[test]
 fn the_right_reads_the_long_ends_pull_on_the_needle_it_holds() {
-    // At the rope's own resolution the draw is smooth: at the moment the assist reads most, the
-    // right reads about as much (the stitch's friction lies between them). (At the shipped scene's
-    // 1.2 mm spacing and 20 substeps the right read 7.2 N to the assist's 5.0 N there: session 52.)
+    // At the rope's own resolution the draw is smooth: as the assist's reading rises to its grip
+    // (the first step it reads 95 % of the most it reads), the right reads about as much (the
+    // stitch's friction lies between them). Once the grip gives, the thread drawn over the flaps'
+    // edges reads more on the right than on the sliding grip. (At the shipped scene's 1.2 mm spacing
+    // and 20 substeps the right read 7.2 N to the assist's 5.0 N there.)
     let (gauges, _) = drawn_taut(true);
+    let most_n = gauges.iter().map(|g| g.2).fold(0.0, f64::max);
     let &(_, right_then_n, assist_n) =
-        gauges.iter().max_by(|a, b| a.2.total_cmp(&b.2)).expect("the draw was stepped");
+        gauges.iter().find(|g| g.2 >= 0.95 * most_n).expect("the draw was stepped");
     assert!(assist_n > 0.5, "the long end never drew on the tail: {assist_n} N");
     assert!(
         right_then_n > 0.8 * assist_n && right_then_n < assist_n + 1.5,
