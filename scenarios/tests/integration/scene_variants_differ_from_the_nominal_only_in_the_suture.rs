@@ -31,6 +31,7 @@ fn the_chain_scene_differs_from_the_nominal_one_only_in_the_suture() {
     assert_eq!((chain.thread.length_m, chain.stitch.slide_friction_n), (0.25, 0.05));
     assert_eq!(chain.thread.rope_substeps, None);
     assert_eq!(chain.thread.rope_spacing_radii, None);
+    assert_eq!(chain.thread.axial_stiffness_n, None);
     assert_eq!((chain.solver.solver_iterations, chain.solver.pgs_iterations_per_substep), (8, 4));
     // The chain's own keys, which a rope scene may not give.
     assert_eq!((chain.thread.twist_free, chain.thread.bend_damping_n_m_s_per_rad), (false, 2e-7));
@@ -41,6 +42,7 @@ fn the_chain_scene_differs_from_the_nominal_one_only_in_the_suture() {
     chain.thread.length_m = nominal.thread.length_m;
     chain.thread.rope_substeps = nominal.thread.rope_substeps;
     chain.thread.rope_spacing_radii = nominal.thread.rope_spacing_radii;
+    chain.thread.axial_stiffness_n = nominal.thread.axial_stiffness_n;
     chain.solver.solver_iterations = nominal.solver.solver_iterations;
     chain.solver.pgs_iterations_per_substep = nominal.solver.pgs_iterations_per_substep;
     chain.stitch.slide_friction_n = nominal.stitch.slide_friction_n;

@@ -14,7 +14,8 @@ fn nominal_world() -> SimWorld {
 
 /// Guards the watch against reading nothing, or something else than the suture: it holds the
 /// largest stretch the rope showed after any step, to the bit, and how long it was beyond 5 %, both for the nominal rope left lying
-/// (which, once past the start layout's first steps, stays within the 5 % the summaries count apart: 2.7 % at most) and played through
+/// (which stays within the 5 % the summaries count apart: 2.4 % at most, in the start layout's
+/// first steps; held exactly by the jaws, the rope no longer passes 5 % there) and played through
 /// the stress sequence in 1 s (moves six times the nominal speed), where it passes 5 % and equals
 /// the stress report's own largest figure.
 #[test]
@@ -33,8 +34,7 @@ fn the_stretch_watch_reads_the_rope_at_rest_and_yanked() {
     let rest = world.suture().most_stretched().expect("noted after a step");
     assert_eq!(rest.ratio.to_bits(), largest.to_bits(), "{rest:?} against {largest}");
     assert!(settled < 0.05, "the rope lying still stretched {settled}");
-    // Beyond 5 % only over the start layout's first step.
-    assert!(rest.over_5_percent_s > 0.0 && rest.over_5_percent_s <= 0.0015, "{rest:?}");
+    assert!(rest.ratio > 0.0 && rest.ratio < 0.05 && rest.over_5_percent_s == 0.0, "{rest:?}");
 
     let mut world = nominal_world();
     let report = run_stress(&mut world, 1.0, &[], &mut |_, _| {});
