@@ -148,15 +148,31 @@ pub struct Classification {
     pub span: Option<KnotSpan>,
 }
 
+/// The points times the power of two that brings their largest coordinate into [1, 2): the same
+/// curve to the bit at another scale, so that its projections' products neither overflow (a
+/// trefoil 1e160 m across) nor underflow (1e-200 m), and the same crossings at every scale.
+fn scaled_to_unit(points: &[Vector3<f64>]) -> Vec<Vector3<f64>> {
+    let largest = points.iter().flat_map(|p| p.iter().map(|v| v.abs())).fold(0.0, f64::max);
+    if largest == 0.0 || !largest.is_finite() {
+        return points.to_vec();
+    }
+    // 2^-e for the largest's binary exponent e, applied in two halves so that neither overflows.
+    let e = largest.log2().floor() as i32;
+    let (first, second) = (2f64.powi(-e / 2), 2f64.powi(-(e - e / 2)));
+    points.iter().map(|p| p * first * second).collect()
+}
+
 /// Classifies a thread's centreline (needle end first): closes it far from the knot and votes
-/// across [`DIRECTIONS`] projections.
+/// across [`DIRECTIONS`] projections. The curve's scale does not matter (it is classified scaled
+/// by a power of two to unit size); the span is measured on the points as given.
 pub fn classify(points: &[Vector3<f64>]) -> Result<Classification, KnotError> {
     validate(points)?;
-    let region = KnotRegion::of(points);
+    let (scaled, points) = (scaled_to_unit(points), points);
+    let region = KnotRegion::of(&scaled);
     let mut votes = Vec::with_capacity(DIRECTIONS);
     let mut kept: Vec<(Vec<Crossing>, GaussCode)> = Vec::with_capacity(DIRECTIONS);
     for view in directions() {
-        let picture = ClosedPicture::new(points, &region, &view);
+        let picture = ClosedPicture::new(&scaled, &region, &view);
         let crossings = find_crossings(&picture);
         let mut code = GaussCode::from_crossings(&crossings);
         reduce(&mut code);

@@ -304,13 +304,21 @@ fn closed_knots_cut_open_on_their_rim() {
     assert_eq!(mirrored.writhe, -trefoil.writhe);
 }
 
-/// A 6 mm trefoil placed 0.8 m up still classifies as a trefoil with determinant 3 and writhe 3.
+/// A 6 mm trefoil placed 0.8 m up still classifies as a trefoil with determinant 3 and writhe 3, and so
+/// does a trefoil at any scale a float holds, 1e-200 to 1e200 (at 1e160 the projections' products
+/// overflowed and it read as the unknot; at 1e-200 they underflowed).
 #[test]
 fn scale_and_position_do_not_matter() {
     // A 6 mm trefoil tied 0.8 m above the floor.
     let offset = V::new(0.3, -0.2, 0.8);
     let small: Vec<V> = torus_knot(2.0, 3.0, 200).iter().map(|p| offset + p * 0.001).collect();
     check("mm trefoil", &small, KnotType::Trefoil, 3, 3);
+    let unit = check("unit trefoil", &torus_knot(2.0, 3.0, 200), KnotType::Trefoil, 3, 3);
+    for scale in [1e-200, 1e-100, 1e-3, 1e3, 1e100, 1e160, 1e200] {
+        let scaled: Vec<V> = torus_knot(2.0, 3.0, 200).iter().map(|p| p * scale).collect();
+        let c = check(&format!("trefoil at {scale:e}"), &scaled, KnotType::Trefoil, 3, 3);
+        assert_eq!((c.writhe, c.crossings), (unit.writhe, unit.crossings), "at {scale:e}");
+    }
 }
 
 /// An open overhand, an overhand in a loop and a suture's single throw each classify as a trefoil.
