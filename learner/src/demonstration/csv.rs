@@ -24,6 +24,14 @@ pub const QUATERNION_NORM_TOLERANCE: f64 = 1e-3;
 /// The jaw angle's allowed range, rad.
 pub const JAW_RANGE_RAD: (f64, f64) = (-0.5, std::f64::consts::PI);
 
+/// How far from the world's origin an instrument tip may be, m (the rig's workspace spans about 2 m).
+pub const MAX_POSITION_M: f64 = 10.0;
+
+/// How fast an instrument tip may move between two samples, m/s (a surgeon's hand moves an
+/// instrument's tip at well under 0.5 m/s; the shipped demonstration at most 0.18 m/s). A path's
+/// length, and with it what the features resample along it, is bounded by this times its duration.
+pub const MAX_TIP_SPEED_M_S: f64 = 5.0;
+
 /// One sample as a CSV row, its columns named as in [`COLUMNS`].
 #[derive(Debug, Serialize, Deserialize)]
 struct Row {
@@ -271,6 +279,31 @@ pub fn validate_samples(samples: &[Sample], file: &str, sample_rate_hz: f64) -> 
                     format!(
                         "a gap of {:.4} s after the previous sample (more than {MAX_GAP_PERIODS} periods at {sample_rate_hz} Hz)",
                         s.time_s - previous
+                    ),
+                ));
+            }
+        }
+        for (name, x) in [("x_m", s.position_m.x), ("y_m", s.position_m.y), ("z_m", s.position_m.z)] {
+            if x.abs() > MAX_POSITION_M {
+                return Err(err(
+                    line,
+                    name,
+                    format!(
+                        "{x} m is beyond the workspace: an instrument tip lies within ±{MAX_POSITION_M} m"
+                    ),
+                ));
+            }
+        }
+        if k > 0 {
+            let before = &samples[k - 1];
+            let speed = (s.position_m - before.position_m).norm() / (s.time_s - before.time_s);
+            if speed > MAX_TIP_SPEED_M_S {
+                return Err(err(
+                    line,
+                    "x_m,y_m,z_m",
+                    format!(
+                        "the tip moved at {speed:.3} m/s since the previous sample (line {}): at most {MAX_TIP_SPEED_M_S} m/s",
+                        line - 1
                     ),
                 ));
             }

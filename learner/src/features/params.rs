@@ -84,6 +84,13 @@ impl Default for DetectorParams {
     }
 }
 
+/// The closest the path's shape may be measured along it, m: with the demonstration's tip speed
+/// bounded, this bounds the points the shape is resampled to.
+pub const MIN_SHAPE_STEP_M: f64 = 1e-4;
+
+/// The farthest, m: a loop of 1 cm must still show.
+pub const MAX_SHAPE_STEP_M: f64 = 0.01;
+
 impl DetectorParams {
     /// Checks every field; `(field, reason)` of the first bad one.
     pub fn check(&self) -> Result<(), (&'static str, String)> {
@@ -112,6 +119,15 @@ impl DetectorParams {
             if !(x.is_finite() && x > 0.0) {
                 return Err((name, format!("must be positive, got {x}")));
             }
+        }
+        if !(MIN_SHAPE_STEP_M..=MAX_SHAPE_STEP_M).contains(&self.shape_step_m) {
+            return Err((
+                "shape_step_m",
+                format!(
+                    "must be within {MIN_SHAPE_STEP_M}-{MAX_SHAPE_STEP_M} m (the path's shape on points 0.1 mm to 1 cm apart), got {}",
+                    self.shape_step_m
+                ),
+            ));
         }
         if self.motion_off_mps > self.motion_on_mps {
             return Err((

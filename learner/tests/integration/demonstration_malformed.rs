@@ -233,3 +233,25 @@ fn other_malformations_are_named_too() {
     let error = load_demonstration(Path::new("/definitely/not/here")).unwrap_err();
     assert!(error.file().ends_with("demo.toml"), "{error}");
 }
+
+/// A tip 1000 km away (one sample's `x_m` 1e6 m, which asked the features for 24 GB) is refused
+/// naming its line and column, before anything is resampled along the path.
+#[test]
+fn a_tip_beyond_the_workspace_is_named_with_its_line_and_column() {
+    let dir = TempDir::with_demo("far");
+    dir.edit("left.csv", |text| replace_field(&text, 50, 1, "1e6")); // x_m
+    assert_names(&dir.load_error(), "left.csv", 50, "x_m", "beyond the workspace");
+}
+
+/// A tip that jumps 1 m between two samples 10 ms apart (100 m/s) is refused naming the line it jumped
+/// to.
+#[test]
+fn a_tip_jumping_faster_than_a_hand_moves_is_named_with_its_line() {
+    let dir = TempDir::with_demo("jump");
+    dir.edit("right.csv", |text| {
+        let row = text.lines().nth(59).unwrap().to_owned();
+        let y: f64 = row.split(',').nth(2).unwrap().parse().unwrap();
+        replace_field(&text, 60, 2, &(y + 1.0).to_string()) // y_m
+    });
+    assert_names(&dir.load_error(), "right.csv", 60, "x_m,y_m,z_m", "m/s since the previous sample");
+}

@@ -175,8 +175,8 @@ fn jaws_opening_and_closing_are_timed_where_they_start_to_move() {
     assert_eq!(closes[0].grasp_after, GraspState::ClosedEmpty);
 }
 
-/// A motion-off threshold above the motion-on one, or a NaN smoothing time, is refused naming the
-/// parameter.
+/// A motion-off threshold above the motion-on one, a NaN smoothing time, or a shape step outside 0.1 mm
+/// to 1 cm, is refused naming the parameter.
 #[test]
 fn nonsense_thresholds_are_refused_naming_the_parameter() {
     let r = record(1.0, |_| Vector3::zeros(), |_| Vector3::zeros(), |_| 0.0);
@@ -196,6 +196,15 @@ fn nonsense_thresholds_are_refused_naming_the_parameter() {
     assert!(e.to_string().starts_with("detector.motion_off_mps"), "{e}");
     let e = DetectorParams { smoothing_s: f64::NAN, ..DetectorParams::default() }.check().unwrap_err();
     assert_eq!(e.0, "smoothing_s");
+    // A shape step of 1e-12 m asked for 3 TB of resampled path; 0.1 mm to 1 cm is allowed.
+    for step_m in [1e-12, 5e-5, 0.02] {
+        let e = DetectorParams { shape_step_m: step_m, ..DetectorParams::default() }.check().unwrap_err();
+        assert_eq!(e.0, "shape_step_m", "{step_m}: {e:?}");
+        assert!(e.1.contains("0.0001-0.01 m"), "{e:?}");
+    }
+    for step_m in [1e-4, 0.01] {
+        assert!(DetectorParams { shape_step_m: step_m, ..DetectorParams::default() }.check().is_ok());
+    }
 }
 
 /// Jaws closing over 0.6 s onto the thread are read as holding, the grasp taken once they have closed,
