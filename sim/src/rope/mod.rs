@@ -117,14 +117,14 @@ pub struct RopeParams {
     /// Bending stiffness EI, N m² (0: a string). Each joint between two segments resists its
     /// turn as a compliant XPBD constraint on the difference of the segments' directions. With its
     /// free ends slack a string's knot presses on itself only as hard as its loop pulls it; a stiff
-    /// rope's bends keep pressing, and its friction holds the knot (session 43). The default, 1e-7,
+    /// rope's bends keep pressing, and its friction holds the knot. The default, 1e-7,
     /// is below a 3-0 monofilament's (polypropylene, 0.2 mm: about 3e-7).
     pub bending_stiffness_n_m2: f64,
     /// Axial stiffness EA, N: a segment stretches by its length times F / EA under a pull F, as a
     /// compliant XPBD constraint (infinite: inextensible, the default). Suture is elastic: a 3-0
-    /// braided silk's EA is some 150-300 N, a polypropylene's 50-100 N. Inextensible and held by a
-    /// position-controlled instrument, a rope whose knot jams takes the whole draw in one step: a
-    /// grip read 1.9 N, then 6.5 N, and slipped (session 44). Elastic, the rope is held exactly
+    /// polypropylene's EA is about 160 N (E 4.0 GPa over a 0.225 mm section), a braided silk's some
+    /// 150-350 N. Inextensible and held by a position-controlled instrument, a rope whose knot jams
+    /// takes the whole draw in one step: a grip read 1.9 N, then 6.5 N, and slipped. Elastic, the rope is held exactly
     /// where bodies hold it ([`rigid`]); inextensible, it is held softly (its held particles solved
     /// with the rest and put back), which leaves their segments stretched by the pull.
     pub axial_stiffness_n: f64,
