@@ -310,8 +310,6 @@ impl Among<'_> {
         Some(pose)
     }
 
-    /// Each grip's attachment points give way along the rope where holding them would pull it
-    /// harder than the grip's limit over this substep of `h_s` (the body at fraction `f` of the step).
     /// The grip's run of the rope at fraction `f` of the step: its attachments, the rope's way
     /// through it, its mass, and how far the attachments would move the run along the rope,
     /// mass-weighted (kg m: over a substep `h`, an impulse of that over `h`), from where the rope
@@ -348,6 +346,8 @@ impl Among<'_> {
         self.grip_run(ropes, grip, f).map(|(_, _, _, along)| along)
     }
 
+    /// Each grip's attachment points give way along the rope where holding them would pull it
+    /// harder than the grip's limit over this substep of `h_s` (the body at fraction `f` of the step).
     fn give_way_in_grips(&mut self, ropes: &Ropes, h_s: f64, f: f64) {
         for g in 0..self.contacts.grips.len() {
             let grip = self.contacts.grips[g].clone();
@@ -395,18 +395,16 @@ impl Surroundings for Among<'_> {
     fn hold(&mut self, ropes: &mut Ropes, held: &mut [bool], h_s: f64) {
         let f1 = (self.substep + 1) as f64 / self.substeps as f64;
         // Held exactly only where the rope can give: an inextensible rope drawn taut between two
-        // such holds has no solution (its projection threw particles metres), so it is held as a
-        // dynamic body holds it.
-        let elastic = ropes.params.axial_stiffness_n.is_finite();
-        for k in 0..self.contacts.attachments.len() {
-            if !elastic {
-                break;
-            }
-            let a = self.contacts.attachments[k];
-            let Some(pose) = self.body_pose(a.body, f1) else { continue };
-            if let (Some(x), Some(h)) = (ropes.x.get_mut(a.particle), held.get_mut(a.particle)) {
-                *x = to_na(pose.transform_point(to_rapier(&a.local_m)));
-                *h = true;
+        // such holds has no solution (its projection threw particles metres), so it is held
+        // softly, its held particles solved with the rest and put on their bodies afterwards.
+        if ropes.params.axial_stiffness_n.is_finite() {
+            for k in 0..self.contacts.attachments.len() {
+                let a = self.contacts.attachments[k];
+                let Some(pose) = self.body_pose(a.body, f1) else { continue };
+                if let (Some(x), Some(h)) = (ropes.x.get_mut(a.particle), held.get_mut(a.particle)) {
+                    *x = to_na(pose.transform_point(to_rapier(&a.local_m)));
+                    *h = true;
+                }
             }
         }
         // The rope through its guides, before its lengths are solved (after them, the guides'
