@@ -124,9 +124,10 @@ pub struct RopeParams {
     /// compliant XPBD constraint (infinite: inextensible, the default). Suture is elastic: a 3-0
     /// polypropylene's EA is about 160 N (E 4.0 GPa over a 0.225 mm section), a braided silk's some
     /// 150-350 N. Inextensible and held by a position-controlled instrument, a rope whose knot jams
-    /// takes the whole draw in one step: a grip read 1.9 N, then 6.5 N, and slipped. Elastic, the rope is held exactly
-    /// where bodies hold it ([`rigid`]); inextensible, it is held softly (its held particles solved
-    /// with the rest and put back), which leaves their segments stretched by the pull.
+    /// takes the whole draw in one step: a grip read 1.9 N, then 6.5 N, and slipped. Elastic, the
+    /// rope is held exactly where bodies hold it ([`rigid`]); inextensible, it is held softly (its
+    /// held particles solved with the rest and put back), which leaves their segments stretched by
+    /// the pull.
     pub axial_stiffness_n: f64,
 }
 
