@@ -290,3 +290,45 @@ fn zero_trials_zero_jobs_and_a_trial_to_record_beyond_the_run_are_refused() {
     }
     std::fs::remove_dir_all(&out).ok();
 }
+
+/// Guards against counting trials that belong to another run: resuming into a folder whose
+/// `results.jsonl` has no `run.json` (it reported the old lines as its own and ran nothing), or one
+/// with a line of another seed, a method the run does not run, a trial beyond its count, or a trial
+/// twice (the first won), is refused naming the file and line; `knotlab report` refuses the same
+/// lines rather than count them.
+#[test]
+fn lines_that_do_not_belong_to_the_run_are_refused_by_mc_and_report() {
+    let out = dir("foreign");
+    assert_eq!(mc(&out, 2, 1).0, 0);
+    let results = out.join("results.jsonl");
+    let good = std::fs::read_to_string(&results).expect("the results");
+    let first: serde_json::Value = serde_json::from_str(good.lines().next().expect("a line")).expect("JSON");
+    let with = |field: &str, value: serde_json::Value| {
+        let mut l = first.clone();
+        l[field] = value;
+        format!("{good}{l}\n")
+    };
+    let cases = [
+        (with("seed", 8.into()), "seed 8 is not the run's (7)"),
+        (with("method", "fluid".into()), "method fluid is not one of the run's"),
+        (with("trial", 9.into()), "trial 9 is beyond the run's 2 trials"),
+        (format!("{good}{first}\n"), "again (first on line 1)"),
+    ];
+    let line = good.lines().count() + 1;
+    for (text, says) in &cases {
+        std::fs::write(&results, text).expect("written");
+        let (code, log) = mc(&out, 2, 1);
+        assert_eq!(code, 1, "{log}");
+        assert!(log.contains(&format!("results.jsonl:{line}")) && log.contains(says), "'{says}': {log}");
+        let (code, stdout, stderr) = knotlab(&["report", out.to_str().expect("UTF-8")]);
+        assert_eq!(code, 1, "{stdout}{stderr}");
+        assert!(stderr.contains(says), "report, '{says}': {stderr}");
+    }
+    // Without run.json, the lines are traced to no run.
+    std::fs::write(&results, &good).expect("written");
+    std::fs::remove_file(out.join("run.json")).expect("run.json");
+    let (code, log) = knotlab_mc_seed(&out, 2, "5", &[]);
+    assert_eq!(code, 1, "{log}");
+    assert!(log.contains("no run.json"), "{log}");
+    std::fs::remove_dir_all(&out).ok();
+}

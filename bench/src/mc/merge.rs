@@ -71,13 +71,9 @@ pub fn merge(dirs: &[PathBuf], out: &Path) -> Result<MergeOutcome, McError> {
             ));
         }
         shards.push(info.shard.map_or("all".to_owned(), |s| s.to_string()));
-        for line in read_results(dir)? {
-            if line.trial >= whole.trials || !whole.methods.contains(&line.method) {
-                return Err(error(
-                    results_path(dir).display().to_string(),
-                    format!("trial {} by {} is not part of the run", line.trial, line.method),
-                ));
-            }
+        let shard_lines = read_results(dir)?;
+        super::check_lines(&shard_lines, &info, &results_path(dir).display().to_string())?;
+        for line in shard_lines {
             let key = (line.trial, line.method.clone());
             match lines.get(&key) {
                 Some((seen, from)) if outcome(seen) != outcome(&line) => {

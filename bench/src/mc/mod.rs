@@ -173,6 +173,48 @@ pub fn read_results(out: &Path) -> Result<Vec<TrialLine>, McError> {
     Ok(out)
 }
 
+/// Checks that every line of `file` (as [`read_results`] gives them, the k-th on line k + 1) belongs
+/// to the run `info` describes: its seed, one of its methods, a trial below its count and, for a
+/// shard, one the shard holds; and that no trial of a method is there twice. The first line that does
+/// not is named with what it holds and what the run asks.
+pub fn check_lines(lines: &[TrialLine], info: &RunInfo, file: &str) -> Result<(), McError> {
+    let error = |k: usize, reason: String| McError::Results { file: format!("{file}:{}", k + 1), reason };
+    let mut seen: std::collections::BTreeMap<(u64, &str), usize> = std::collections::BTreeMap::new();
+    for (k, line) in lines.iter().enumerate() {
+        let (trial, method) = (line.trial, line.method.as_str());
+        if line.seed != info.seed {
+            return Err(error(
+                k,
+                format!("seed {} is not the run's ({}): a line of another run", line.seed, info.seed),
+            ));
+        }
+        if !info.methods.iter().any(|m| m == method) {
+            let methods = info.methods.join(", ");
+            return Err(error(
+                k,
+                format!("method {method} is not one of the run's ({methods}): a line of another run"),
+            ));
+        }
+        if trial >= info.trials {
+            return Err(error(
+                k,
+                format!(
+                    "trial {trial} is beyond the run's {} trials (0 to {})",
+                    info.trials,
+                    info.trials.saturating_sub(1)
+                ),
+            ));
+        }
+        if let Some(shard) = info.shard.filter(|s| !s.holds(trial)) {
+            return Err(error(k, format!("trial {trial} is not one shard {shard} runs")));
+        }
+        if let Some(first) = seen.insert((trial, method), k) {
+            return Err(error(k, format!("trial {trial} by {method} again (first on line {})", first + 1)));
+        }
+    }
+    Ok(())
+}
+
 /// Runs one trial's set-up (the default: [`run_trial`] without an observer); a caller can wrap it, to
 /// record a trial for a viewer, say.
 pub type TrialRunner<'a> =
@@ -260,7 +302,9 @@ pub fn run_mc_with(
     std::fs::create_dir_all(&options.out)
         .map_err(|e| McError::Results { file: file.clone(), reason: e.to_string() })?;
     let info = options.run_info();
-    match RunInfo::read(&options.out)? {
+    let there = RunInfo::read(&options.out)?;
+    let done = read_results(&options.out)?;
+    match there {
         Some(there) => {
             if let Some(difference) = there.difference(&info, false) {
                 return Err(McError::Results {
@@ -271,13 +315,24 @@ pub fn run_mc_with(
                     ),
                 });
             }
+            // The lines already there belong to this run (with as many trials as it had or has).
+            check_lines(&done, &RunInfo { trials: there.trials.max(info.trials), ..info.clone() }, &file)?;
             if there.trials != info.trials {
                 info.write(&options.out)?;
             }
         }
+        None if !done.is_empty() => {
+            return Err(McError::Results {
+                file,
+                reason: format!(
+                    "holds {} finished trials but the directory has no run.json: they cannot be told to                      belong to this run; give another --out, or remove results.jsonl to start anew",
+                    done.len()
+                ),
+            });
+        }
         None => info.write(&options.out)?,
     }
-    let mut done = read_results(&options.out)?;
+    let mut done = done;
     let finished: BTreeSet<(u64, String)> = done.iter().map(|l| (l.trial, l.method.clone())).collect();
     let all: Vec<(u64, Method)> = (0..options.trials)
         .filter(|t| options.shard.is_none_or(|s| s.holds(*t)))

@@ -109,6 +109,10 @@ pub fn write_report(dir: &Path, out: &Path) -> Result<ReportSummary, ReportError
         return Err(ReportError::Input { file, reason });
     }
     let lines = read_results(dir)?;
+    // With the run's `run.json` there, a line of another run is refused rather than counted.
+    if let Some(info) = crate::mc::run_info::RunInfo::read(dir)? {
+        crate::mc::check_lines(&lines, &info, &file)?;
+    }
     if lines.is_empty() {
         return Err(ReportError::Input { file, reason: "holds no finished trial".to_owned() });
     }
