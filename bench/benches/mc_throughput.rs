@@ -44,6 +44,7 @@ fn trials(bencher: divan::Bencher) {
             out: std::env::temp_dir().join(format!("knotlab-bench-mc-{}", std::process::id())),
             until_s: None,
             shard: None,
+            skill_fingerprint: knotlab_bench::mc::run_info::skill_fingerprint(&learned),
         };
         Ok((learned, options))
     };

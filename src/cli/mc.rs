@@ -223,6 +223,7 @@ pub fn run(mut args: McArgs, out: &mut Output) -> anyhow::Result<ExitCode> {
         out: out_dir.clone(),
         until_s: args.until,
         shard: args.shard,
+        skill_fingerprint: knotlab_bench::mc::run_info::skill_fingerprint(&learned),
     };
     // Ctrl-C: the first stops taking trials, the second exits at once (every finished trial is already
     // in results.jsonl).

@@ -332,3 +332,35 @@ fn lines_that_do_not_belong_to_the_run_are_refused_by_mc_and_report() {
     assert!(log.contains("no run.json"), "{log}");
     std::fs::remove_dir_all(&out).ok();
 }
+
+/// Guards against one folder mixing two skills: `run.json` records the fingerprint of the skill and
+/// the demonstration it came from, and resuming with another demonstration (one sample moved by a
+/// micrometre) is refused naming the field, where the same one resumes.
+#[test]
+fn resuming_with_another_skill_is_refused() {
+    let out = dir("skill");
+    assert_eq!(mc(&out, 1, 1).0, 0);
+    let info: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("run.json")).expect("run.json"))
+            .expect("JSON");
+    assert_eq!(info["skill_fingerprint"].as_str().map(str::len), Some(16), "{info}");
+    let demo = dir("skill-demo");
+    std::fs::create_dir_all(&demo).expect("a folder");
+    let shipped = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenarios/demos/instrument-tie");
+    for name in ["demo.toml", "left.csv", "right.csv", "assist.csv"] {
+        std::fs::copy(shipped.join(name), demo.join(name)).expect("copied");
+    }
+    let left = std::fs::read_to_string(demo.join("left.csv")).expect("left.csv");
+    let mut rows: Vec<String> = left.lines().map(str::to_owned).collect();
+    let mut fields: Vec<String> = rows[100].split(',').map(str::to_owned).collect();
+    fields[1] = (fields[1].parse::<f64>().expect("x_m") + 1e-6).to_string();
+    rows[100] = fields.join(",");
+    std::fs::write(demo.join("left.csv"), rows.join("\n") + "\n").expect("written");
+    let (code, log) = mc_with(&out, 2, 1, &["--demo", demo.to_str().expect("UTF-8")]);
+    assert_eq!(code, 1, "{log}");
+    assert!(log.contains("skill_fingerprint"), "{log}");
+    assert_eq!(mc(&out, 2, 1).0, 0, "the same skill resumes");
+    for d in [out, demo] {
+        std::fs::remove_dir_all(&d).ok();
+    }
+}

@@ -53,6 +53,8 @@ pub struct McOptions {
     pub until_s: Option<f64>,
     /// Only this shard's trials.
     pub shard: Option<Shard>,
+    /// What the trials play ([`run_info::skill_fingerprint`]), for the record.
+    pub skill_fingerprint: String,
 }
 
 impl McOptions {
@@ -63,6 +65,7 @@ impl McOptions {
             scene: self.scene_name.clone(),
             preset: self.preset.clone(),
             scene_fingerprint: run_info::scene_fingerprint(&self.scene),
+            skill_fingerprint: self.skill_fingerprint.clone(),
             randomization: self.scene.randomization.clone(),
             seed: self.seed,
             trials: self.trials,

@@ -11,7 +11,7 @@ use serde::{Deserialize, Serialize};
 use super::McError;
 
 /// The format line of `run.json`.
-pub const RUN_FORMAT: &str = "knotlab-mc-run 1";
+pub const RUN_FORMAT: &str = "knotlab-mc-run 2";
 
 /// Which trials a run does: trial `t` when `t % count == index` (`--shard index/count`, index from 0).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
@@ -62,6 +62,9 @@ pub struct RunInfo {
     /// FNV-1a (64 bit, hex) of the scene as drawn from (preset applied), serialized as JSON: two runs
     /// from different scene contents under the same file name are told apart.
     pub scene_fingerprint: String,
+    /// FNV-1a (64 bit, hex) of the learned skill and the demonstration it came from
+    /// ([`skill_fingerprint`]): two runs of different skills are told apart.
+    pub skill_fingerprint: String,
     /// What each trial draws from (for the reader).
     pub randomization: Randomization,
     /// The run's seed.
@@ -76,12 +79,28 @@ pub struct RunInfo {
     pub shard: Option<Shard>,
 }
 
+/// FNV-1a, 64 bit, of some bytes, as 16 hex digits.
+fn fnv1a(bytes: impl IntoIterator<Item = u8>) -> String {
+    let hash = bytes
+        .into_iter()
+        .fold(0xcbf2_9ce4_8422_2325_u64, |h, b| (h ^ u64::from(b)).wrapping_mul(0x100_0000_01b3));
+    format!("{hash:016x}")
+}
+
 /// FNV-1a, 64 bit, of the scene's JSON.
 pub fn scene_fingerprint(scene: &SceneConfig) -> String {
-    let text = serde_json::to_string(scene).unwrap_or_default();
-    let hash =
-        text.bytes().fold(0xcbf2_9ce4_8422_2325_u64, |h, b| (h ^ u64::from(b)).wrapping_mul(0x100_0000_01b3));
-    format!("{hash:016x}")
+    fnv1a(serde_json::to_string(scene).unwrap_or_default().into_bytes())
+}
+
+/// FNV-1a, 64 bit, of what a run's trials play: the knowledge base's JSON and the demonstration's
+/// samples as its CSV files hold them (the replay method plays the demonstration itself).
+pub fn skill_fingerprint(learned: &knotlab_scenarios::trial::Learned) -> String {
+    let mut bytes = serde_json::to_string(&learned.knowledge).unwrap_or_default().into_bytes();
+    for instrument in &learned.demonstration.instruments {
+        // Writing into memory does not fail.
+        knotlab_learner::demonstration::csv::write_samples(&mut bytes, &instrument.samples).ok();
+    }
+    fnv1a(bytes)
 }
 
 impl RunInfo {
@@ -127,6 +146,7 @@ impl RunInfo {
             ("scene", self.scene.clone(), other.scene.clone()),
             ("preset", format!("{:?}", self.preset), format!("{:?}", other.preset)),
             ("scene_fingerprint", self.scene_fingerprint.clone(), other.scene_fingerprint.clone()),
+            ("skill_fingerprint", self.skill_fingerprint.clone(), other.skill_fingerprint.clone()),
             ("seed", self.seed.to_string(), other.seed.to_string()),
             ("trials", self.trials.to_string(), other.trials.to_string()),
             ("methods", self.methods.join(","), other.methods.join(",")),
