@@ -213,4 +213,32 @@ mod tests {
         assert!(!ok, "a singular system was projected: {x:?}");
         assert_eq!(x, before, "a refused projection moved the strand");
     }
+
+    /// A pinned particle does not move, and the pull on it is what the projection would have moved it
+    /// by times its mass: for one segment stretched by 0.5 from a pin to a particle of unit mass, 0.5
+    /// along the segment, towards the particle.
+    #[test]
+    fn the_pull_on_a_pinned_particle_is_the_correction_it_was_spared() {
+        let mut x = vec![Vector3::zeros(), Vector3::new(1.5, 0.0, 0.0)];
+        let mut pull = [Vector3::zeros(); 2];
+        assert!(project_strand(&mut x, &[0.0, 1.0], &[1.0], 0.0, &mut Scratch::default(), &mut pull));
+        assert_eq!(x[0], Vector3::zeros());
+        assert!((x[1].x - 1.0).abs() < 1e-12, "{x:?}");
+        assert!((pull[0] - Vector3::new(0.5, 0.0, 0.0)).norm() < 1e-12, "{pull:?}");
+        assert_eq!(pull[1], Vector3::zeros(), "a free particle has no pull");
+    }
+
+    /// A strand drawn taut between two pins, its middle 0.1 mm off their line, is so near singular that
+    /// the projection would throw the middle 2.4 km across it: refused, nothing moved.
+    #[test]
+    fn a_nearly_singular_strand_is_refused_rather_than_thrown() {
+        let mut x = vec![Vector3::zeros(), Vector3::new(1.2, 1e-4, 0.0), Vector3::new(2.4, 0.0, 0.0)];
+        let before = x.clone();
+        let mut pull = [Vector3::zeros(); 3];
+        let ok =
+            project_strand(&mut x, &[0.0, 1.0, 0.0], &[1.0, 1.0], 0.0, &mut Scratch::default(), &mut pull);
+        assert!(!ok, "a nearly singular system was projected: {x:?}");
+        assert_eq!(x, before, "a refused projection moved the strand");
+        assert_eq!(pull, [Vector3::zeros(); 3], "a refused projection summed a pull");
+    }
 }
