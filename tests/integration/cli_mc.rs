@@ -330,6 +330,18 @@ fn lines_that_do_not_belong_to_the_run_are_refused_by_mc_and_report() {
     let (code, log) = knotlab_mc_seed(&out, 2, "5", &[]);
     assert_eq!(code, 1, "{log}");
     assert!(log.contains("no run.json"), "{log}");
+    // The report, with no run.json to check against, still refuses a trial given twice and a line of
+    // another seed than the first line's.
+    for (text, says) in &cases[3..] {
+        std::fs::write(&results, text).expect("written");
+        let (code, stdout, stderr) = knotlab(&["report", out.to_str().expect("UTF-8")]);
+        assert_eq!(code, 1, "{stdout}{stderr}");
+        assert!(stderr.contains(says), "report without run.json, '{says}': {stderr}");
+    }
+    std::fs::write(&results, with("seed", 8.into())).expect("written");
+    let (code, _, stderr) = knotlab(&["report", out.to_str().expect("UTF-8")]);
+    assert_eq!(code, 1, "{stderr}");
+    assert!(stderr.contains("seed 8 is not the run's (7)"), "{stderr}");
     std::fs::remove_dir_all(&out).ok();
 }
 

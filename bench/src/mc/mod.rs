@@ -218,6 +218,31 @@ pub fn check_lines(lines: &[TrialLine], info: &RunInfo, file: &str) -> Result<()
     Ok(())
 }
 
+/// [`check_lines`] for lines with no `run.json` beside them: the run is taken to be the first line's
+/// seed, the methods and trials the lines hold, so that only another seed's line and a trial given
+/// twice are refused.
+pub fn check_lines_alone(lines: &[TrialLine], file: &str) -> Result<(), McError> {
+    let Some(first) = lines.first() else { return Ok(()) };
+    let mut methods: Vec<String> = lines.iter().map(|l| l.method.clone()).collect();
+    methods.sort();
+    methods.dedup();
+    let trials = lines.iter().map(|l| l.trial + 1).max().unwrap_or(0);
+    let info = RunInfo {
+        format: run_info::RUN_FORMAT.to_owned(),
+        scene: String::new(),
+        preset: None,
+        scene_fingerprint: String::new(),
+        skill_fingerprint: String::new(),
+        randomization: Default::default(),
+        seed: first.seed,
+        trials,
+        methods,
+        until_s: None,
+        shard: None,
+    };
+    check_lines(lines, &info, file)
+}
+
 /// Runs one trial's set-up (the default: [`run_trial`] without an observer); a caller can wrap it, to
 /// record a trial for a viewer, say.
 pub type TrialRunner<'a> =

@@ -109,9 +109,11 @@ pub fn write_report(dir: &Path, out: &Path) -> Result<ReportSummary, ReportError
         return Err(ReportError::Input { file, reason });
     }
     let lines = read_results(dir)?;
-    // With the run's `run.json` there, a line of another run is refused rather than counted.
-    if let Some(info) = crate::mc::run_info::RunInfo::read(dir)? {
-        crate::mc::check_lines(&lines, &info, &file)?;
+    // With the run's `run.json` there, a line of another run is refused rather than counted; without
+    // it, a trial of a method given twice or a line of another seed than the first line's.
+    match crate::mc::run_info::RunInfo::read(dir)? {
+        Some(info) => crate::mc::check_lines(&lines, &info, &file)?,
+        None => crate::mc::check_lines_alone(&lines, &file)?,
     }
     if lines.is_empty() {
         return Err(ReportError::Input { file, reason: "holds no finished trial".to_owned() });
