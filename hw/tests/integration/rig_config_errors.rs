@@ -85,6 +85,19 @@ fn bad_values_are_named_with_key_and_line() {
     assert_eq!((line, key.as_str()), (3, "controller.watchdog_cycles"));
 }
 
+/// A trocar given four coordinates is refused with its line, key and the counts, not read as its first
+/// three.
+#[test]
+fn a_trocar_of_four_numbers_is_refused_with_its_line() {
+    let text = MELFA.replace("trocar_m = [-0.08, -0.12, 1.02]", "trocar_m = [-0.08, -0.12, 1.02, 0.0]");
+    let line = text.lines().position(|l| l == "trocar_m = [-0.08, -0.12, 1.02, 0.0]").unwrap() + 1;
+    let (l, key, reason) = schema(&text);
+    assert_eq!(
+        (l, key.as_str(), reason.as_str()),
+        (line, "arms.right.trocar_m", "4 values where exactly 3 are allowed")
+    );
+}
+
 /// Malformed TOML is refused naming the line of the syntax error.
 #[test]
 fn broken_toml_names_its_line() {

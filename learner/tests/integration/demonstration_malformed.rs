@@ -4,6 +4,7 @@
 
 use std::path::{Path, PathBuf};
 
+use knotlab_learner::demonstration::metadata::parse_metadata;
 use knotlab_learner::demonstration::{DemoError, load_demonstration, write_demonstration};
 use knotlab_learner::synthetic::{SyntheticSettings, canonical_demonstration};
 
@@ -254,4 +255,16 @@ fn a_tip_jumping_faster_than_a_hand_moves_is_named_with_its_line() {
         replace_field(&text, 60, 2, &(y + 1.0).to_string()) // y_m
     });
     assert_names(&dir.load_error(), "right.csv", 60, "x_m,y_m,z_m", "m/s since the previous sample");
+}
+
+/// A stitch position given four numbers is refused with its line, field and the counts, not read as its
+/// first three.
+#[test]
+fn a_stitch_position_of_four_numbers_is_refused_with_its_line() {
+    let shipped = include_str!("../../../scenarios/demos/instrument-tie/demo.toml");
+    parse_metadata(shipped, "demo.toml").expect("the shipped demo.toml");
+    let text = shipped.replace("position_m = [0.0, 0.0, 0.95]", "position_m = [0.0, 0.0, 0.95, 1.0]");
+    let line = text.lines().position(|l| l.starts_with("position_m = [0.0, 0.0, 0.95, 1.0]")).unwrap() + 1;
+    let error = parse_metadata(&text, "demo.toml").expect_err("four numbers for a position");
+    assert_names(&error, "demo.toml", line, "stitch.position_m", "4 values where exactly 3 are allowed");
 }

@@ -171,6 +171,21 @@ fn presets_are_checked_applied_and_named() {
     assert!(e.contains("play"), "{e}");
 }
 
+/// A fixed-length array given one value too many is refused with its line, its key and the counts, not
+/// read as its first values with the rest dropped.
+#[test]
+fn an_array_of_the_wrong_length_is_named_with_its_path_and_line() {
+    let text = DEFAULT.replace("stitch_x_m = [-0.01, 0.01]", "stitch_x_m = [-0.01, 0.0, 0.01]");
+    let line = text.lines().position(|l| l.starts_with("stitch_x_m = [-0.01, 0.0, 0.01]")).unwrap() + 1;
+    let e = err(&text);
+    assert!(
+        e.starts_with(&format!(
+            "bad.toml:{line}: randomization.stitch_x_m: 3 values where exactly 2 are allowed"
+        )),
+        "{e}"
+    );
+}
+
 /// A TOML syntax error is reported with the file and the line it is on.
 #[test]
 fn broken_toml_gives_the_line() {

@@ -2,7 +2,11 @@
 //! every file knotlab reads (scenes, rig configs, task patterns, demonstration metadata, the expert's
 //! geometry) reports them; [`parse_checked`] and [`load_checked`] add the range checks and the file's name.
 
+mod strict;
+
 use serde::de::DeserializeOwned;
+
+use strict::Strict;
 
 /// One thing wrong with a TOML text: where and why.
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
@@ -31,10 +35,11 @@ pub fn syntax_problem(text: &str, error: &toml::de::Error) -> TomlProblem {
 }
 
 /// Parses `text` into `T`: syntax first, then the schema (unknown keys, wrong types, missing keys),
-/// naming the key's path and its line. Paths through `toml::Spanned` values read as the plain key.
+/// naming the key's path and its line. Paths through `toml::Spanned` values read as the plain key. A
+/// fixed-length array (`[f64; 3]`) must hold exactly its length, not merely at least it (`strict::Strict`).
 pub fn deserialize<T: DeserializeOwned>(text: &str) -> Result<T, TomlProblem> {
     let deserializer = toml::Deserializer::parse(text).map_err(|e| syntax_problem(text, &e))?;
-    serde_path_to_error::deserialize(deserializer).map_err(|e| {
+    serde_path_to_error::deserialize(Strict(deserializer)).map_err(|e| {
         let key = e
             .path()
             .to_string()
