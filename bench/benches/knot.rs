@@ -1,8 +1,11 @@
-//! Benchmark: classifying a 200-point thread's centreline (target: at most 1 ms).
+//! Benchmark: classifying a 200-point thread's centreline (target: at most 1 ms), and a 10,000-point
+//! one (target: under 1 s).
 //!
 //! `cargo bench -p knotlab-bench --bench knot` times one `classify` call (13 projection directions,
 //! closure, crossings, reduction, determinant, vote) per thread shape with divan, each call on the
-//! next of 32 seeded perturbations of the thread.
+//! next of 32 seeded perturbations of the thread; the long centrelines (a random walk, heavily
+//! knotted, and a helix of 100 turns, an unknot whose pictures along its axis cross thousands of
+//! times) once each.
 
 use std::f64::consts::{PI, TAU};
 use std::hint::black_box;
@@ -110,4 +113,30 @@ fn classify_centreline(bencher: divan::Bencher, shape: &str) {
     bencher
         .with_inputs(knotlab_bench::round_robin(variants.len()))
         .bench_local_values(|i| classify(black_box(&variants[i])));
+}
+
+/// The long centrelines timed.
+const LONG: [&str; 2] = ["random walk", "helix"];
+
+/// One `classify` call on a 10,000-point centreline.
+#[divan::bench(args = LONG, sample_count = 5, sample_size = 1)]
+fn classify_10000_points(bencher: divan::Bencher, shape: &str) {
+    let mut rng = ChaCha8Rng::seed_from_u64(1);
+    let points: Vec<V> = match shape {
+        "random walk" => {
+            let mut walk = vec![V::zeros()];
+            for _ in 1..10_000 {
+                let last = walk[walk.len() - 1];
+                walk.push(last + V::from_fn(|_, _| rng.random_range(-1e-3..1e-3)));
+            }
+            walk
+        }
+        _ => (0..10_000)
+            .map(|k| {
+                let t = TAU * k as f64 / 100.0;
+                V::new(0.01 * t.cos(), 0.01 * t.sin(), 1e-6 * k as f64)
+            })
+            .collect(),
+    };
+    bencher.bench_local(|| classify(black_box(&points)));
 }

@@ -188,6 +188,7 @@ struct VoteReport {
     writhe: i32,
     crossings: usize,
     raw_crossings: usize,
+    searched: bool,
 }
 
 #[derive(Serialize)]
@@ -220,6 +221,8 @@ struct ClassifyReport {
     determinant: Option<u64>,
     writhe: i32,
     crossings: usize,
+    /// Whether the representative direction's picture was searched and reduced.
+    searched: bool,
     agreement: f64,
     directions: Vec<VoteReport>,
     span: Option<SpanReport>,
@@ -254,6 +257,7 @@ fn report(file: &Path, site: Option<(TissueSurface, Vector3<f64>)>) -> anyhow::R
         determinant: c.determinant,
         writhe: c.writhe,
         crossings: c.crossings,
+        searched: c.votes[c.representative].searched,
         agreement: c.agreement,
         directions: c
             .votes
@@ -265,6 +269,7 @@ fn report(file: &Path, site: Option<(TissueSurface, Vector3<f64>)>) -> anyhow::R
                 writhe: v.writhe,
                 crossings: v.crossings,
                 raw_crossings: v.raw_crossings,
+                searched: v.searched,
             })
             .collect(),
         span: c.span.as_ref().map(|s| SpanReport {
@@ -289,15 +294,27 @@ fn print(r: &ClassifyReport, json: bool, out: &mut Output) -> anyhow::Result<()>
     }
     let det = r.determinant.map_or_else(|| "too large".to_owned(), |d| d.to_string());
     let agree = r.directions.iter().filter(|v| v.knot == r.knot).count();
-    outln!(
-        out,
-        "{}: {} ({} crossings after reduction, determinant {det}, writhe {:+}); {agree} of {} directions agree",
-        r.file,
-        r.knot,
-        r.crossings,
-        r.writhe,
-        r.directions.len()
-    );
+    if !r.searched {
+        outln!(
+            out,
+            "{}: {} (too tangled to reduce: over {} crossings, or over {} pairs of segments to look at, in a picture); {agree} of {} directions agree",
+            r.file,
+            r.knot,
+            knotlab_sim::knot::crossings::MAX_CROSSINGS,
+            knotlab_sim::knot::crossings::MAX_PAIR_TESTS,
+            r.directions.len()
+        );
+    } else {
+        outln!(
+            out,
+            "{}: {} ({} crossings after reduction, determinant {det}, writhe {:+}); {agree} of {} directions agree",
+            r.file,
+            r.knot,
+            r.crossings,
+            r.writhe,
+            r.directions.len()
+        );
+    }
     match &r.span {
         Some(s) => {
             let [x, y, z] = s.centre_m;
@@ -310,7 +327,8 @@ fn print(r: &ClassifyReport, json: bool, out: &mut Output) -> anyhow::Result<()>
                 s.radius_m
             );
         }
-        None => outln!(out, "{} points, no knot", r.points),
+        None if r.knot == KnotType::Unknot => outln!(out, "{} points, no knot", r.points),
+        None => outln!(out, "{} points, the knot not located", r.points),
     }
     if let Some(p) = &r.placement {
         outln!(

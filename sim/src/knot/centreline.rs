@@ -7,11 +7,18 @@ use super::error::KnotError;
 /// Fewest points a centreline may have: three segments are the least that can cross themselves.
 pub const MIN_POINTS: usize = 4;
 
-/// Checks that a centreline can be classified: at least [`MIN_POINTS`] points, all finite, no two
-/// consecutive points equal.
+/// Most points a centreline may have: a simulated thread has a few hundred, a measured one a few
+/// thousand; a million classify in seconds and a few hundred megabytes.
+pub const MAX_POINTS: usize = 1_000_000;
+
+/// Checks that a centreline can be classified: [`MIN_POINTS`] to [`MAX_POINTS`] points, all finite,
+/// no two consecutive points equal.
 pub fn validate(points: &[Vector3<f64>]) -> Result<(), KnotError> {
     if points.len() < MIN_POINTS {
         return Err(KnotError::TooFewPoints { count: points.len() });
+    }
+    if points.len() > MAX_POINTS {
+        return Err(KnotError::TooManyPoints { count: points.len(), max: MAX_POINTS });
     }
     for (index, p) in points.iter().enumerate() {
         for (axis, value) in ['x', 'y', 'z'].into_iter().zip(p.iter().copied()) {

@@ -27,11 +27,11 @@ use serde::{Deserialize, Serialize};
 
 use super::centreline::{KnotRegion, arc_lengths_m, validate};
 use super::closure::ClosedPicture;
-use super::crossings::{Crossing, find_crossings};
+use super::crossings::{TooTangled, find_crossings};
 use super::error::KnotError;
 use super::gauss_code::GaussCode;
 use super::invariants::determinant;
-use super::projection::{DIRECTIONS, directions};
+use super::projection::{Projection, directions};
 use super::reduce::reduce;
 use super::tightness::KnotSpan;
 
@@ -114,8 +114,13 @@ impl std::fmt::Display for KnotType {
 pub struct DirectionVote {
     /// The direction, towards the viewer (unit).
     pub direction: [f64; 3],
-    /// Crossings of the closed picture before reduction.
+    /// Crossings of the closed picture before reduction (those found before the search stopped,
+    /// when it was too tangled to search).
     pub raw_crossings: usize,
+    /// Whether the picture was searched and reduced; `false` when it had more crossings than
+    /// [`MAX_CROSSINGS`](super::crossings::MAX_CROSSINGS) or more pairs to look at than
+    /// [`MAX_PAIR_TESTS`](super::crossings::MAX_PAIR_TESTS): it then votes `unknown`.
+    pub searched: bool,
     /// Crossings left after R1/R2/nugatory reduction.
     pub crossings: usize,
     /// |Delta(-1)| of the diagram (`None` if too large to compute exactly).
@@ -163,32 +168,14 @@ fn scaled_to_unit(points: &[Vector3<f64>]) -> Vec<Vector3<f64>> {
 }
 
 /// Classifies a thread's centreline (needle end first): closes it far from the knot and votes
-/// across [`DIRECTIONS`] projections. The curve's scale does not matter (it is classified scaled
+/// across [`DIRECTIONS`](super::projection::DIRECTIONS) projections. The curve's scale does not matter (it is classified scaled
 /// by a power of two to unit size); the span is measured on the points as given.
 pub fn classify(points: &[Vector3<f64>]) -> Result<Classification, KnotError> {
     validate(points)?;
     let (scaled, points) = (scaled_to_unit(points), points);
     let region = KnotRegion::of(&scaled);
-    let mut votes = Vec::with_capacity(DIRECTIONS);
-    let mut kept: Vec<(Vec<Crossing>, GaussCode)> = Vec::with_capacity(DIRECTIONS);
-    for view in directions() {
-        let picture = ClosedPicture::new(&scaled, &region, &view);
-        let crossings = find_crossings(&picture);
-        let mut code = GaussCode::from_crossings(&crossings);
-        reduce(&mut code);
-        let det = determinant(&code);
-        let writhe = code.writhe();
-        let d = view.direction;
-        votes.push(DirectionVote {
-            direction: [d.x, d.y, d.z],
-            raw_crossings: crossings.len(),
-            crossings: code.crossings(),
-            determinant: det,
-            writhe,
-            knot: KnotType::from_invariants(code.crossings(), det, writhe),
-        });
-        kept.push((crossings, code));
-    }
+    let picture = |view: &Projection| ClosedPicture::new(&scaled, &region, view);
+    let votes: Vec<DirectionVote> = directions().iter().map(|view| vote(view, &picture(view))).collect();
     // The vote: most directions; a tie goes to the type listed first in KnotType::ALL.
     let tally = |k: KnotType| votes.iter().filter(|v| v.knot == k).count();
     let knot = KnotType::ALL
@@ -200,11 +187,15 @@ pub fn classify(points: &[Vector3<f64>]) -> Result<Classification, KnotError> {
         .min_by_key(|&i| (votes[i].crossings, votes[i].raw_crossings, i))
         .unwrap_or(0);
     let rep = &votes[representative];
-    let span = if knot == KnotType::Unknot {
-        None
-    } else {
-        let (crossings, code) = &kept[representative];
-        KnotSpan::from_crossings(points, &arc_lengths_m(points), crossings, &code.crossing_ids())
+    // The representative's diagram again (one direction's work; keeping all of them would hold
+    // every direction's crossings at once).
+    let span = match (knot, find_crossings(&picture(&directions()[representative]))) {
+        (KnotType::Unknot, _) | (_, Err(_)) => None,
+        (_, Ok(crossings)) => {
+            let mut code = GaussCode::from_crossings(&crossings);
+            reduce(&mut code);
+            KnotSpan::from_crossings(points, &arc_lengths_m(points), &crossings, &code.crossing_ids())
+        }
     };
     Ok(Classification {
         knot,
@@ -216,6 +207,39 @@ pub fn classify(points: &[Vector3<f64>]) -> Result<Classification, KnotError> {
         span,
         votes,
     })
+}
+
+/// One direction's vote: its picture's crossings, reduced, and the rules; a picture too tangled to
+/// search votes `unknown` with the crossings found before the search stopped.
+fn vote(view: &Projection, picture: &ClosedPicture) -> DirectionVote {
+    let d = view.direction;
+    let direction = [d.x, d.y, d.z];
+    match find_crossings(picture) {
+        Err(TooTangled { crossings_found }) => DirectionVote {
+            direction,
+            raw_crossings: crossings_found,
+            searched: false,
+            crossings: crossings_found,
+            determinant: None,
+            writhe: 0,
+            knot: KnotType::Unknown,
+        },
+        Ok(crossings) => {
+            let mut code = GaussCode::from_crossings(&crossings);
+            reduce(&mut code);
+            let determinant = determinant(&code);
+            let writhe = code.writhe();
+            DirectionVote {
+                direction,
+                raw_crossings: crossings.len(),
+                searched: true,
+                crossings: code.crossings(),
+                determinant,
+                writhe,
+                knot: KnotType::from_invariants(code.crossings(), determinant, writhe),
+            }
+        }
+    }
 }
 
 #[cfg(test)]

@@ -7,7 +7,7 @@ use std::path::Path;
 use nalgebra::Vector3;
 use thiserror::Error;
 
-use super::centreline::MIN_POINTS;
+use super::centreline::{MAX_POINTS, MIN_POINTS};
 
 /// What is wrong with one line (or, for too few points, with the file as a whole at its last line).
 #[derive(Debug, Clone, PartialEq, Error)]
@@ -46,6 +46,12 @@ pub enum LineProblem {
     Unreadable {
         /// What the reader said.
         reason: String,
+    },
+    /// More points than a centreline may have.
+    #[error("point {count}: a centreline may have at most {MAX_POINTS} points")]
+    TooManyPoints {
+        /// The point this line would add.
+        count: usize,
     },
     /// The file ends before enough points.
     #[error("end of file after only {count} point(s); a centreline needs at least {MIN_POINTS}")]
@@ -90,6 +96,7 @@ pub fn parse_points(text: &str) -> Result<Vec<Vector3<f64>>, (usize, LineProblem
         .comment(Some(b'#'))
         .from_reader(text.as_bytes());
     let mut record = csv::StringRecord::new();
+    let mut lines = LineCounter::new(text);
     loop {
         match reader.read_record(&mut record) {
             Ok(true) => {}
@@ -102,7 +109,8 @@ pub fn parse_points(text: &str) -> Result<Vec<Vector3<f64>>, (usize, LineProblem
         // The record's own line (the reader's count, and the position it starts at, pass over the blank
         // lines and comments before it): the lines of the text up to the record's end.
         let end = usize::try_from(reader.position().byte()).map_or(text.len(), |b| b.min(text.len()));
-        let line = text.get(..end).unwrap_or(text).trim_end_matches(['\n', '\r']).matches('\n').count() + 1;
+        let line =
+            lines.newlines_before(text.get(..end).unwrap_or(text).trim_end_matches(['\n', '\r']).len()) + 1;
         let fields: Vec<&str> = record.iter().collect();
         // A line of spaces, or a comment after them.
         if fields == [""] || fields.first().is_some_and(|f| f.starts_with('#')) {
@@ -125,6 +133,9 @@ pub fn parse_points(text: &str) -> Result<Vec<Vector3<f64>>, (usize, LineProblem
                 Err(_) => return Err((line, LineProblem::NotANumber { axis, text: (*text).to_owned() })),
             };
         }
+        if points.len() == MAX_POINTS {
+            return Err((line, LineProblem::TooManyPoints { count: MAX_POINTS + 1 }));
+        }
         let p = Vector3::from(xyz);
         if points.last() == Some(&p) {
             return Err((line, LineProblem::Duplicate { previous_line }));
@@ -136,6 +147,31 @@ pub fn parse_points(text: &str) -> Result<Vec<Vector3<f64>>, (usize, LineProblem
         return Err((text.lines().count().max(1), LineProblem::TooFewPoints { count: points.len() }));
     }
     Ok(points)
+}
+
+/// Newlines in a text before a byte offset, counted from the last offset asked (forwards or
+/// backwards), so that asking at each record costs the bytes between records, not the whole text.
+struct LineCounter<'a> {
+    bytes: &'a [u8],
+    at: usize,
+    newlines: usize,
+}
+
+impl<'a> LineCounter<'a> {
+    fn new(text: &'a str) -> Self {
+        Self { bytes: text.as_bytes(), at: 0, newlines: 0 }
+    }
+
+    fn newlines_before(&mut self, offset: usize) -> usize {
+        let count = |from: usize, to: usize| self.bytes[from..to].iter().filter(|&&b| b == b'\n').count();
+        if offset >= self.at {
+            self.newlines += count(self.at, offset);
+        } else {
+            self.newlines -= count(offset, self.at);
+        }
+        self.at = offset;
+        self.newlines
+    }
 }
 
 /// Reads a centreline file.

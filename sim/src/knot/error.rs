@@ -11,6 +11,14 @@ pub enum KnotError {
         /// How many points were given.
         count: usize,
     },
+    /// More points than a centreline may have.
+    #[error("{count} points; a centreline may have at most {max}")]
+    TooManyPoints {
+        /// How many points were given.
+        count: usize,
+        /// The most allowed ([`super::centreline::MAX_POINTS`]).
+        max: usize,
+    },
     /// A coordinate is NaN or infinite.
     #[error("point {index}: {axis} is not finite ({value})")]
     NotFinite {

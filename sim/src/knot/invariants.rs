@@ -3,9 +3,15 @@
 
 use super::gauss_code::GaussCode;
 
-/// The knot determinant |Delta(-1)| of a (closed, one-component) Gauss code; `None` if the
-/// elimination would overflow 128-bit integers (far beyond any thread we classify) or the code is
-/// malformed. The empty code (no crossings) has determinant 1.
+/// Most crossings a reduced code may keep for its determinant to be computed: the elimination is
+/// cubic in them and its matrix square, and past a hundred or so crossings its integers overflow
+/// 128 bits anyway. A knot the rules name has at most 8.
+pub const MAX_DETERMINANT_CROSSINGS: usize = 300;
+
+/// The knot determinant |Delta(-1)| of a (closed, one-component) Gauss code; `None` if the code
+/// keeps more than [`MAX_DETERMINANT_CROSSINGS`] crossings, the elimination would overflow 128-bit
+/// integers (far beyond any thread we classify) or the code is malformed. The empty code (no
+/// crossings) has determinant 1.
 ///
 /// Rows are crossings, columns arcs (an arc runs from one under-passage to the next): the over arc
 /// gets 2, the incoming and outgoing under arcs -1 each; one row and one column are deleted.
@@ -13,6 +19,9 @@ pub fn determinant(code: &GaussCode) -> Option<u64> {
     let n = code.crossings();
     if n <= 1 {
         return Some(1);
+    }
+    if n > MAX_DETERMINANT_CROSSINGS {
+        return None;
     }
     // Dense crossing numbers, and the arc each passage lies on.
     let mut dense = vec![usize::MAX; code.signs.len()];

@@ -471,3 +471,41 @@ fn verdicts_from_topology_and_tightness() {
     let loose = classify(&kinked_circle(200)).expect("valid");
     assert_eq!(judge(&loose, &[KnotType::Trefoil], &site, &limits), Verdict::Failure(FailureMode::NoKnot));
 }
+
+/// Work and memory stay bounded on any centreline (a 100,000-point helix asked for 10 GB, 10,000
+/// random-walk points did not finish in two minutes): a 10,000-point random walk is classified with
+/// every picture searched; a coil whose pictures along its axis hold more crossings than
+/// `MAX_CROSSINGS` votes `unknown` there, unsearched, instead of growing without bound; more points
+/// than `MAX_POINTS` are refused before anything is built.
+#[test]
+fn tangled_and_huge_centrelines_take_bounded_work() {
+    use knotlab_sim::knot::centreline::MAX_POINTS;
+    use knotlab_sim::knot::crossings::MAX_CROSSINGS;
+    let mut rng = ChaCha8Rng::seed_from_u64(11);
+    let mut walk = vec![V::zeros()];
+    for _ in 1..10_000 {
+        let last = walk[walk.len() - 1];
+        walk.push(last + V::from_fn(|_, _| rng.random_range(-1e-3..1e-3)));
+    }
+    let c = classify(&walk).expect("a walk classifies");
+    assert!(c.votes.iter().all(|v| v.searched), "{:?}", c.votes);
+    assert!(c.votes.iter().map(|v| v.raw_crossings).sum::<usize>() > 10_000, "the walk crosses itself");
+    // 600 turns of 10 points, the radius wobbling so that turns cross along the axis: about 360,000
+    // crossings there.
+    let coil: Vec<V> = (0..6000)
+        .map(|k| {
+            let t = TAU * k as f64 / 10.0;
+            let r = 0.01 * (1.0 + 0.2 * (0.37 * k as f64).sin());
+            V::new(r * t.cos(), r * t.sin(), 1e-6 * k as f64)
+        })
+        .collect();
+    let c = classify(&coil).expect("a coil classifies");
+    let unsearched: Vec<&knotlab_sim::knot::DirectionVote> = c.votes.iter().filter(|v| !v.searched).collect();
+    assert!(!unsearched.is_empty(), "{:?}", c.votes);
+    for v in unsearched {
+        assert_eq!((v.knot, v.determinant), (KnotType::Unknown, None));
+        assert!(v.raw_crossings > MAX_CROSSINGS, "{v:?}");
+    }
+    let many = vec![V::zeros(); MAX_POINTS + 1];
+    assert_eq!(classify(&many), Err(KnotError::TooManyPoints { count: MAX_POINTS + 1, max: MAX_POINTS }));
+}
