@@ -36,23 +36,29 @@ pub enum KnowledgeError {
     Invalid {
         /// The file.
         file: String,
-        /// 1-based line (0 when unknown).
+        /// 1-based line.
         line: usize,
         /// The field's path.
         field: String,
         /// What is wrong.
         reason: String,
     },
+    /// The file fits the schema but its values do not make a skill; every problem is listed.
+    #[error("{file}: {}", problems.iter().map(|(k, r)| format!("{k}: {r}")).collect::<Vec<_>>().join("; "))]
+    Inconsistent {
+        /// The file.
+        file: String,
+        /// (field path, reason) for each problem.
+        problems: Vec<(String, String)>,
+    },
 }
 
 /// Writes `kb` as pretty-printed JSON.
 pub fn write_knowledge_base(path: &Path, kb: &KnowledgeBase) -> Result<(), KnowledgeError> {
     let file = path.display().to_string();
-    let text = serde_json::to_string_pretty(kb).map_err(|e| KnowledgeError::Invalid {
+    let text = serde_json::to_string_pretty(kb).map_err(|e| KnowledgeError::Inconsistent {
         file: file.clone(),
-        line: 0,
-        field: "(all)".to_owned(),
-        reason: e.to_string(),
+        problems: vec![("(all)".to_owned(), e.to_string())],
     })?;
     std::fs::write(path, text + "\n").map_err(|error| KnowledgeError::Io {
         file,
@@ -71,23 +77,32 @@ pub fn parse_knowledge_base(text: &str, file: &str) -> Result<KnowledgeBase, Kno
     };
     let value: serde_json::Value =
         serde_json::from_str(text).map_err(|e| invalid(e.line(), "(syntax)", e.to_string()))?;
+    let line_of = |key: &str| {
+        let needle = format!("\"{key}\"");
+        text.find(&needle).map_or(1, |at| knotlab_hw::toml_file::line_of(text, at))
+    };
+    let shown = |v: Option<&serde_json::Value>| v.map_or("missing".to_owned(), |v| v.to_string());
     match value.get("format").and_then(|f| f.as_str()) {
         Some(KB_FORMAT) => {}
-        other => {
+        _ => {
             return Err(invalid(
-                0,
+                line_of("format"),
                 "format",
-                format!("{other:?} is not a knowledge base (expected \"{KB_FORMAT}\")"),
+                format!("{} is not a knowledge base (expected \"{KB_FORMAT}\")", shown(value.get("format"))),
             ));
         }
     }
     match value.get("format_version").and_then(serde_json::Value::as_u64) {
         Some(v) if KB_READABLE_VERSIONS.iter().any(|r| u64::from(*r) == v) => {}
-        other => {
+        _ => {
             return Err(invalid(
-                0,
+                line_of("format_version"),
                 "format_version",
-                format!("{other:?} is not supported (this knotlab reads versions {KB_READABLE_VERSIONS:?})"),
+                format!(
+                    "{} is not supported (this knotlab reads versions {})",
+                    shown(value.get("format_version")),
+                    KB_READABLE_VERSIONS.map(|v| v.to_string()).join(", ")
+                ),
             ));
         }
     }
@@ -101,19 +116,9 @@ pub fn parse_knowledge_base(text: &str, file: &str) -> Result<KnowledgeBase, Kno
         }
         invalid(inner.line(), &field, inner.to_string())
     })?;
-    // The path keys' frames are commanded as they are: each must be a unit quaternion.
-    for (i, ip) in kb.instruments.iter().enumerate() {
-        for (k, key) in ip.path.iter().enumerate() {
-            let Some(q) = key.quaternion_xyzw else { continue };
-            let n = q.iter().map(|x| x * x).sum::<f64>().sqrt();
-            if (n - 1.0).abs() > 1e-6 || n.is_nan() {
-                return Err(invalid(
-                    0,
-                    &format!("instruments[{i}].path[{k}].quaternion_xyzw"),
-                    format!("{q:?} is not a unit quaternion (norm {n})"),
-                ));
-            }
-        }
+    let problems = super::check::problems(&kb);
+    if !problems.is_empty() {
+        return Err(KnowledgeError::Inconsistent { file: file.to_owned(), problems });
     }
     Ok(kb)
 }

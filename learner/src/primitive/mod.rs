@@ -9,9 +9,11 @@
 //! - synchronized ([`SynchronizedPrimitive`]): the mapping from its reference 2D primitive's progress
 //!   to where this instrument is in the reference's plane.
 //!
-//! [`extract()`] builds a [`KnowledgeBase`]; [`knowledge`] writes and reads the JSON file; [`learn()`]
-//! does it all from a demonstration and a pattern.
+//! [`extract()`] builds a [`KnowledgeBase`]; [`knowledge`] writes and reads the JSON file, and
+//! [`check`] says what a file read must hold beyond its schema; [`learn()`] does it all from a
+//! demonstration and a pattern.
 
+pub mod check;
 pub mod extract;
 pub mod knowledge;
 pub mod learn;

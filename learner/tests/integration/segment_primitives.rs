@@ -205,14 +205,15 @@ fn the_knowledge_base_file_round_trips_and_refuses_bad_files() {
     let version = format!("\"format_version\": {KB_FORMAT_VERSION}");
     let e =
         parse_knowledge_base(&text.replacen(&version, "\"format_version\": 9", 1), "kb.json").unwrap_err();
-    assert!(e.to_string().starts_with("kb.json:0: format_version:"), "{e}");
+    let line = text.lines().position(|l| l.contains("\"format_version\"")).unwrap() + 1;
+    assert!(e.to_string().starts_with(&format!("kb.json:{line}: format_version: 9 is not supported")), "{e}");
     // A path key's frame that is no rotation is named, not commanded.
     let mut value = serde_json::to_value(&kb).unwrap();
     value["instruments"][1]["path"][4]["quaternion_xyzw"] = serde_json::json!([0.0, 0.0, 0.0, 0.0]);
     let e = parse_knowledge_base(&serde_json::to_string_pretty(&value).unwrap(), "kb.json").unwrap_err();
     assert!(
         e.to_string().starts_with(
-            "kb.json:0: instruments[1].path[4].quaternion_xyzw: [0.0, 0.0, 0.0, 0.0] is not a unit quaternion"
+            "kb.json: instruments[1].path[4].quaternion_xyzw: [0.0, 0.0, 0.0, 0.0] is not a unit quaternion"
         ),
         "{e}"
     );
@@ -251,4 +252,73 @@ fn the_knowledge_base_file_round_trips_and_refuses_bad_files() {
     let reported: usize = message.split(':').nth(1).unwrap().parse().unwrap();
     assert!(reported >= line && reported <= bad.lines().count(), "{message}");
     assert!(message.contains(": instruments[1].primitives[3].max_force_n: invalid type"), "{message}");
+}
+
+/// A knowledge base that fits the schema but cannot make a skill is refused naming each field, where it
+/// used to run (an empty instrument list exited 0) or loop: a primitive's pose that is no rotation, no
+/// instruments, a dependency on a primitive that does not exist and a pause its primitives' times do
+/// not give, a 2D path spaced 0 m apart, an empty speed profile and one that runs backwards.
+#[test]
+fn a_knowledge_base_that_cannot_make_a_skill_is_refused_naming_each_field() {
+    let (kb, _) = learn(&SyntheticSettings::canonical(24, 100.0));
+    let good = serde_json::to_value(&kb).unwrap();
+    let find = |want: &str| -> (usize, usize) {
+        for (i, ip) in kb.instruments.iter().enumerate() {
+            if let Some(j) = ip.primitives.iter().position(|p| p.type_name() == want) {
+                return (i, j);
+            }
+        }
+        panic!("no {want} primitive");
+    };
+    let refused = |value: &serde_json::Value, field: &str, reason: &str| {
+        let e = parse_knowledge_base(&serde_json::to_string_pretty(value).unwrap(), "kb.json").unwrap_err();
+        let message = e.to_string();
+        assert!(message.starts_with("kb.json: "), "{message}");
+        assert!(message.contains(&format!("{field}: {reason}")), "want '{field}: {reason}' in: {message}");
+    };
+    let (i, j) = find("linear");
+    let mut v = good.clone();
+    v["instruments"][i]["primitives"][j]["start_pose"]["quaternion_xyzw"] =
+        serde_json::json!([0.0, 0.0, 0.5, 0.5]);
+    refused(
+        &v,
+        &format!("instruments[{i}].primitives[{j}].start_pose.quaternion_xyzw"),
+        "[0.0, 0.0, 0.5, 0.5] is not a unit quaternion",
+    );
+    let mut v = good.clone();
+    v["instruments"] = serde_json::json!([]);
+    refused(&v, "instruments", "is empty");
+    let mut v = good.clone();
+    assert!(!kb.dependencies.is_empty(), "the skill has dependencies to break");
+    v["dependencies"][0]["after"] = serde_json::json!("no_such_primitive");
+    refused(&v, "dependencies[0].after", "\"no_such_primitive\" is no primitive of this skill");
+    let mut v = good.clone();
+    v["dependencies"][0]["pause_s"] = serde_json::json!(-5.0);
+    refused(&v, "dependencies[0].pause_s", "-5 s, but the primitives' times give");
+    let (i2, j2) = find("2d");
+    let mut v = good.clone();
+    v["instruments"][i2]["primitives"][j2]["step_m"] = serde_json::json!(0.0);
+    refused(&v, &format!("instruments[{i2}].primitives[{j2}].step_m"), "0 is not within 0.0001 to 0.01 m");
+    let mut v = good.clone();
+    v["instruments"][i]["primitives"][j]["speed_profile"] = serde_json::json!([]);
+    refused(
+        &v,
+        &format!("instruments[{i}].primitives[{j}].speed_profile"),
+        "0 points; 1 to 1000000 are allowed",
+    );
+    let mut v = good.clone();
+    let backwards: Vec<serde_json::Value> =
+        (0..100_000).map(|k| serde_json::json!({"s_m": 1.0 - k as f64 * 1e-5, "speed_mps": 0.01})).collect();
+    v["instruments"][i]["primitives"][j]["speed_profile"] = serde_json::Value::Array(backwards);
+    refused(
+        &v,
+        &format!("instruments[{i}].primitives[{j}].speed_profile[1].s_m"),
+        "0.99999 where finite values not below the one before are allowed",
+    );
+    // The learned file itself has none of these problems.
+    assert!(
+        knotlab_learner::primitive::check::problems(&kb).is_empty(),
+        "{:?}",
+        knotlab_learner::primitive::check::problems(&kb)
+    );
 }
