@@ -164,22 +164,38 @@ pub struct Rect {
     max_m: [f64; 2],
 }
 
-fn parse_box(text: &str) -> Result<Rect, String> {
-    match parse_list(text)?.as_slice() {
-        [x0, y0, x1, y1] => Ok(Rect { min_m: [*x0, *y0], max_m: [*x1, *y1] }),
-        other => Err(format!("expected x0,y0,x1,y1, got {} numbers", other.len())),
+impl Rect {
+    /// Finite corners, the first not beyond the second on either axis.
+    fn problem(&self) -> Option<String> {
+        if !self.min_m.iter().chain(&self.max_m).all(|x| x.is_finite()) {
+            return Some(format!("corners {:?} and {:?} must be finite", self.min_m, self.max_m));
+        }
+        (self.min_m[0] > self.max_m[0] || self.min_m[1] > self.max_m[1]).then(|| {
+            format!(
+                "min_m {:?} lies beyond max_m {:?}: the first corner must be the lower on both axes",
+                self.min_m, self.max_m
+            )
+        })
     }
+}
+
+fn parse_box(text: &str) -> Result<Rect, String> {
+    let rect = match parse_list(text)?.as_slice() {
+        [x0, y0, x1, y1] => Rect { min_m: [*x0, *y0], max_m: [*x1, *y1] },
+        other => return Err(format!("expected x0,y0,x1,y1, got {} numbers", other.len())),
+    };
+    rect.problem().map_or(Ok(rect), Err)
 }
 
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 struct ObstacleFile {
     #[serde(rename = "box", default)]
-    boxes: Vec<Rect>,
+    boxes: Vec<toml::Spanned<Rect>>,
     #[serde(rename = "box3d", default)]
-    boxes_3d: Vec<Box3d>,
+    boxes_3d: Vec<toml::Spanned<Box3d>>,
     #[serde(rename = "capsule", default)]
-    capsules: Vec<Capsule>,
+    capsules: Vec<toml::Spanned<Capsule>>,
 }
 
 /// An oriented box in the world.
@@ -203,19 +219,58 @@ struct Capsule {
 
 impl ObstacleFile {
     fn solids(&self) -> Vec<Solid> {
-        let boxes = self.boxes_3d.iter().map(|b| Solid::Box {
+        let boxes = self.boxes_3d.iter().map(|b| b.get_ref()).map(|b| Solid::Box {
             world_from_box: Isometry3::from_parts(
                 Translation3::from(Vector3::from(b.centre_m)),
                 UnitQuaternion::from_euler_angles(b.rpy_rad[0], b.rpy_rad[1], b.rpy_rad[2]),
             ),
             half_extents_m: Vector3::from(b.half_extents_m),
         });
-        let capsules = self.capsules.iter().map(|c| Solid::Capsule {
+        let capsules = self.capsules.iter().map(|c| c.get_ref()).map(|c| Solid::Capsule {
             a_m: Vector3::from(c.a_m),
             b_m: Vector3::from(c.b_m),
             radius_m: c.radius_m,
         });
         boxes.chain(capsules).collect()
+    }
+
+    /// Every obstacle whose numbers make no solid, as `table[k] (line): reason`: corners not finite
+    /// or the wrong way round, half extents or a radius not finite and positive.
+    fn problems(&self, text: &str) -> Vec<String> {
+        let line = |span: std::ops::Range<usize>| knotlab_hw::toml_file::line_of(text, span.start);
+        let mut problems = Vec::new();
+        for (k, b) in self.boxes.iter().enumerate() {
+            if let Some(p) = b.get_ref().problem() {
+                problems.push(format!("{}: box[{k}]: {p}", line(b.span())));
+            }
+        }
+        for (k, b) in self.boxes_3d.iter().enumerate() {
+            let v = b.get_ref();
+            if !v.half_extents_m.iter().all(|h| h.is_finite() && *h > 0.0) {
+                problems.push(format!(
+                    "{}: box3d[{k}].half_extents_m: {:?} must all be finite and positive",
+                    line(b.span()),
+                    v.half_extents_m
+                ));
+            }
+            if !v.centre_m.iter().chain(&v.rpy_rad).all(|x| x.is_finite()) {
+                problems.push(format!("{}: box3d[{k}]: centre_m and rpy_rad must be finite", line(b.span())));
+            }
+        }
+        for (k, c) in self.capsules.iter().enumerate() {
+            let v = c.get_ref();
+            if !(v.radius_m.is_finite() && v.radius_m > 0.0) {
+                problems.push(format!(
+                    "{}: capsule[{k}].radius_m: {} must be finite and positive",
+                    line(c.span()),
+                    v.radius_m
+                ));
+            }
+            if !v.a_m.iter().chain(&v.b_m).all(|x| x.is_finite()) {
+                problems.push(format!("{}: capsule[{k}]: a_m and b_m must be finite", line(c.span())));
+            }
+        }
+        problems
     }
 }
 
@@ -431,16 +486,13 @@ fn primitive(args: &PrimitiveArgs, out: &mut Output) -> anyhow::Result<ExitCode>
     let site = args.site.map_or_else(Isometry3::identity, |s| s.0);
     if let Some(file) = &args.obstacles_file {
         let parsed = read_obstacles(file)?;
-        boxes.extend(parsed.boxes.iter().copied());
+        boxes.extend(parsed.boxes.iter().map(|b| *b.get_ref()));
         for (k, solid) in parsed.solids().iter().enumerate() {
             block_solid(&mut mask, &plane.moved(&site), &region, solid)
                 .map_err(|e| anyhow::anyhow!("{}: solid {}: {e}", file.display(), k + 1))?;
         }
     }
-    for (k, b) in boxes.iter().enumerate() {
-        if !b.min_m.iter().chain(&b.max_m).all(|x| x.is_finite()) {
-            bail!("obstacle {}: the box corners must be finite", k + 1);
-        }
+    for b in &boxes {
         region.block_box(&mut mask, Vector2::from(b.min_m), Vector2::from(b.max_m));
     }
     let blocked_cells = mask.count_blocked();
@@ -559,8 +611,14 @@ fn read_path(file: &Path) -> anyhow::Result<SpeedPath> {
 }
 
 fn read_obstacles(file: &Path) -> anyhow::Result<ObstacleFile> {
-    let text = std::fs::read_to_string(file).with_context(|| format!("reading {}", file.display()))?;
-    toml::from_str(&text).map_err(|e| anyhow::anyhow!("{}: {e}", file.display()))
+    let text = std::fs::read_to_string(file).with_context(|| format!("{}: cannot read", file.display()))?;
+    let obstacles: ObstacleFile = knotlab_hw::toml_file::deserialize(&text)
+        .map_err(|p| anyhow::anyhow!("{}:{}: {}: {}", file.display(), p.line, p.key, p.reason))?;
+    let problems = obstacles.problems(&text);
+    if !problems.is_empty() {
+        bail!("{}:{}", file.display(), problems.join(&format!("; {}:", file.display())));
+    }
+    Ok(obstacles)
 }
 
 fn write_path(file: &Path, inst: &Instantiation) -> anyhow::Result<()> {

@@ -139,8 +139,27 @@ pub fn run(args: EmulatorArgs, out: &mut Output) -> anyhow::Result<ExitCode> {
         Some(j) => <[f64; 6]>::try_from(j.as_slice())
             .map_err(|_| anyhow::anyhow!("--joints: expected 6 values (axes 1..6, rad), got {}", j.len()))?,
     };
-    if !(args.cycle_ms.is_finite() && args.cycle_ms > 0.0) {
-        anyhow::bail!("--cycle-ms: {} is not a period in milliseconds", args.cycle_ms);
+    for (i, (q, limit)) in initial_joints_rad.iter().zip(&model.limits).enumerate() {
+        if !limit.contains(*q) {
+            anyhow::bail!(
+                "--joints: axis {} = {q} rad is outside the {} arm's limits, {:.4} to {:.4} rad",
+                i + 1,
+                args.arm,
+                limit.lower_rad,
+                limit.upper_rad
+            );
+        }
+    }
+    if !(args.cycle_ms.is_finite() && args.cycle_ms > 0.0 && args.cycle_ms <= 1000.0) {
+        anyhow::bail!("--cycle-ms: {} is not a period of more than 0 and at most 1000 ms", args.cycle_ms);
+    }
+    if !(args.filter_ms.is_finite() && (0.0..=1000.0).contains(&args.filter_ms)) {
+        anyhow::bail!("--filter-ms: {} is not a time constant of 0 to 1000 ms", args.filter_ms);
+    }
+    if let Some(t) = args.idle_timeout_s
+        && !(t.is_finite() && t > 0.0)
+    {
+        anyhow::bail!("--idle-timeout-s: {t} is not a positive, finite number of seconds");
     }
     let layout = match args.layout {
         LayoutArg::H7 => Layout::H7,

@@ -8,7 +8,7 @@ use clap::{Args, Subcommand};
 use nalgebra::{IsometryMatrix3, UnitQuaternion, Vector3};
 use serde::Serialize;
 
-use knotlab_hw::kinematics::{ArmJoints, IkResiduals, TipOrientation, TipTarget, Tool};
+use knotlab_hw::kinematics::{ArmJoints, IkResiduals, JointLimit, TipOrientation, TipTarget, Tool};
 use knotlab_hw::rig::{ArmName, JointKind, Rig};
 
 use super::numbers::{Numbers, parse_list, parse_vector3};
@@ -249,7 +249,27 @@ fn check(common: &Common, out: &mut Output) -> anyhow::Result<ExitCode> {
     Ok(ExitCode::SUCCESS)
 }
 
-fn joints_from(values: &[f64], arm: ArmName, what: &str) -> anyhow::Result<ArmJoints> {
+/// The joints given on the command line, each inside its limit (the arm's axes, then the instrument's
+/// roll, pitch, yaw and jaw).
+fn joints_from(values: &[f64], arm: ArmName, rig: &Rig, what: &str) -> anyhow::Result<ArmJoints> {
+    let model = &rig.arm(arm).model;
+    let mut limits: Vec<(String, JointLimit)> =
+        model.limits.iter().enumerate().map(|(i, l)| (format!("axis {}", i + 1), *l)).collect();
+    if let Tool::Instrument { limits: tool, .. } = &model.tool {
+        limits.extend(
+            [("roll", tool.roll), ("pitch", tool.pitch), ("yaw", tool.yaw), ("jaw", tool.jaw)]
+                .map(|(n, l)| (n.to_owned(), l)),
+        );
+    }
+    for ((name, limit), &value) in limits.iter().zip(values) {
+        if !limit.contains(value) {
+            anyhow::bail!(
+                "{what}: {name} = {value} rad is outside its limits, {:.4} to {:.4} rad",
+                limit.lower_rad,
+                limit.upper_rad
+            );
+        }
+    }
     match (values.len(), arm.carries_instrument()) {
         (6, _) => Ok(ArmJoints::from_arm(std::array::from_fn(|i| values[i]))),
         (10, true) => Ok(ArmJoints::from_array(std::array::from_fn(|i| values[i]))),
@@ -277,7 +297,7 @@ struct FkReport {
 
 fn fk(common: &Common, arm: ArmName, values: &[f64], out: &mut Output) -> anyhow::Result<ExitCode> {
     let rig = load(common)?;
-    let joints = joints_from(values, arm, "--joints")?;
+    let joints = joints_from(values, arm, &rig, "--joints")?;
     let poses = rig.link_poses(arm, &joints);
     let prefix = format!("{arm}_");
     let links = rig
@@ -357,7 +377,7 @@ fn ik(
         );
     }
     let seed = match current {
-        Some(values) => joints_from(values, arm, "--current")?,
+        Some(values) => joints_from(values, arm, &rig, "--current")?,
         None => arm.ready_joints(),
     };
     let orientation = jaw_dir.map_or(TipOrientation::AlongShaft, TipOrientation::JawDirection);

@@ -170,6 +170,8 @@ pub fn run(args: RunArgs, out: &mut Output) -> anyhow::Result<ExitCode> {
     if !args.stitch_rotate.is_finite() {
         anyhow::bail!("--stitch-rotate {}: not a number of degrees", args.stitch_rotate);
     }
+    // The rig config is read before the trial runs: a bad one is reported at once, not after it.
+    let rig_config = args.rig.as_ref().map(|path| load_rig_config(path)).transpose()?;
     let learned = args.source.learned()?;
     let scene_name = args.scene.display().to_string();
     let setup = TrialSetup {
@@ -216,10 +218,9 @@ pub fn run(args: RunArgs, out: &mut Output) -> anyhow::Result<ExitCode> {
         (None, verdict) => Preview { passed: false, reason: format!("knot: {}", verdict.label()) },
     };
     let mut code = ExitCode::SUCCESS;
-    let execution = match &args.rig {
-        None => Execution { status: "simulated", rig: None, message: String::new() },
-        Some(path) => {
-            let config = load_rig_config(path)?;
+    let execution = match (&args.rig, rig_config) {
+        (None, _) | (_, None) => Execution { status: "simulated", rig: None, message: String::new() },
+        (Some(path), Some(config)) => {
             let rig_name = Some(path.display().to_string());
             if real_devices(&config).is_empty() {
                 Execution { status: "simulated", rig: rig_name, message: "no real devices".into() }

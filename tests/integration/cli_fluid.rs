@@ -109,15 +109,19 @@ fn cavity_writes_the_centreline_profiles_at_ghias_stations() {
     assert!(value("u", 0.5) < -0.1, "the vortex turns back along the centre");
 }
 
-/// `fluid cavity` refuses a non-positive `--re`, too small an `--n` and a reference table with a bad number
-/// (naming the file and line), and writes nothing.
+/// `fluid cavity` refuses a non-positive `--re` and one beyond the steady cavity's (1e12 ran 48,000
+/// steps to report a flow that means nothing), too small an `--n` and a reference table with a bad
+/// number (naming the file and line), and writes nothing.
 #[test]
 fn cavity_refuses_bad_flags() {
     let dir = TempDir::new("cavity-bad");
     let out = dir.path("x.csv");
     let (code, _, stderr) = knotlab(&["fluid", "cavity", "--re", "-1", "--n", "32", "--out", &out]);
     assert_eq!(code, 1);
-    assert!(stderr.contains("--re: must be positive"), "{stderr}");
+    assert!(stderr.contains("--re: must be above 0 and at most 10000, got -1"), "{stderr}");
+    let (code, _, stderr) = knotlab(&["fluid", "cavity", "--re", "1e12", "--n", "32", "--out", &out]);
+    assert_eq!(code, 1);
+    assert!(stderr.contains("--re: must be above 0 and at most 10000, got 1000000000000"), "{stderr}");
     let (code, _, stderr) = knotlab(&["fluid", "cavity", "--re", "100", "--n", "2", "--out", &out]);
     assert_eq!(code, 1);
     assert!(stderr.contains("--n:"), "{stderr}");
@@ -203,7 +207,7 @@ fn primitive_reads_a_path_file_and_names_bad_input() {
     let bad_toml = dir.write("bad.toml", "[[box]]\nmin_m = [0.0, 0.0]\nmax = [1.0, 1.0]\n");
     let (code, _, stderr) = knotlab(&["fluid", "primitive", "--obstacles-file", &bad_toml]);
     assert_eq!(code, 1);
-    assert!(stderr.contains("bad.toml") && stderr.contains("line 3"), "{stderr}");
+    assert!(stderr.contains("bad.toml:3: box[0].max: unknown field `max`"), "{stderr}");
     let (code, _, stderr) = knotlab(&["fluid", "primitive", "--obstacle", "0,0,1"]);
     assert_eq!(code, 2);
     assert!(stderr.contains("x0,y0,x1,y1"), "{stderr}");
@@ -230,5 +234,33 @@ fn primitive_avoids_solids_cutting_the_plane() {
         dir.write("bad.toml", "[[capsule]]\na_m = [0.0, 0.0, 0.8]\nb_m = [0.0, 0.0, 0.9]\nradius_m = -1.0\n");
     let (code, _, stderr) = knotlab(&["fluid", "primitive", "--obstacles-file", &bad]);
     assert_eq!(code, 1);
-    assert!(stderr.contains("bad.toml: solid 1") && stderr.contains("radius_m"), "{stderr}");
+    assert!(stderr.contains("bad.toml:1: capsule[0].radius_m: -1 must be finite and positive"), "{stderr}");
+}
+
+/// An obstacle box given the wrong way round (its first corner beyond the second) blocked nothing and
+/// was silently accepted; now it is refused, on the command line naming the flag and in an obstacle
+/// file naming the file, the line and the box, as are a solid's negative half extent and radius.
+#[test]
+fn an_inverted_box_or_a_negative_solid_is_refused() {
+    let dir = TempDir::new("inverted-box");
+    let out = dir.path("path.csv");
+    let base = ["fluid", "primitive", "--path", "double-loop", "--n", "32", "--out", &out];
+    let (code, _, stderr) = knotlab(&[&base[..], &["--obstacle", "0.01,0.01,-0.01,-0.01"]].concat());
+    assert_eq!(code, 2, "{stderr}");
+    assert!(stderr.contains("--obstacle") && stderr.contains("lies beyond max_m"), "{stderr}");
+    let file = dir.write(
+        "obstacles.toml",
+        "[[box]]\nmin_m = [0.0, 0.0]\nmax_m = [0.01, 0.01]\n\n[[box]]\nmin_m = [0.01, 0.0]\nmax_m = [0.0, 0.01]\n\n[[capsule]]\na_m = [0.0, 0.0, 0.0]\nb_m = [0.0, 0.0, 0.1]\nradius_m = -0.01\n",
+    );
+    let (code, _, stderr) = knotlab(&[&base[..], &["--obstacles-file", &file]].concat());
+    assert_eq!(code, 1, "{stderr}");
+    assert!(
+        stderr.contains("obstacles.toml:5: box[1]: min_m [0.01, 0.0] lies beyond max_m [0.0, 0.01]"),
+        "{stderr}"
+    );
+    assert!(
+        stderr.contains("obstacles.toml:9: capsule[0].radius_m: -0.01 must be finite and positive"),
+        "{stderr}"
+    );
+    assert!(!Path::new(&out).exists(), "nothing written on bad input");
 }

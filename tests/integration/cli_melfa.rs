@@ -86,3 +86,17 @@ fn a_remote_address_is_refused_without_allow_remote() {
     assert_eq!(code, 1);
     assert!(stderr.contains("refusing to bind 0.0.0.0:0: not a loopback address"), "{stderr}");
 }
+
+/// The emulator refuses a start pose beyond the arm's limits (it served 99 rad on axis 1) and an idle
+/// time-out that is not a number of seconds (NaN waited for ever), before binding anything.
+#[test]
+fn a_start_beyond_the_limits_or_a_nan_time_out_is_refused() {
+    let (code, _, stderr) =
+        common::knotlab(&["melfa-emulator", "--bind", "127.0.0.1:0", "--joints", "99,0,0,0,0,0"]);
+    assert_eq!(code, 1);
+    assert!(stderr.contains("--joints: axis 1 = 99 rad is outside the left arm's limits"), "{stderr}");
+    let (code, _, stderr) =
+        common::knotlab(&["melfa-emulator", "--bind", "127.0.0.1:0", "--idle-timeout-s", "nan"]);
+    assert_eq!(code, 1);
+    assert!(stderr.contains("--idle-timeout-s: NaN is not a positive, finite number of seconds"), "{stderr}");
+}

@@ -126,8 +126,8 @@ fn rig_ik_reports_typed_errors() {
     assert!(stderr.contains("--jaw-dir"), "{stderr}");
 }
 
-/// `rig fk` and `rig ik` name an unknown arm, a non-numeric joint, the wrong number of joints and a short
-/// vector, usage errors exiting 2.
+/// `rig fk` and `rig ik` name an unknown arm, a non-numeric joint, the wrong number of joints, a joint
+/// beyond its limit (99 rad was put through the kinematics) and a short vector, usage errors exiting 2.
 #[test]
 fn bad_arguments_are_named() {
     let (code, _, stderr) = knotlab(&["rig", "fk", "--arm", "middle", "--joints", "0,0,0,0,0,0"]);
@@ -139,6 +139,12 @@ fn bad_arguments_are_named() {
     let (code, _, stderr) = knotlab(&["rig", "fk", "--arm", "camera", "--joints", "0,0,0,0,0,0,0,0,0,0"]);
     assert_eq!(code, 1);
     assert!(stderr.contains("camera arm takes 6 values"), "{stderr}");
+    let (code, _, stderr) = knotlab(&["rig", "fk", "--arm", "left", "--joints", "99,0,0,0,0,0"]);
+    assert_eq!(code, 1);
+    assert!(stderr.contains("--joints: axis 1 = 99 rad is outside its limits"), "{stderr}");
+    let (code, _, stderr) = knotlab(&["rig", "fk", "--arm", "left", "--joints", "0,0,0,0,0,0,0,0,0,7"]);
+    assert_eq!(code, 1);
+    assert!(stderr.contains("--joints: jaw = 7 rad is outside its limits"), "{stderr}");
     let (code, _, stderr) = knotlab(&["rig", "ik", "--arm", "left", "--trocar", "0,0", "--tip", "0,0,1"]);
     assert_eq!(code, 2);
     assert!(stderr.contains("--trocar") && stderr.contains("expected 3"), "{stderr}");

@@ -80,6 +80,14 @@ fn bad_arguments_are_named() {
     assert!(stderr.contains("with the stitch moved by [0.5, 0.0, 0.0] m"), "{stderr}");
     assert!(stderr.contains("the left arm cannot put its tool through this trocar"), "{stderr}");
     assert_eq!(stderr.matches("trocars.left").count(), 1, "said once: {stderr}");
+    // A rig config that cannot be read is reported before the trial runs (it was reported after it,
+    // the trial's recording already written to --out).
+    let out = std::env::temp_dir().join(format!("knotlab-run-bad-rig-{}", std::process::id()));
+    let (code, _, stderr) =
+        knotlab(&["run", "--rig", "/nonexistent/rig.toml", "--out", out.to_str().unwrap()]);
+    assert_eq!(code, 1);
+    assert!(stderr.contains("/nonexistent/rig.toml: cannot read"), "{stderr}");
+    assert!(!out.exists(), "the trial ran before the rig was read");
 }
 
 /// The canonical demonstration replayed open-loop at its own stitch ties the surgeon's knot the evaluator

@@ -123,7 +123,7 @@ impl RunInfo {
         if info.format != RUN_FORMAT {
             return Err(McError::Results {
                 file,
-                reason: format!("format {:?}: this knotlab reads {RUN_FORMAT:?}", info.format),
+                reason: format!("format \"{}\": this knotlab reads \"{RUN_FORMAT}\"", info.format),
             });
         }
         Ok(Some(info))
@@ -144,13 +144,13 @@ impl RunInfo {
     pub fn difference(&self, other: &RunInfo, with_trials: bool) -> Option<String> {
         let pairs = [
             ("scene", self.scene.clone(), other.scene.clone()),
-            ("preset", format!("{:?}", self.preset), format!("{:?}", other.preset)),
+            ("preset", shown(&self.preset), shown(&other.preset)),
             ("scene_fingerprint", self.scene_fingerprint.clone(), other.scene_fingerprint.clone()),
             ("skill_fingerprint", self.skill_fingerprint.clone(), other.skill_fingerprint.clone()),
             ("seed", self.seed.to_string(), other.seed.to_string()),
             ("trials", self.trials.to_string(), other.trials.to_string()),
             ("methods", self.methods.join(","), other.methods.join(",")),
-            ("until_s", format!("{:?}", self.until_s), format!("{:?}", other.until_s)),
+            ("until_s", shown(&self.until_s), shown(&other.until_s)),
             (
                 "shard",
                 self.shard.map_or("none".to_owned(), |s| s.to_string()),
@@ -163,6 +163,11 @@ impl RunInfo {
             .find(|(_, a, b)| a != b)
             .map(|(field, a, b)| format!("{field}: {a} here, {b} asked"))
     }
+}
+
+/// A value, or `none`, as a person reads it.
+fn shown<T: std::fmt::Display>(value: &Option<T>) -> String {
+    value.as_ref().map_or("none".to_owned(), ToString::to_string)
 }
 
 #[cfg(test)]

@@ -28,6 +28,10 @@ pub const MONITOR_SLOTS: [usize; 3] = [64, 108, 152];
 /// The largest packet (H7).
 pub const MAX_LEN: usize = 196;
 
+/// Bytes a receive buffer holds: the largest UDP datagram, so that an oversized one is measured
+/// whole (and refused by its real size) rather than cut to the buffer.
+pub const MAX_DATAGRAM: usize = 65_536;
+
 /// Why bytes are not an MXT packet.
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
 pub enum PacketError {

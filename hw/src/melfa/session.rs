@@ -22,7 +22,7 @@ use crate::device::{ArmServo, ArmServoState, DeviceError, DeviceId, DeviceKind, 
 use crate::kinematics::JointLimit;
 use crate::rig::ArmName;
 
-use super::codec::MAX_LEN;
+use super::codec::{MAX_DATAGRAM, MAX_LEN};
 use super::packet::{Command, Data, DataType, Layout, Packet};
 use super::{CR750_CYCLE_S, MAX_LOST_REPLIES};
 
@@ -95,7 +95,7 @@ pub struct MelfaArm {
     device: DeviceId,
     socket: UdpSocket,
     tx: [u8; MAX_LEN],
-    rx: [u8; MAX_LEN + 1],
+    rx: Box<[u8]>,
     c_count: u32,
     /// A packet went out and its reply has not been read.
     outstanding: bool,
@@ -133,7 +133,7 @@ impl MelfaArm {
             device,
             socket,
             tx: [0; MAX_LEN],
-            rx: [0; MAX_LEN + 1],
+            rx: vec![0; MAX_DATAGRAM].into_boxed_slice(),
             c_count: 0,
             outstanding: false,
             after_loss: false,

@@ -25,6 +25,24 @@ pub fn line_of(text: &str, offset: usize) -> usize {
     text[..offset.min(text.len())].matches('\n').count() + 1
 }
 
+/// The 1-based line of the header `[key]` of a table, 0 when it has none (the top level, an inline
+/// table).
+fn table_line(text: &str, key: &str) -> usize {
+    text.lines()
+        .position(|l| {
+            let l = l.split('#').next().unwrap_or("").trim();
+            l.strip_prefix('[')
+                .and_then(|l| l.strip_suffix(']'))
+                .is_some_and(|inner| inner.split('.').map(str::trim).eq(key.split('.')))
+        })
+        .map_or(0, |k| k + 1)
+}
+
+/// `file:line`, or `file` alone when the line is not known (0).
+pub fn located(file: &str, line: usize) -> String {
+    if line == 0 { file.to_owned() } else { format!("{file}:{line}") }
+}
+
 /// A TOML syntax error as a problem.
 pub fn syntax_problem(text: &str, error: &toml::de::Error) -> TomlProblem {
     TomlProblem {
@@ -47,7 +65,8 @@ pub fn deserialize<T: DeserializeOwned>(text: &str) -> Result<T, TomlProblem> {
             .replace("$__serde_spanned_private_value.", "");
         let inner = e.into_inner();
         TomlProblem {
-            line: inner.span().map_or(0, |s| line_of(text, s.start)),
+            // A missing key has no text of its own: its table's header is where it belongs.
+            line: inner.span().map_or_else(|| table_line(text, &key), |s| line_of(text, s.start)),
             key: if key == "." { "(top level)".to_owned() } else { key },
             reason: inner.message().to_owned(),
         }
@@ -67,7 +86,7 @@ pub enum TomlFileError {
         error: std::io::Error,
     },
     /// Not valid TOML, a key that does not belong, or a value of the wrong type.
-    #[error("{file}:{line}: {key}: {reason}")]
+    #[error("{}: {key}: {reason}", located(file, *line))]
     Schema {
         /// The file.
         file: String,

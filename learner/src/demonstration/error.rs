@@ -16,7 +16,7 @@ pub enum DemoError {
         error: std::io::Error,
     },
     /// The content is malformed or out of range.
-    #[error("{file}:{line}: {field}: {reason}")]
+    #[error("{}: {field}: {reason}", knotlab_hw::toml_file::located(file, *line))]
     Format {
         /// The file (its path as given, or its name inside the directory for data in memory).
         file: String,

@@ -22,6 +22,10 @@ pub const GHIA_V_X: [f64; 17] = [
     0.0703, 0.0625, 0.0,
 ];
 
+/// Largest Reynolds number the cavity runs at: the largest of Ghia et al.'s table. The flow in the
+/// square cavity stops being steady not far beyond it, and a run to a steady state means nothing there.
+pub const MAX_REYNOLDS: f64 = 10_000.0;
+
 /// How to run the cavity.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct CavityConfig {
@@ -77,8 +81,11 @@ impl CavityConfig {
     }
 
     fn validate(&self) -> Result<(), FluidError> {
-        if !(self.reynolds.is_finite() && self.reynolds > 0.0) {
-            return Err(FluidError::invalid("re", format!("must be positive, got {}", self.reynolds)));
+        if !(self.reynolds > 0.0 && self.reynolds <= MAX_REYNOLDS) {
+            return Err(FluidError::invalid(
+                "re",
+                format!("must be above 0 and at most {MAX_REYNOLDS}, got {}", self.reynolds),
+            ));
         }
         if !(4..=1024).contains(&self.n) {
             return Err(FluidError::invalid("n", format!("must be in 4..=1024, got {}", self.n)));

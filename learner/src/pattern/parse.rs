@@ -35,7 +35,7 @@ pub enum PatternError {
         error: std::io::Error,
     },
     /// The file is malformed.
-    #[error("{file}:{line}: {field}: {reason}")]
+    #[error("{}: {field}: {reason}", knotlab_hw::toml_file::located(file, *line))]
     Invalid {
         /// The file.
         file: String,

@@ -268,3 +268,17 @@ fn a_stitch_position_of_four_numbers_is_refused_with_its_line() {
     let error = parse_metadata(&text, "demo.toml").expect_err("four numbers for a position");
     assert_names(&error, "demo.toml", line, "stitch.position_m", "4 values where exactly 3 are allowed");
 }
+
+/// A missing key is reported at the header of the table it belongs in (it was reported at line 0, as
+/// `demo.toml:0:`), and a missing top-level key at the file's first line.
+#[test]
+fn a_missing_key_is_reported_at_its_tables_header_or_without_a_line() {
+    let shipped = include_str!("../../../scenarios/demos/instrument-tie/demo.toml");
+    let text = shipped.replace("quaternion_xyzw = [0.0, 0.0, 0.0, 1.0]\n", "");
+    let line = text.lines().position(|l| l == "[stitch]").unwrap() + 1;
+    let error = parse_metadata(&text, "demo.toml").expect_err("no stitch orientation");
+    assert_names(&error, "demo.toml", line, "stitch", "missing field `quaternion_xyzw`");
+    let text = shipped.replace("sample_rate_hz = 100.0\n", "");
+    let message = parse_metadata(&text, "demo.toml").expect_err("no sample rate").to_string();
+    assert!(message.starts_with("demo.toml:1: (top level): missing field `sample_rate_hz`"), "{message}");
+}

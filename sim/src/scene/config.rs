@@ -237,6 +237,9 @@ pub struct StartParams {
     pub tail_m: [f64; 3],
 }
 
+/// How far above the tissue's top surface a trocar must be, m.
+pub const MIN_TROCAR_HEIGHT_M: f64 = 0.02;
+
 /// Trocar points for the four arms, world frame, m.
 #[derive(Clone, Copy, Debug, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
@@ -458,6 +461,18 @@ impl SceneConfig {
             [("left", &tr.left), ("right", &tr.right), ("assist", &tr.assist), ("camera", &tr.camera)]
         {
             c.point(&format!("trocars.{name}"), p);
+            // A trocar is a port in the body wall, over the tissue: inside or under the pad no
+            // instrument can reach the wound through it.
+            let lowest_m = ti.centre_m[2] + MIN_TROCAR_HEIGHT_M;
+            if p[2] < lowest_m {
+                c.0.push((
+                    format!("trocars.{name}"),
+                    format!(
+                        "z = {} m is not above the tissue: a trocar must be at least {MIN_TROCAR_HEIGHT_M} m above its top surface (tissue.centre_m z = {} m), so at least {lowest_m} m",
+                        p[2], ti.centre_m[2]
+                    ),
+                ));
+            }
         }
         let sv = &self.servo;
         c.range("servo.time_constant_s", sv.time_constant_s, 0.0, 1.0);

@@ -201,3 +201,14 @@ fn an_unreadable_file_is_named() {
     let e = load_scene(std::path::Path::new("/nonexistent/scene.toml")).unwrap_err().to_string();
     assert!(e.starts_with("/nonexistent/scene.toml: cannot read"), "{e}");
 }
+
+/// A trocar in or under the tissue is refused at load, naming the trocar and the height it must keep
+/// (the trial used to fail deep inside the kinematics with "the target, jaw direction or trocar is not
+/// finite").
+#[test]
+fn a_trocar_inside_the_tissue_is_refused_naming_it() {
+    let text = DEFAULT.replace("left = [-0.08, 0.12, 1.02]", "left = [-0.08, 0.12, 0.95]");
+    let e = err(&text);
+    assert!(e.contains("trocars.left: z = 0.95 m is not above the tissue"), "{e}");
+    assert!(e.contains("at least 0.02 m above its top surface"), "{e}");
+}

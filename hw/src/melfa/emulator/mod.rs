@@ -29,7 +29,7 @@ use nalgebra::UnitQuaternion;
 
 use crate::kinematics::JointLimit;
 
-use super::codec::MAX_LEN;
+use super::codec::{MAX_DATAGRAM, MAX_LEN};
 use super::packet::{Command, Data, DataType, Layout, Monitor, Packet, Pose};
 
 /// Which replies the emulator drops (to test the driver's loss handling).
@@ -191,7 +191,7 @@ impl Emulator {
     /// time-out.
     pub fn run(mut self) -> Result<EmulatorReport, EmulatorError> {
         let mut report = EmulatorReport { final_joints_rad: self.arm.filtered_rad(), ..Default::default() };
-        let mut rx = [0_u8; MAX_LEN + 1];
+        let mut rx = vec![0_u8; MAX_DATAGRAM];
         let mut tx = [0_u8; MAX_LEN];
         let mut peer: Option<SocketAddr> = None;
         let mut last_packet = Instant::now();
