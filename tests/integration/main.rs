@@ -16,4 +16,5 @@ mod cli_rig;
 mod cli_run;
 mod cli_session;
 mod cli_sim;
+mod fuzz;
 mod rerun_recording;

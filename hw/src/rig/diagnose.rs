@@ -22,6 +22,32 @@ fn required(tag: &str) -> (&'static [&'static str], &'static [&'static str]) {
     }
 }
 
+/// Deepest nesting of elements a URDF may have: a robot's deepest element (`robot > link > visual >
+/// geometry > box`) is five down. urdf-rs reads elements by recursion, and a document nested some
+/// thousands deep overflows the stack before it can refuse it.
+pub const MAX_DEPTH: usize = 64;
+
+/// A problem when `text` nests elements deeper than [`MAX_DEPTH`], found without recursion (by
+/// roxmltree, whose parser keeps its own stack); `None` otherwise, also when it is no XML at all
+/// (urdf-rs and [`diagnose`] say why).
+pub fn too_deep(text: &str) -> Option<Problem> {
+    let doc = roxmltree::Document::parse(text).ok()?;
+    let mut depth = vec![0usize; doc.descendants().count() + 1];
+    for node in doc.descendants() {
+        let d = node.parent().map_or(0, |p| depth[p.id().get() as usize] + 1);
+        depth[node.id().get() as usize] = d;
+        if d > MAX_DEPTH {
+            let line = doc.text_pos_at(node.range().start).row;
+            return Some(Problem::new(
+                "document",
+                "depth",
+                format!("elements nested deeper than {MAX_DEPTH} (line {line})"),
+            ));
+        }
+    }
+    None
+}
+
 /// Problems that explain why urdf-rs refused `text`; empty when none is found.
 pub fn diagnose(text: &str) -> Vec<Problem> {
     let doc = match roxmltree::Document::parse(text) {

@@ -105,6 +105,9 @@ impl Rig {
     /// Reads a rig from URDF text; `source` names it in errors.
     pub fn from_urdf_str(text: &str, source: &str) -> Result<Self, RigError> {
         let invalid = |problems| RigError::Invalid { file: source.to_owned(), problems };
+        if let Some(problem) = diagnose::too_deep(text) {
+            return Err(invalid(vec![problem]));
+        }
         let robot = match urdf_rs::read_from_string(text) {
             Ok(robot) => robot,
             Err(e) => {

@@ -111,7 +111,8 @@ pub fn parse_samples(
     }
     let header_record = StringRecord::from(header.clone());
 
-    let mut samples = Vec::with_capacity(expected_samples.min(10_000_000));
+    // Room for the rows the text can hold (one per line), whatever the metadata claims.
+    let mut samples = Vec::with_capacity(expected_samples.min(text.lines().count()));
     let mut record = StringRecord::new();
     let mut line = 1;
     loop {

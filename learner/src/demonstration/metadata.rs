@@ -28,6 +28,9 @@ pub const UNITS: [(&str, &str); 6] = [
     ("frame", "world"),
 ];
 
+/// Most samples one instrument's file may hold (an hour at 2.5 kHz).
+pub const MAX_SAMPLES: usize = 10_000_000;
+
 /// An instrument entry of the metadata: which CSV file holds it and how many samples it has.
 #[derive(Clone, Debug, PartialEq)]
 pub struct InstrumentEntry {
@@ -209,11 +212,11 @@ pub fn parse_metadata(text: &str, file: &str) -> Result<MetadataFile, DemoError>
             ));
         }
         let samples = *entry.samples.get_ref();
-        if samples < 2 {
+        if !(2..=MAX_SAMPLES as i64).contains(&samples) {
             return Err(err(
                 line(entry.samples.span()),
                 &field("samples"),
-                format!("need at least 2, got {samples}"),
+                format!("{samples}: a demonstration has 2 to {MAX_SAMPLES} samples per instrument"),
             ));
         }
         instruments.push(InstrumentEntry { instrument, file: file_name.clone(), samples: samples as usize });
