@@ -585,29 +585,14 @@ fn primitive(args: &PrimitiveArgs, out: &mut Output) -> anyhow::Result<ExitCode>
 
 /// A path file: `x_m,y_m,speed_mps` per line.
 fn read_path(file: &Path) -> anyhow::Result<SpeedPath> {
-    let text = std::fs::read_to_string(file).with_context(|| format!("reading {}", file.display()))?;
-    let (mut points, mut speeds) = (Vec::new(), Vec::new());
-    for (number, line) in text.lines().enumerate() {
-        let line = line.trim();
-        if line.is_empty() || line.starts_with('#') || line.chars().next().is_some_and(char::is_alphabetic) {
-            continue;
+    let text = std::fs::read_to_string(file).with_context(|| format!("{}: cannot read", file.display()))?;
+    knotlab_learner::fluid::path_file::parse_speed_path(&text).map_err(|e| {
+        if e.line == 0 {
+            anyhow::anyhow!("{}: {}", file.display(), e.reason)
+        } else {
+            anyhow::anyhow!("{}:{}: {}", file.display(), e.line, e.reason)
         }
-        let values =
-            parse_list(line).map_err(|e| anyhow::anyhow!("{}:{}: {e}", file.display(), number + 1))?;
-        match values.as_slice() {
-            [x, y, v] => {
-                points.push(Vector2::new(*x, *y));
-                speeds.push(*v);
-            }
-            other => bail!(
-                "{}:{}: expected x_m,y_m,speed_mps, got {} numbers",
-                file.display(),
-                number + 1,
-                other.len()
-            ),
-        }
-    }
-    SpeedPath::new(points, speeds).map_err(|e| anyhow::anyhow!("{}: {e}", file.display()))
+    })
 }
 
 fn read_obstacles(file: &Path) -> anyhow::Result<ObstacleFile> {

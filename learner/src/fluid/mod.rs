@@ -22,6 +22,7 @@ pub mod momentum;
 pub mod params;
 pub mod particle;
 pub mod path;
+pub mod path_file;
 pub mod plane;
 pub mod pressure;
 pub mod raster;

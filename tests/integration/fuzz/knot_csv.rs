@@ -15,7 +15,7 @@ use knotlab_sim::knot::csv::parse_points;
 use super::mutate::{mutated_text, raw_text};
 use super::{Outcome, cases, fuzz, isolated, outcome};
 
-/// The classifier runs on centrelines of at most this many points (its cost grows with their square).
+/// The classifier runs on centrelines of at most this many points (to keep the cases quick).
 const MAX_CLASSIFIED: usize = 2000;
 
 /// A centreline CSV with a header: the (2, q) torus knot of `n` points, 2 mm across, 0.8 m up.
