@@ -262,6 +262,10 @@ fn another_runs_directory_and_an_unknown_preset_are_named() {
         assert_eq!(l["draw"]["play_rad"], 0.0);
         assert_eq!(l["draw"]["calibration_max_rad"], 0.0);
     }
+    // Resumed without the preset: the refusal names both values as a person reads them.
+    let (code, log) = mc_with(&ideal, 2, 1, &[]);
+    assert_eq!(code, 1);
+    assert!(log.contains("preset: ideal here, none asked"), "{log}");
     let endopar = dir("endopar");
     assert_eq!(mc_with(&endopar, 2, 1, &["--preset", "endopar"]).0, 0);
     for l in lines(&endopar) {

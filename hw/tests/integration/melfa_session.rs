@@ -252,14 +252,15 @@ fn a_controller_that_never_answers_is_a_link_down() {
     assert!(matches!(error, DeviceError::LinkDown { lost: 5, .. }), "{error}");
 }
 
-/// The emulator counts a malformed packet, reporting its number and size, and keeps answering the
-/// packets after it.
+/// The emulator counts malformed packets, reporting each one's number and its whole size (a 65,507-byte
+/// datagram was reported as the 197 bytes its buffer held), and keeps answering the packets after them.
 #[test]
 fn the_emulator_ignores_malformed_packets_and_keeps_serving() {
     let (addr, emulator) = spawn_emulator(emulator_config(ARM, Layout::H7, DropPolicy::Never, 0.0));
     let pc = UdpSocket::bind("127.0.0.1:0").unwrap();
     pc.set_read_timeout(Some(Duration::from_secs(2))).unwrap();
     pc.send_to(&[1, 2, 3], addr).unwrap();
+    pc.send_to(&vec![0_u8; 65_507], addr).unwrap();
     let mut buf = [0_u8; MAX_LEN];
     let n =
         Packet::command(Command::Null, DataType::Joint, [DataType::Null; 3], 9).encode(Layout::H7, &mut buf);
@@ -272,12 +273,13 @@ fn the_emulator_ignores_malformed_packets_and_keeps_serving() {
         Packet::command(Command::End, DataType::Null, [DataType::Null; 3], 10).encode(Layout::H7, &mut buf);
     pc.send_to(&buf[..n], addr).unwrap();
     let report = emulator.join().unwrap().unwrap();
-    assert_eq!((report.malformed, report.nulls), (1, 1));
+    assert_eq!((report.malformed, report.nulls), (2, 1));
     assert!(
         report.problems[0].contains("packet 1") && report.problems[0].contains("3 bytes"),
         "{:?}",
         report.problems
     );
+    assert!(report.problems[1].contains("packet is 65507 bytes"), "{:?}", report.problems);
 }
 
 /// A paced emulator counts the 7.11 ms cycles that pass between packets, in its replies and its report.

@@ -88,7 +88,10 @@ pub fn parse_knowledge_base(text: &str, file: &str) -> Result<KnowledgeBase, Kno
             return Err(invalid(
                 line_of("format"),
                 "format",
-                format!("{} is not a knowledge base (expected \"{KB_FORMAT}\")", shown(value.get("format"))),
+                match value.get("format") {
+                    None => format!("missing (a knowledge base has format = \"{KB_FORMAT}\")"),
+                    Some(f) => format!("{f} is not a knowledge base (expected \"{KB_FORMAT}\")"),
+                },
             ));
         }
     }

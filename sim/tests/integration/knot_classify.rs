@@ -475,8 +475,8 @@ fn verdicts_from_topology_and_tightness() {
 /// Work and memory stay bounded on any centreline (a 100,000-point helix asked for 10 GB, 10,000
 /// random-walk points did not finish in two minutes): a 10,000-point random walk is classified with
 /// every picture searched; a coil whose pictures along its axis hold more crossings than
-/// `MAX_CROSSINGS` votes `unknown` there, unsearched, instead of growing without bound; more points
-/// than `MAX_POINTS` are refused before anything is built.
+/// `MAX_CROSSINGS` votes `unknown` there, unsearched, instead of growing without bound, and so does
+/// the 100,000-point helix; more points than `MAX_POINTS` are refused before anything is built.
 #[test]
 fn tangled_and_huge_centrelines_take_bounded_work() {
     use knotlab_sim::knot::centreline::MAX_POINTS;
@@ -506,6 +506,17 @@ fn tangled_and_huge_centrelines_take_bounded_work() {
         assert_eq!((v.knot, v.determinant), (KnotType::Unknown, None));
         assert!(v.raw_crossings > MAX_CROSSINGS, "{v:?}");
     }
+    // The helix that asked for 10 GB: 100,000 points, 1,000 turns, its pictures along the axis
+    // crossing about a million times.
+    let helix: Vec<V> = (0..100_000)
+        .map(|k| {
+            let t = TAU * k as f64 / 100.0;
+            V::new(0.01 * t.cos(), 0.01 * t.sin(), 1e-6 * k as f64)
+        })
+        .collect();
+    let c = classify(&helix).expect("the helix classifies");
+    assert!(c.votes.iter().any(|v| !v.searched), "{:?}", c.votes);
+    assert!(matches!(c.knot, KnotType::Unknot | KnotType::Unknown), "{:?}", c.knot);
     let many = vec![V::zeros(); MAX_POINTS + 1];
     assert_eq!(classify(&many), Err(KnotError::TooManyPoints { count: MAX_POINTS + 1, max: MAX_POINTS }));
 }
