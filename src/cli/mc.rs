@@ -197,8 +197,20 @@ pub fn run(mut args: McArgs, out: &mut Output) -> anyhow::Result<ExitCode> {
     if args.trials == 0 {
         anyhow::bail!("--trials 0: a run needs at least 1 trial (it runs trials 0 to N-1)");
     }
+    if args.trials > knotlab_bench::mc::MAX_TRIALS {
+        anyhow::bail!(
+            "--trials {}: a run has at most {} trials (split a larger study into runs of other seeds)",
+            args.trials,
+            knotlab_bench::mc::MAX_TRIALS
+        );
+    }
     if args.jobs == Some(0) {
         anyhow::bail!("--jobs 0: needs at least 1 thread (leave it out for one per core)");
+    }
+    if let Some(jobs) = args.jobs
+        && jobs > 1024
+    {
+        anyhow::bail!("--jobs {jobs}: at most 1024 threads (leave it out for one per core)");
     }
     if let Some(t) = args.record_trials.iter().find(|t| **t >= args.trials) {
         anyhow::bail!("--record-trials {t}: no such trial in a run of trials 0 to {}", args.trials - 1);

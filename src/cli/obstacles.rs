@@ -74,9 +74,9 @@ pub struct ObstaclesArgs {
     /// cpu or gpu.
     #[arg(long, value_enum, default_value_t = Backend::Cpu)]
     backend: Backend,
-    /// Threads of the CPU backend (default: one per core).
-    #[arg(long)]
-    threads: Option<usize>,
+    /// Threads of the CPU backend, 1 to 1024 (default: one per core).
+    #[arg(long, value_parser = clap::value_parser!(u16).range(1..=1024))]
+    threads: Option<u16>,
     /// Directory for obstacles.csv and obstacles.png (created if missing).
     #[arg(long)]
     out: PathBuf,
@@ -226,9 +226,7 @@ fn run_gpu(grid: &PreparedGrid, threads: Option<usize>, out: &mut Output) -> any
 }
 
 fn obstacles(args: &ObstaclesArgs, out: &mut Output) -> anyhow::Result<()> {
-    if args.threads == Some(0) {
-        anyhow::bail!("--threads: must be at least 1");
-    }
+    let threads = args.threads.map(usize::from);
     let scene = load_scene(&args.scene)?;
     let (plane, default_plane) = plane(args, &scene)?;
     let orientation = match args.jaw_dir {
@@ -241,8 +239,8 @@ fn obstacles(args: &ObstaclesArgs, out: &mut Output) -> anyhow::Result<()> {
     let grid = PreparedGrid::new(&world, &request).context("--arm/--jaw-dir")?;
     let prepare_ms = prepare_start.elapsed().as_secs_f64() * 1e3;
     let mut run = match args.backend {
-        Backend::Cpu => run_cpu(&grid, args.threads, None)?,
-        Backend::Gpu => run_gpu(&grid, args.threads, out)?,
+        Backend::Cpu => run_cpu(&grid, threads, None)?,
+        Backend::Gpu => run_gpu(&grid, threads, out)?,
     };
     run.elapsed_ms += prepare_ms;
     std::fs::create_dir_all(&args.out).with_context(|| format!("creating --out {}", args.out.display()))?;

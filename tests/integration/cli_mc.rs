@@ -278,7 +278,8 @@ fn another_runs_directory_and_an_unknown_preset_are_named() {
 
 /// Guards against a run that measures nothing or silently does less than asked: `--trials 0` (it
 /// reported 0.0 % and exited 0), `--jobs 0` (quietly one thread) and `--record-trials` past the last
-/// trial (quietly none recorded) are refused, naming the flag and the value, before any trial runs.
+/// trial (quietly none recorded) are refused, naming the flag and the value, before any trial runs;
+/// so are more trials than a run may have (1e11 aborted asking for 4 GB) and more threads than 1024.
 #[test]
 fn zero_trials_zero_jobs_and_a_trial_to_record_beyond_the_run_are_refused() {
     let out = dir("refused-counts");
@@ -286,6 +287,8 @@ fn zero_trials_zero_jobs_and_a_trial_to_record_beyond_the_run_are_refused() {
         (0, 1, &[][..], "--trials 0"),
         (2, 0, &[][..], "--jobs 0"),
         (2, 1, &["--record-trials", "5"][..], "--record-trials 5"),
+        (100_000_000_000, 1, &[][..], "--trials 100000000000: a run has at most 100000000"),
+        (2, 5000, &[][..], "--jobs 5000: at most 1024 threads"),
     ] {
         let (code, text) = mc_with(&out, trials, jobs, more);
         assert_eq!(code, 1, "{text}");

@@ -135,6 +135,10 @@ pub struct TrialLine {
     pub error: Option<String>,
 }
 
+/// Most trials one run may have: a week of a hundred cores at about 20 trials a minute each. The
+/// run's list of pending trials is built up front.
+pub const MAX_TRIALS: u64 = 100_000_000;
+
 /// Why the run stopped.
 #[derive(Debug, thiserror::Error)]
 pub enum McError {
@@ -327,6 +331,12 @@ pub fn run_mc_with(
     mut progress: impl FnMut(&TrialLine, usize, usize),
 ) -> Result<McRun, McError> {
     let file = results_path(&options.out).display().to_string();
+    if options.trials == 0 || options.trials > MAX_TRIALS {
+        return Err(McError::Results {
+            file,
+            reason: format!("{} trials: a run has 1 to {MAX_TRIALS}", options.trials),
+        });
+    }
     std::fs::create_dir_all(&options.out)
         .map_err(|e| McError::Results { file: file.clone(), reason: e.to_string() })?;
     let info = options.run_info();
