@@ -5,13 +5,13 @@
 //! test pulls the flaps apart (`knotlab_lab::laid_knot`). Printed per knot, friction of the thread
 //! on itself, spread, closing force and snug: the wound's gap as snugged and after the load (the
 //! evaluator accepts 1.5 mm), the knot after. What no expert's knot can beat in this thread: if a
-//! knot laid by hand does not hold, the expert's will not either. Found (session 41): the square
+//! knot laid by hand does not hold, the expert's will not either. Found: the square
 //! knot 19-25 mm, the surgeon's knot 2.3-17.8 mm, never within 1.5 mm.
 //!
 //! A second table lays the surgeon's knot in nine layouts (6, 8 or 10 mm either side, helix radius
 //! 1.0, 1.2 or 1.5 mm, 4 mm up, snugged at 2 N, friction 0.5 on itself) and runs each with the
-//! scene's solver (1 ms steps, 8 iterations), with 0.25 ms steps and with 32 iterations. Found
-//! (session 42): converged, the knots slip further (median 26 and 19 mm against 16), none within
+//! scene's solver (1 ms steps, 8 iterations), with 0.25 ms steps and with 32 iterations. Found:
+//! converged, the knots slip further (median 26 and 19 mm against 16), none within
 //! 3 mm: the holds the default solver shows now and then are the solver's stiction, not friction.
 //!
 //! `cargo bench -p knotlab-lab --bench laid_knot`

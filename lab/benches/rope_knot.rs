@@ -1,6 +1,6 @@
 //! Benchmark: does the XPBD rope (`knotlab_sim::rope`) hold by friction what the Rapier capsule
 //! chain lets slip? Two ropes, both 0.2 mm in radius, particles 0.3 mm apart, 20 substeps of the
-//! 1 ms step, friction solved on positions: `string` (session 42's: no bending stiffness, lengths by
+//! 1 ms step, friction solved on positions: `string` (no bending stiffness, lengths by
 //! two Gauss-Seidel sweeps) and `stiff` (the default: a suture's bending stiffness, EI 1e-7 N m²,
 //! lengths solved directly). The chain's trials, in each:
 //! - the capstan: a strand wound twice round another (both its ends pinned), snugged at 1 N, then
@@ -17,7 +17,7 @@
 //!   for 1 s), the rope damped at 10/s. The chain leaves the wound 2.3-19.3 mm open (median 16;
 //!   `laid_knot`'s second table); the evaluator allows 1.5 mm.
 //!
-//! Found (session 43): the stiff rope's surgeon's knots hold at friction 0.5 (loose: 8 of 9 within
+//! Found: the stiff rope's surgeon's knots hold at friction 0.5 (loose: 8 of 9 within
 //! 1.5 mm, 0.00-1.31 mm for those that snugged closed; tight: 0.01-0.17 mm), the string's do not (0 of
 //! 9 loose, 2.6-11.4 mm; tight 2.6-7.3 mm); at 0.3 neither holds. The stiff square knot holds within
 //! 0.3 mm at 0.5 (the string's 1.5-4.2 mm). The string holds the capstan better (its wrap hugs a thin
@@ -44,7 +44,7 @@ fn cell(slide: &Slide, seconds: f64) -> String {
     format!("{:.2} mm ({:.2}), {seconds:.1} s", slide.slip_m * 1e3, slide.late_slip_m * 1e3)
 }
 
-/// The rope models compared: session 42's string (no bending stiffness, lengths by two
+/// The rope models compared: the string (no bending stiffness, lengths by two
 /// Gauss-Seidel sweeps) and the default (a suture's bending stiffness, lengths solved directly).
 fn models() -> [(&'static str, RopeParams); 2] {
     let string = RopeParams {

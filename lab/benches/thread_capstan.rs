@@ -6,12 +6,12 @@
 //! beyond. Printed per thread model, friction and tension ratio: how far B slid in the 2 s, "to its
 //! end" where it slid until its held end jammed against A, "off" where it slid off A altogether.
 //!
-//! Found with it (issue 6): with the twist between segments free (the thread until now) B slides off
+//! Found with it: with the twist between segments free (`twist_free`, the default) B slides off
 //! at a ratio of 2 whatever the friction, even at 1.0 (bound 290,000): a capsule 0.4 mm round spins at
 //! the slightest torque, so strands roll over each other instead of sliding. Locking the twist holds
 //! once every end is held as jaws hold it (no strand can spin as a whole): ratio 1.5 at friction
 //! 0.15, 2 at 0.3, 3 at 1.0 (a few mm of settling), as the equation says, if short of its bound.
-//! (Until session 29 the strands were laid twisted between segments, and held 2 at 0.15.)
+//! (Laid twisted between segments, the strands hold 2 at 0.15.)
 //!
 //! A second table lays the strand over a fixed 5 mm ball instead (half a turn, bound exp(friction *
 //! pi)): at friction 0.15 and 0.3 it holds 0.8 of the bound and lets go at 0.95, at 1.0 it lets go

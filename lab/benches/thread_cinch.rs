@@ -1,5 +1,5 @@
 //! Benchmark: how much tension the simulated thread's contacts hold before one strand passes through
-//! another, the failure that undid the scripted expert's throws when it pulled them tight (issue 6).
+//! another, the failure that undoes the scripted expert's throws in the chain when it pulls them tight.
 //! A strand is wound twice round another (both ends held), as in a surgeon's throw, and its two ends
 //! are pulled apart with a tension rising from 0 to 10 N over 5 s (`knotlab_lab::cinch`). Printed per
 //! setting (the chain scene's, scenarios/chain.toml, then one change at a time): the tension at the first pass the
@@ -9,9 +9,9 @@
 //! milliseconds per step on one core. A second table pulls the same strand to 2 N and prints how tight
 //! its turns lie, by segment length: at the shipped 3.1 mm the turns' joints lie 1.77 mm from the
 //! other strand's axis (touching: 0.8 mm), at 1.56 mm 1.08 mm, at 0.78 mm 0.83 mm, at 4 and 18 times
-//! the cost of a step. With the twist between segments locked (the scene since session 26) the shipped
-//! scene's wrap loses a turn at 6.0 N (6.4 N laid twisted between segments, until session 29; 5.9 N
-//! with the twist free).
+//! the cost of a step. With the twist between segments locked (as scenarios/chain.toml has it) the chain
+//! scene's wrap loses a turn at 6.0 N (6.4 N laid twisted between segments; 5.9 N with the twist
+//! free).
 //!
 //! `cargo bench -p knotlab-lab --bench thread_cinch`
 

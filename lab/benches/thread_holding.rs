@@ -5,11 +5,11 @@
 //! (`knotlab_lab::cinch::run_holding`). With both let go this is the knot as the instruments leave
 //! it when the holding test loads it (0.3 N a flap). Printed per thread model, friction and loop
 //! tension, for each choice of free ends let go: how far the loaded end moved in the 2 s (in the last
-//! second), or "off" where the turns came undone. Found (issue 6): with its free ends held the throw
+//! second), or "off" where the turns came undone. Found: with its free ends held the throw
 //! holds (a few mm of settling); with both let go it slides off under 0.05 N at every friction (0.15
 //! to 1.0) and segment length (3.1, 1.56, 0.78 mm). A wrap whose one end is slack cannot hold the
 //! other (the capstan equation), so a first throw let go holds nothing: the second throw must. Laid
-//! untwisted (session 29) it also holds with only A's free end let go (B's held, 0.2-0.8 mm, 4.6 mm
+//! untwisted it also holds with only A's free end let go (B's held, 0.2-0.8 mm, 4.6 mm
 //! at 0.78 mm segments and friction 1.0); with B's let go it comes off, as with both.
 //!
 //! `cargo bench -p knotlab-lab --bench thread_holding`

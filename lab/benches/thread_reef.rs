@@ -6,7 +6,7 @@
 //! 5, 6 and 7 mm apart). Printed per thread model, friction of the thread on itself and load, for
 //! each of the three: how far the loaded end moved in the 2 s (in the last second), or "off" where
 //! the knot came apart. A first throw alone cannot hold at any friction (`thread_holding`); whether
-//! two throws hold decides what the scripted expert ties. Found (issue 6, session 29): with its free
+//! two throws hold decides what the scripted expert ties. Found: with its free
 //! ends held the knot holds at every friction; let go, it comes apart at 0.15 (the scene's thread) and
 //! holds at 0.5, 0.7 and 1.0 on itself (under 0.3 N it settles 0.5-25 mm, then stays), in some layouts
 //! only at 0.3 and 0.4; 1.56 mm segments need 1.0.
@@ -14,7 +14,7 @@
 //! A second table lays the same knots flat and capsized (after the snug, red's ends pulled apart for 1
 //! s: red drawn straight, blue's collar wound round it, as every knot the expert ties lies), loaded
 //! at 0.3 N with the free ends let go: how much further a capsized knot slides before it holds.
-//! Found (session 41): further in six of the nine cells (by 3-15 mm, or it came apart), about as far
+//! Found: further in six of the nine cells (by 3-15 mm, or it came apart), about as far
 //! in one, less in two; at 0.5, 0.5/4.1/13.7 mm flat against 7.5/19.3/11.4 mm capsized. Flat, the
 //! knots settle 0.5-25 mm before they hold.
 //!

@@ -6,8 +6,7 @@
 //! free ends are pulled out, each alongside its own standing part (the tail's over its flap, the long
 //! end's over the other), until the knot is snug; then they are let go and the holding test pulls
 //! the wound open ([`knotlab_sim::evaluate::hold`]). If such a knot cannot keep the wound within the
-//! evaluator's gap, no expert's can (session 41: none has; `cargo bench -p knotlab-bench --bench
-//! laid_knot`).
+//! evaluator's gap, no expert's can (`cargo bench -p knotlab-lab --bench laid_knot`).
 
 use knotlab_hw::rig::Rig;
 use nalgebra::{Isometry3, Point3, Vector3};

@@ -80,8 +80,8 @@ pub fn jaw_line_m(world_from_tip: &IsometryMatrix3<f64>, jaw_offset_m: f64) -> (
 /// other across the plane through their line square to it, as wide either side of it as they are
 /// round. Thread held between them lies with its whole width inside that band; thread near their
 /// line but further along the hinge lies beside the jaws, not between them: a coil wound round them
-/// (on the rope scene's seed 3 the left took its own coil lying in the notch beside its opening
-/// jaws, 1.32 mm from their line and all of it along the hinge: session 46).
+/// (on the rope scene's seed 3 a coil of the left's own lies in the notch beside its opening jaws,
+/// 1.32 mm from their line and all of it along the hinge).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct JawFaces {
     /// A point on the jaws' line (world, m).

@@ -145,7 +145,7 @@ impl Stitch {
         // `follow` hands it on to the neighbour; where the thread bends back at that end (a knot
         // drawn down onto the point), it stops there. (Free along the axis, the point slid on along
         // the straight line past the segment's end into empty space, the thread no longer through
-        // it: the wound opened 29 mm under the holding test with a square knot on it, session 41.)
+        // it: the wound opened 29 mm under the holding test with a square knot on it.)
         let friction_n = 0.5 * slide_friction_n;
         let reach_m = 0.5 * thread.segment_length_m + SLIDE_PAST_END_M;
         let joint = GenericJointBuilder::new(JointAxesMask::LIN_Y | JointAxesMask::LIN_Z)

@@ -18,7 +18,7 @@
 //! iterations; the thread's mass does not matter. Default: 80 segments of 3.1 mm, 8 x 4: 4.1 % stretch
 //! under 2 N (the expert's pulls peak at 0.2-0.9 N: 0.4-1.8 %). At 40 segments (1.0 %) a wrap round
 //! the jaws was a triangle and the scripted expert's knot held in 1 of 50 runs; at 80, in 19 of 50
-//! (session 21, with the wound starting at its rest gap), at about 1.7 times the cost of a trial.
+//! (with the wound starting at its rest gap), at about 1.7 times the cost of a trial.
 
 use rapier3d::prelude::*;
 
@@ -61,7 +61,7 @@ pub struct ThreadParams {
     #[serde(default = "twist_free")]
     pub twist_free: bool,
     /// How the suture is simulated: Rapier's capsule chain (the default) or the XPBD rope
-    /// ([`crate::rope`], `model = "rope"`), whose knots hold (session 43).
+    /// ([`crate::rope`], `model = "rope"`), whose knots hold.
     #[serde(default)]
     pub model: ThreadModel,
     /// The rope's axial stiffness EA, N ([`crate::rope::RopeParams::axial_stiffness_n`]); left out,

@@ -39,8 +39,8 @@ fn side(a: &Capsule, b: &Capsule, watch_m: f64) -> Option<Side> {
     }
     // Where the infinite lines come closest: inside both segments, or the pair is merely going round
     // an end. A strand going round a chain's bent joint flips the sign of its separation from both
-    // segments' lines while it stays clear of the chain (session 21: nearly every flip after the
-    // knot's release, the segments' axes 0.3-0.8 mm apart throughout); so does a pair whose closest
+    // segments' lines while it stays clear of the chain (nearly every flip after a knot's release,
+    // the segments' axes 0.3-0.8 mm apart throughout); so does a pair whose closest
     // points move from inside onto an end. A strand passing through the chain at a joint comes closer
     // than a quarter of the touching distance to one of its segments.
     let r = a.a_m - b.a_m;
@@ -160,10 +160,10 @@ mod tests {
         assert_eq!(monitor.events, 0);
     }
 
-    /// Regression: a strand going round the end of a segment (a chain's bent joint), 0.5 mm beyond
-    /// it and never nearer its axis than that, flips the sign of its separation from the segment's
-    /// line; within two radii of the end that counted as passing through (session 21: 9-23 false
-    /// events per knot as the instruments let go).
+    /// Guards against false events: a strand going round the end of a segment (a chain's bent
+    /// joint), 0.5 mm beyond it and never nearer its axis than that, flips the sign of its
+    /// separation from the segment's line without passing through (counted as passing within two
+    /// radii of the end, such flips make 9-23 false events per knot as the instruments let go).
     #[test]
     fn a_strand_going_round_an_end_clear_of_it_is_not_an_event() {
         let mut monitor = TunnellingMonitor::new(0.002);

@@ -1,4 +1,4 @@
-//! Why the expert's knots slip (issue 6, session 41): a square knot capsized, one strand drawn
+//! Why the expert's knots slip: a square knot capsized, one strand drawn
 //! straight with the other's collar wound round it, slides further under the load that the same knot
 //! laid flat holds (`square_knot_holds_its_free_ends_let_go.rs`: friction 0.5 on itself, 0.3 N, free
 //! ends let go), and its knot type never tells. Here, features 6 mm apart: 19.3 mm against 4.1 mm,
@@ -29,6 +29,6 @@ fn a_square_knot_drawn_straight_through_one_strand_slides_under_the_load_the_fla
     assert_eq!(capsized.knot_snug, KnotType::Square, "{capsized:?}");
     // Flat, it holds; capsized, blue slides along red.
     assert!(flat.slip_m < 0.02 && flat.late_slip_m.abs() < 0.0005, "{flat:?}");
-    // Measured (session 41): 4.1 mm flat, 19.3 mm capsized, both then still.
+    // Measured: 4.1 mm flat, 19.3 mm capsized, both then still.
     assert!(capsized.slip_m > flat.slip_m + 0.01, "flat: {flat:?}\ncapsized: {capsized:?}");
 }

@@ -1,4 +1,4 @@
-//! Why the expert needs its second throw (issue 6, session 44): a surgeon's double throw alone, laid
+//! Why the expert needs its second throw: a surgeon's double throw alone, laid
 //! tight over the stitch in the stiff rope at friction 0.5 and snugged at 2 N (as the full surgeon's
 //! knot of `string_surgeons_knot_gave_the_wound_its_gap_back.rs`, which then holds the wound within
 //! 0.2 mm), comes undone under the holding test's 0.3 N a flap once its ends are let go: the wound

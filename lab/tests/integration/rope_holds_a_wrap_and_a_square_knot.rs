@@ -1,6 +1,6 @@
 //! The XPBD rope (`knotlab_sim::rope`) holds by friction what the capsule chain lets slip: a string
 //! (no bending stiffness) wound twice round another holds a tension ratio of 30 at friction 1.0
-//! (the chain slides 10 mm at 5 and to its end at 10: `cargo bench -p knotlab-bench --bench
+//! (the chain slides 10 mm at 5 and to its end at 10: `cargo bench -p knotlab-lab --bench
 //! thread_capstan`), the default stiff rope a ratio of 10, and both lose it all without friction; a
 //! square knot loaded by its standing parts with its free ends let go holds within 2 mm (the
 //! chain's: 5-25 mm or apart, `thread_reef`); at friction 0.5 a string's creeps unless the contacts
@@ -11,8 +11,8 @@ use knotlab_sim::knot::KnotType;
 use knotlab_sim::rope::RopeParams;
 
 /// The rope without bending stiffness (the capstan equation's string), its lengths solved by two
-/// Gauss-Seidel sweeps as session 42 had it (solved directly, a string's wrap slides either way at
-/// a ratio of 3: `docs/knot-tying-notes.md`, session 43).
+/// Gauss-Seidel sweeps (solved directly, a string's wrap slides either way at a ratio of 3:
+/// `docs/notebook/knot-tying-notes.md`).
 fn string() -> RopeParams {
     RopeParams {
         bending_stiffness_n_m2: 0.0,

@@ -1,4 +1,4 @@
-//! What two throws hold in the simulated thread (issue 6): a square knot, snugged by its four ends at
+//! What two throws hold in the simulated thread: a square knot, snugged by its four ends at
 //! 1 N and then loaded by its standing parts with both free ends let go (as the holding test loads a
 //! tied stitch), holds 0.3 N once the thread's friction on itself is 0.5, and comes apart at the
 //! 3-0 monofilament's 0.15 even under 0.05 N (`cargo bench -p knotlab-lab --bench thread_reef`

@@ -1,11 +1,11 @@
-//! Regression (issue 6, session 41): a stitch point held the thread only on its segment's axis line,
-//! free along it, and `Stitch::follow` hands it to the neighbouring segment only where the walk
-//! does not turn back. With a knot drawn down onto the wound, the thread bends back right at the
-//! point, so the point slid on along the straight line past the segment's end into empty space:
-//! under the holding test's load the flaps parted 29 mm in 0.15 s while the thread between the two
-//! points stayed 12.5 mm long, the knot falling into the gap onto the pad. Every knot the expert
-//! tied was judged on that (sessions 26-40: the wound 28-34 mm open, "as far as the flaps' springs
-//! let it with no thread at all"). Now a point slides only 0.5 mm past its segment's end.
+//! Guards against a stitch point sliding past its segment into empty space. `Stitch::follow` hands
+//! a point to the neighbouring segment only where the walk does not turn back; with a knot drawn
+//! down onto the wound, the thread bends back right at the point, so a point held only on its
+//! segment's axis line, free along it, slides on along the straight line past the segment's end:
+//! under the holding test's load the flaps part 29 mm in 0.15 s while the thread between the two
+//! points stays 12.5 mm long, the knot falling into the gap onto the pad, and every knot is judged
+//! 28-34 mm open, "as far as the flaps' springs let it with no thread at all". A point slides only
+//! 0.5 mm past its segment's end.
 
 use crate::common::chain;
 use knotlab_hw::rig::Rig;

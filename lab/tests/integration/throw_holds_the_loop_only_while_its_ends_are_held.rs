@@ -1,7 +1,7 @@
-//! What a surgeon's throw alone holds in the simulated thread (issue 6): a strand wound twice round
+//! What a surgeon's throw alone holds in the simulated thread: a strand wound twice round
 //! another and snugged at 1 N holds the loop's 0.3 N while its free ends are held, as the instruments
 //! hold them before they let go; with both free ends let go (the knot as the holding test loads it)
-//! the turns slide off under a sixth of that, at the scene's friction as at 1.0 (`cargo bench -p knotlab-bench --bench
+//! the turns slide off under a sixth of that, at the scene's friction as at 1.0 (`cargo bench -p knotlab-lab --bench
 //! thread_holding` prints the table). A frictional string obeys the capstan equation: a wrap whose one
 //! end is slack cannot hold the other, so a first throw let go has nothing to hold the wound with; a
 //! surgeon lays the second throw before letting go. If a change to the thread model makes a lone

@@ -1,11 +1,12 @@
-//! Regression: friction between strands held almost nothing. A strand wound twice round another,
-//! pulled with 0.3 N at one end and 0.15 N at the other, slid off it whatever the friction (even 1.0,
-//! where the capstan equation allows a ratio of 290,000): a capsule 0.4 mm round spins at the slightest
-//! torque, and strands with the twist between segments free rolled over each other instead of sliding.
+//! Guards against friction between strands holding almost nothing. With the twist between segments
+//! free, a strand wound twice round another, pulled with 0.3 N at one end and 0.15 N at the other,
+//! slides off it whatever the friction (even 1.0, where the capstan equation allows a ratio of
+//! 290,000): a capsule 0.4 mm round spins at the slightest torque, and the strands roll over each
+//! other instead of sliding.
 //! The shipped thread locks the twist; with the ends held as jaws hold them the wrap then holds a
 //! ratio of 1.5 at the scene's friction (0.15: the equation allows 6.6), where the twist-free strand
-//! slides to its end. (Laid twisted, before session 29, it held 2; laid untwisted it slides 12 mm at
-//! 2.) `cargo bench -p knotlab-lab --bench thread_capstan` prints the whole table.
+//! slides to its end. (Laid twisted between segments it holds 2; laid untwisted it slides 12 mm
+//! at 2.) `cargo bench -p knotlab-lab --bench thread_capstan` prints the whole table.
 
 use knotlab_lab::cinch::{CapstanParams, run_capstan};
 use knotlab_sim::scene::parse_scene;

@@ -3,7 +3,7 @@
 /// Which cells of an n x n grid are blocked. Row-major: cell `(i, j)` is at `j * n + i`, `i` along the
 /// plane's first in-plane axis, `j` along its second; `true` = blocked. Cell `(i, j)` covers
 /// `[origin + i h, origin + (i + 1) h)` along the first axis and likewise along the second, `h` the cell
-/// size. The convention the fluid solver (issue 8) uses for its obstacles.
+/// size. The convention the fluid solver uses for its obstacles.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct ObstacleMask {
     /// Cells per side.

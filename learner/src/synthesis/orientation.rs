@@ -83,9 +83,9 @@ pub fn jaw_orientation(
 /// The orientation of a key with a demonstrated frame: the tip frame `world_from_tip` whole where the
 /// wrist is bent between straight ([`STRAIGHT_WRIST_RAD`]) and its reach ([`MAX_WRIST_BEND_RAD`]),
 /// otherwise as [`jaw_orientation`] has it. Played back by their direction only, the right's jaws,
-/// which the long end's turns go round, rolled otherwise than recorded and the needle was torn out of
-/// them (15.7 N) as the left came down onto the tail (the canonical demonstration replayed at its own
-/// stitch, session 49; the fluid and DMP skills the same, 17.4 and 26.5 N, session 50).
+/// which the long end's turns go round, roll otherwise than recorded and the needle is torn out of
+/// them (15.7 N) as the left comes down onto the tail (the canonical demonstration replayed at its own
+/// stitch; the fluid and DMP skills the same, 17.4 and 26.5 N).
 pub fn recorded_orientation(
     world_from_tip: &UnitQuaternion<f64>,
     tip_m: &Vector3<f64>,

@@ -1,4 +1,4 @@
-//! The rules of skill synthesis (issue 10), on a synthetic demonstration learned with the shipped
+//! The rules of skill synthesis, on a synthetic demonstration learned with the shipped
 //! pattern: the force-controlled primitive goes on to 125 % of its line and comes back, with the jaw
 //! opening at the recorded force; no primitive starts before the primitives it waits for are done, and
 //! a longer one delays those that wait; a skill made at a moved stitch is the nominal one moved; the

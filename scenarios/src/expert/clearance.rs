@@ -3,9 +3,9 @@
 //! base towards the left's trocar. A circle about the jaws close to their base passes through them:
 //! wound 6 mm behind the jaw centre (the second throw of `two-throws-cinched.toml`), the thread held
 //! in the right's jaws was driven 2.1 mm into the left's wrist, 58-250 N on the left's gauge for
-//! seconds at a time (session 46). The plan moves such a circle along the jaws, towards their tips,
+//! seconds at a time. The plan moves such a circle along the jaws, towards their tips,
 //! until that thread keeps clear of the wrist: there 2.5 mm, and the gauge reads under 0.3 N through
-//! the winding (session 47, seeds 0 and 2). The first throw's circle, 3 mm behind, keeps 0.8 mm clear
+//! the winding (seeds 0 and 2). The first throw's circle, 3 mm behind, keeps 0.8 mm clear
 //! (seed 0) and is not moved.
 
 use knotlab_hw::geometry::segment_distance;

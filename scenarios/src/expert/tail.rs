@@ -8,7 +8,7 @@ use nalgebra::Vector3;
 
 /// How high over the tissue the tail must lie for jaws to close on it, m: a jaw (1.5 mm round)
 /// under a tail lying on the tissue would press into it, and the grip pinning the tail there tore
-/// (the left's grasp read 6 N within 4 ms of taking a tail that lay on the flap: session 44).
+/// (the left's grasp read 6 N within 4 ms of taking a tail that lay on the flap).
 pub const TAKE_CLEARANCE_M: f64 = 0.003;
 
 /// The tail's point nearest the line of jaws at `jaw_centre_m` pointing along `jaws` (world

@@ -3,7 +3,7 @@
 //! thread. Taken further, the turns are drawn tight and pulled off the jaws' tips. The second throw
 //! leaves about 80 mm of long end; fetched 0.35 of the way to a tail drawn out to the assist (47-62
 //! mm from the exit, the right 19-79 mm beyond), the turn came off on the way in every run, while a
-//! take the thread reached kept it (session 47, `docs/knot-tying-notes.md`). The fetch therefore
+//! take the thread reached kept it (`docs/notebook/knot-tying-notes.md`). The fetch therefore
 //! takes the tail no further out than the long end reaches.
 
 use nalgebra::Vector3;

@@ -1,9 +1,9 @@
 //! The expert looks where the tail lies before the left closes on it (`[left_fetches] looks`,
 //! `scenarios/tests/experts/looks-at-the-tail.toml`): the first throw's plan stops with
 //! the left's jaws over the tail, and the descent is planned from the tail as it lies then. On the
-//! rope scene a slack tail sagged 4-8 mm off the straight line the base plan aims at, and on seed 1
-//! the left closed on its own coils instead. The jaws close on the tail where it is clear of the
-//! tissue, and the right follows them down onto it (session 49).
+//! rope scene a slack tail sags 4-8 mm off the straight line the base plan aims at, and on seed 1 a
+//! left aiming there closes on its own coils instead. The jaws close on the tail where it is clear of
+//! the tissue, and the right follows them down onto it.
 
 use super::common;
 
@@ -181,7 +181,7 @@ fn the_take_comes_onto_the_tail_along_the_jaws_its_hinge_along_the_tail() {
 /// On the rope scene (seed 1) the looking left grasps the tail near its end, not its own coils.
 #[test]
 fn on_the_rope_the_left_takes_the_tail_it_looked_at() {
-    // Seed 1: the shipped plan's left closed on its own coils here (particle 91, session 44); looking,
+    // Seed 1: a left that does not look closes on its own coils here (particle 91); looking,
     // it takes the tail near the assist's jaws, about 15 s in.
     let options =
         RecordOptions { cycles_per_sample: 10, stop_after_s: Some(15.5), ..RecordOptions::default() };
@@ -211,9 +211,9 @@ fn on_the_rope_the_left_takes_the_tail_it_looked_at() {
 /// not to follow.
 #[test]
 fn the_right_follows_the_left_down_onto_the_tail() {
-    // The turns lie round both instruments' jaws: the right left standing as the left went down onto
-    // the tail drew them taut (seeds 0 and 19 of the shipped plan: 100-530 N on both gauges, equal and
-    // opposite; session 49). It follows the descent by the fetch's share, as it followed the fetch.
+    // The turns lie round both instruments' jaws: the right, left standing as the left goes down onto
+    // the tail, draws them taut (seeds 0 and 19 of the shipped plan: 100-530 N on both gauges, equal
+    // and opposite). It follows the descent by the fetch's share, as it followed the fetch.
     let world = rope_world();
     let variation = knotlab_scenarios::expert::Variation::none();
     let looks = expert("looks-at-the-tail.toml");

@@ -223,7 +223,7 @@ fn pulls_told_to_go_on_pass_their_targets_level_at_the_same_speed_and_stop_toget
 fn pulls_of_different_lengths_let_go_together() {
     // Sent 0.2 m on, the pulls stop where each arm's reach ends, one sooner than the other; both
     // hold until a second after the later one's end and open their jaws then, together (each letting
-    // go at its own end, the left let go of the tail while the right still drew: session 48).
+    // go at its own end, the left would let go of the tail while the right still drew).
     let far = TieGeometry { pull_on_m: 0.2, hold_through_release: true, ..TieGeometry::default() };
     let [(left, left_set), (right, right_set)] = pulls(&far);
     let opening_s = |track: &knotlab_hw::skill::Track| {

@@ -1,8 +1,8 @@
-//! The scripted expert's second throw (opt-in, `[second_throw]` in an expert file; issue 6): the
+//! The scripted expert's second throw (opt-in, `[second_throw]` in an expert file): the
 //! first throw's pulls hold the ends, then the second throw is planned from the world they left and
 //! recorded on in the same demonstration. The assist takes the tail between the knot and the left's
 //! jaws, then the left lets go of it to be wound round. (Not yet a knot: the first throw leaves the
-//! long end too short to wind, and the right loses the needle; see docs/knot-tying-notes.md.)
+//! long end too short to wind, and the right loses the needle; see docs/notebook/knot-tying-notes.md.)
 
 use knotlab_hw::rig::ArmName;
 use knotlab_learner::demonstration::GraspState;

@@ -2,7 +2,7 @@
 //! `scenarios/tests/experts/two-throws.toml`): the long end is wound once round the
 //! left's closed jaws while they hold the tail from the first throw, with no hand-over to the assist.
 //! (Not yet a throw: drawn off the jaws' tips, the turn catches on the right's jaws instead of the
-//! tail; see docs/knot-tying-notes.md.)
+//! tail; see docs/notebook/knot-tying-notes.md.)
 
 use super::common;
 

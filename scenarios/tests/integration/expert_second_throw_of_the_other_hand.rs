@@ -1,13 +1,14 @@
-//! The first second throw of the other hand (`scenarios/tests/experts/two-throws-leg-behind.toml`; issue
-//! 6, session 37): the left's jaws ahead of the knot along the wound, the long end wound once round
-//! them as a helix advancing towards their tips, so that its knot leg joins the turn from behind, and
-//! the tail taken where it is presented within the jaws. As the instruments let go the thread holds
+//! A second throw of the other hand (`scenarios/tests/experts/two-throws-leg-behind.toml`): the
+//! left's jaws ahead of the knot along the wound, the long end wound once round them as a helix
+//! advancing towards their tips, so that its knot leg joins the turn from behind, and the tail taken
+//! where it is presented within the jaws. As the instruments let go the thread holds
 //! the surgeon's knot (a double throw, then a single of the opposite hand), run down onto the first
-//! throw (session 38). It does not hold yet: the knot is capsized, and the tail lies over the right's
-//! instrument from the second draw on. Since the stitch's points stay on their segments
+//! throw. It does not hold: the knot is capsized, and the tail lies over the right's instrument
+//! from the second draw on. With the stitch's points kept on their segments
 //! (`lab/tests/integration/stitch_point_slid_past_its_segment_into_empty_space.rs`) the wound opens
-//! 18 mm under the holding load instead of about 30, the throws end 11 mm apart instead of 3.4 and
-//! the exit's leg is nearly taut (see docs/knot-tying-notes.md).
+//! 18 mm under the holding load (about 30 with the points sliding off them, the throws then 3.4 mm
+//! apart), the throws end 11 mm apart and the exit's leg is nearly taut (see
+//! docs/notebook/knot-tying-notes.md).
 
 use super::common;
 
@@ -38,15 +39,14 @@ fn the_second_throw_is_of_the_other_hand_and_makes_a_surgeons_knot() {
     );
     assert!(run.events.iter().all(|e| !e.starts_with("Slipped")), "no grip slips: {:?}", run.events);
     // The second throw is not down on the first: at release the knot's crossings lie up to 11 mm from
-    // their centre (session 41; 3.4 mm in session 38, with the stitch's points sliding off their
-    // segments).
+    // their centre (3.4 mm with the stitch's points sliding off their segments).
     let radius_m = at_release.radius_m.expect("a knot has crossings");
     assert!(radius_m > 0.005, "the throws together ({radius_m} m): assert that instead");
-    // The exit's leg is nearly taut: 9.4 mm of thread for 7.2 mm of span (session 41; about 40 mm
-    // for 6 mm before).
+    // The exit's leg is nearly taut: 9.4 mm of thread for 7.2 mm of span (about 40 mm for 6 mm with
+    // the stitch's points sliding off their segments).
     let exit_leg = at_release.exit_leg.expect("the long end touches the tail");
     assert!(exit_leg.slack_m() < 0.005, "the exit's leg slack: {exit_leg:?}");
-    // And why it gathers (session 40): from the right's draw of the turn onto the tail to the
+    // And why it gathers: from the right's draw of the turn onto the tail to the
     // release, the tail's standing part lies over the right's jaws, wrist and shaft (10-12 segments
     // from 62 s, as the left carries it over the top), so that the right's instrument, not the left,
     // sets its line from the knot.

@@ -3,7 +3,7 @@
 //! assist takes the tail by its end and draws it up, the left takes it back nearer the knot and the
 //! assist lets go; the long end is wound once round the assist's jaws (level along -x, where the
 //! left's cannot point), the left presents the tail and the assist takes it. (Not yet a second throw:
-//! drawn through, this turn leaves the first throw's knot; see docs/knot-tying-notes.md.)
+//! drawn through, this turn leaves the first throw's knot; see docs/notebook/knot-tying-notes.md.)
 
 use super::common;
 
@@ -25,8 +25,8 @@ fn the_left_takes_the_tail_back_and_the_long_end_is_wound_round_the_assists_jaws
     let (assist_takes, left_takes) = (events_of("Grasped { arm: Assist"), events_of("Grasped { arm: Left"));
     let (left_lets_go, assist_lets_go) =
         (events_of("Released { arm: Left"), events_of("Released { arm: Assist"));
-    // No grip slips until the assist takes the presented tail (since session 41 the left's grip then
-    // slips, 5.1 N at 54.07 s, as the assist closes on it at 54.05 s).
+    // No grip slips until the assist takes the presented tail (the left's grip then slips, 5.1 N at
+    // 54.07 s, as the assist closes on it at 54.05 s).
     let slips = events_of("Slipped");
     let presented_s = assist_takes.last().and_then(|e| event_time_s(e));
     assert!(slips.iter().all(|e| event_time_s(e) > presented_s), "no grip slips: {:?}", run.events);

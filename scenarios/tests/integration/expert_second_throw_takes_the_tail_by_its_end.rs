@@ -1,11 +1,12 @@
 //! The expert's second throw round empty jaws, the tail taken by its end (`[second_throw]
 //! tail_hold_from_end_m`, `scenarios/tests/experts/two-throws-tail-end.toml`): after the
 //! first throw the assist takes the tail near its free end, the left lets go of it, and the long end
-//! is wound once round the left's open jaws. Until session 41 the left then took the presented tail on
-//! seed 1 and drew the turn onto the tail's standing part (not yet a knot: in the pulls the turn came
-//! off over the tail's free end); since the stitch's points stay on their segments (session 41,
-//! `lab/tests/integration/stitch_point_slid_past_its_segment_into_empty_space.rs`) it closes on nothing on seeds
-//! 0-4, and this branch of the expert is left as it is (see docs/knot-tying-notes.md).
+//! is wound once round the left's open jaws. With the stitch's points kept on their segments
+//! (`lab/tests/integration/stitch_point_slid_past_its_segment_into_empty_space.rs`) the left then
+//! closes on nothing on seeds 0-4 (with the points sliding off them, it took the presented tail on
+//! seed 1 and drew the turn onto the tail's standing part, not a knot: in the pulls the turn came off
+//! over the tail's free end); this branch of the expert is left as it is (see
+//! docs/notebook/knot-tying-notes.md).
 
 use super::common;
 

@@ -4,8 +4,8 @@
 //! the canonical demonstration's run) leaves a surgeon's double throw that the evaluator accepts: down
 //! at the stitch, holding the wound closed against the holding load once both have let go.
 //!
-//! On the capsule chain (`scenarios/chain.toml`), seed 0 of the base plan (`TieGeometry::default()`,
-//! the canonical run until session 48) leaves a surgeon's knot down on the tissue at the stitch that
+//! On the capsule chain (`scenarios/chain.toml`), seed 0 of the base plan (`TieGeometry::default()`)
+//! leaves a surgeon's knot down on the tissue at the stitch that
 //! does not hold: the expert runs it down onto the wound and cinches it there (as the left lets go: at
 //! the tissue, the wound closed to 1.17 mm), but the long end's leg from the exit to the knot is slack,
 //! and once both let go the holding load opens the wound. A change to the scene, the grasp model or
@@ -45,11 +45,10 @@ fn on_the_chain_seed_0_ties_a_surgeons_knot_down_at_the_stitch() {
     assert!(distance <= limits.max_stitch_distance_m, "{distance} m from the stitch");
     assert!(e.loop_outside_m.is_some(), "the knot's crossings enclose the stitch");
     // The pulls, level with the tissue, draw the loop tight: the wound nearly closed as they let go
-    // (up and out at 1.5 N, until session 26, they left it 2.9 mm open). Seeds 0-7 let go with it
-    // 1.25-2.61 mm open (seed 0: 1.55 mm) since the thread is laid untwisted at the start (session
-    // 29; before, 1.06-1.79 mm, seed 0: 1.17 mm), and 0.95-3.13 mm (seed 0: 2.63 mm, seed 7 the
-    // 3.13) since the jaws clamp the thread as their faces squeeze it (session 33), all eight still
-    // surgeon's knots within 1 mm of the tissue.
+    // (pulled up and out at 1.5 N instead, they leave it 2.9 mm open). With the thread laid
+    // untwisted at the start and the jaws clamping it as their faces squeeze it, seeds 0-7 let go
+    // with it 0.95-3.13 mm open (seed 0: 2.63 mm, seed 7 the 3.13), all eight surgeon's knots within
+    // 1 mm of the tissue.
     assert!(e.gap_before_m < 0.003, "the wound {} m open as the instruments let go", e.gap_before_m);
     assert!(e.gap_after_m.is_some(), "the holding test ran: {:?}", e.verdict);
     // The right's pull stopped at the set force (seed 0: 0.30 N at 23.74 s, 16 mm out: a spike as the
@@ -63,14 +62,14 @@ fn on_the_chain_seed_0_ties_a_surgeons_knot_down_at_the_stitch() {
     // As the left takes the tail, the long end lies wound twice round its jaws (seed 0: -1.80 turns
     // about their direction). The same loops go round the right's jaws too (+1.90 about theirs, which
     // point back at the left's): each turn is a 40 mm loop round both instruments, not a coil on the
-    // left's jaws (docs/knot-tying-notes.md, session 30). A winding round the left's jaws only will move that figure
+    // left's jaws (docs/notebook/knot-tying-notes.md). A winding round the left's jaws only will move that figure
     // towards 0: assert it here then.
     let coils = run.coils_at_take.expect("the left took the tail, the long end through the stitch");
     assert!((1.5..2.5).contains(&coils.left_turns.abs()), "{coils:?}");
     assert!(coils.right_turns.abs() > 1.0, "{coils:?}");
     // Which is also where the long end touches the right's instrument: besides the few segments next
     // to the needle in its jaws, two stretches far along it (seed 0: 11-15 and 24-28), where each
-    // loop passes round the right's jaws and clevis (session 31). `coils-on-the-left.toml` brings the
+    // loop passes round the right's jaws and clevis. `coils-on-the-left.toml` brings the
     // turns about the right's jaw axis to -0.2 yet keeps such a bight (16-20 and 34-39, every seed
     // of 0-15 that took the tail with the turns on): a loop round the right's wrist.
     let far: Vec<usize> = coils.long_end_on_right.iter().copied().filter(|s| *s > 8).collect();
@@ -105,7 +104,7 @@ fn seed_0_of_the_shipped_plan_ties_a_surgeons_knot_that_holds() {
     let gap_after_m = e.gap_after_m.expect("the holding test ran");
     assert!(gap_after_m <= limits.max_wound_gap_m, "the wound {gap_after_m} m open under the load");
     // Each pull stopped at its own set force: the left's on the tail (0.3 N), the right's on the long
-    // end (1 N), the right's gauge reading the rope's pull on the needle (session 48).
+    // end (1 N), the right's gauge reading the rope's pull on the needle.
     for (arm, set_n) in [("left", 0.3), ("right", 1.0)] {
         let stop =
             run.force_events.iter().find(|f| f.arm == arm && f.name == "set force").unwrap_or_else(|| {

@@ -1,4 +1,4 @@
-//! The lab's workflow in the simulator (issue 10): the scripted surgeon nudges the left instrument
+//! The lab's workflow in the simulator: the scripted surgeon nudges the left instrument
 //! through its master (1:3), presses the skill pedal: the skill is instantiated at the stitch, previewed
 //! and executed while the master is ignored; the emergency pedal then stops every arm.
 

@@ -1,11 +1,11 @@
 //! The shipped scene variants are the nominal scene with another suture, so that runs on them
 //! compare on the suture alone.
 //!
-//! `scenarios/chain.toml` is the nominal scene with the suture as Rapier's capsule chain (the nominal
-//! suture until session 48): one friction for all (0.15), 0.25 m long, held in the tissue by 0.05 N a
-//! flap, no rope substeps or spacing (the chain has neither), Rapier's solver at the 8 substeps of 4
-//! sweeps its joints need (the rope leaves Rapier only the needle and the flaps: 2 of 1), nothing else
-//! changed, so that the chain's tests run in the nominal operating scene.
+//! `scenarios/chain.toml` is the nominal scene with the suture as Rapier's capsule chain: one
+//! friction for all (0.15), 0.25 m long, held in the tissue by 0.05 N a flap, no rope substeps or
+//! spacing (the chain has neither), Rapier's solver at the 8 substeps of 4 sweeps its joints need
+//! (the rope leaves Rapier only the needle and the flaps: 2 of 1), nothing else changed, so that the
+//! chain's tests run in the nominal operating scene.
 //!
 //! `scenarios/polypropylene-3-0.toml` is the nominal scene with a measured 3-0 polypropylene suture:
 //! its thread's size, stiffness and weight, the rope's substeps, inertial mass and bending solve, and

@@ -1,8 +1,8 @@
 //! A what-if for a throw before any physics: the thread as it would lie if the jaws holding the tail
 //! drew it straight back along their axis, the rest of the tail following, so that [`super::classify()`]
 //! can say which knot that draw would make. A turn wound round the jaws goes onto whatever they draw
-//! back through it; whether that is a throw depends on how the turn and its legs lie (issue 6, session
-//! 34: the first throw's take checks out as `surgeons`, the second throw's turns as wound did not).
+//! back through it; whether that is a throw depends on how the turn and its legs lie (the first
+//! throw's take checks out as `surgeons`; a second throw's turns, wound otherwise, need not).
 
 use nalgebra::{UnitVector3, Vector3};
 

@@ -118,9 +118,8 @@ impl RopeGrasp {
     }
 
     /// The jaws hold the run by friction: pulled along itself harder than `limit_n`, it slides
-    /// through them ([`Grip`]). Jaws squeezing a suture do; before (session 45) the rope's grip let
-    /// go altogether above its limit, and two grips on a taut thread tore one of them loose in a
-    /// step.
+    /// through them ([`Grip`]). Jaws squeezing a suture do; a grip that let go altogether above its
+    /// limit would let two grips on a taut thread tear one of them loose in a step.
     pub fn grip(&self, contacts: &mut RigidContacts, limit_n: f64) {
         contacts.grips.retain(|g| g.body != self.body);
         contacts.grips.push(Grip {

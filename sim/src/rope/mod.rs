@@ -4,7 +4,7 @@
 //! positions (below the static bound a contact's slip is undone entirely, so a wrap holds without
 //! creeping). The alternative to Rapier's capsule chain ([`crate::thread`]), chosen in the scene
 //! file (`thread.model = "rope"`, [`suture`]): the chain lets every laid knot slip, the more so the
-//! better its solver converges (`docs/knot-tying-notes.md`); this rope holds a square
+//! better its solver converges (`docs/notebook/knot-tying-notes.md`); this rope holds a square
 //! knot, and a surgeon's knot over the wound within 0.2 mm where a rope without bending stiffness
 //! lets it open 2-7 mm (`cargo bench -p knotlab-lab --bench rope_knot`). [`rigid`]
 //! couples it to Rapier's bodies, [`grasp`] to jaws; `stretch` and `bend` solve a strand's lengths
@@ -107,7 +107,7 @@ pub struct RopeParams {
     pub constraint_passes: usize,
     /// Passes over the contacts in each substep. More let friction act closer to its coefficient:
     /// with 4 the reef trial's square knot at friction 0.5 holds within 0.1-0.8 mm where with 1 it
-    /// creeps 1.4-2.2 mm a second, at three times the cost (session 42).
+    /// creeps 1.4-2.2 mm a second, at three times the cost.
     pub contact_passes: usize,
     /// Velocity damping, 1/s.
     pub damping_per_s: f64,

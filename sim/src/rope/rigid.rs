@@ -219,7 +219,7 @@ impl RigidContacts {
     /// within the rope's radius and contact margin of the box it sweeps through the step, but for
     /// those held by an attachment. A held particle is where the body holding it puts it; a collider
     /// pushing it meanwhile only made the two fight, micrometres costing newtons (jaws drifting 2 µm
-    /// a step onto a tail lying on a flap read 0.5 to 6 N in four steps and slipped: session 44).
+    /// a step onto a tail lying on a flap read 0.5 to 6 N in four steps and slipped).
     fn candidates(
         &self,
         ropes: &Ropes,

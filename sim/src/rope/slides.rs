@@ -4,7 +4,7 @@
 //! slides through the four stitch points the flaps carry. Rapier only shows the flaps where the
 //! slides put them (kinematic bodies). Exchanging impulses with dynamic flaps once a step was not
 //! stable: the rope is inextensible and held at both ends, as heavy as the world to a flap, and at
-//! an instrument's cinch the lag fed back until a flap flew off (session 43).
+//! an instrument's cinch the lag fed back until a flap flew off.
 
 use nalgebra::Vector3;
 use rapier3d::math::{Pose, Vector};

@@ -1,9 +1,9 @@
-//! Regression (issue 6, session 33): jaws closing on a thread that lay across them squeezed it along
-//! themselves before they took it. Each jaw is a rigid capsule, so as they close they meet the thread
-//! long before they are shut (opened 0.6 rad, 8 mm from the hinge, the room between their faces is
-//! 1.7 mm), and their round faces pushed it: a thread lying 0.4 rad off their hinge axis slid 2-4
-//! segments (6-12 mm) through them, and a presented tail, held taut, was pushed out sideways (the
-//! second throw's take). Real jaws clamp it where their faces meet it; so do ours now
+//! Guards against jaws closing on a thread that lies across them squeezing it along themselves
+//! before they take it. Each jaw is a rigid capsule, so as they close they meet the thread long
+//! before they are shut (opened 0.6 rad, 8 mm from the hinge, the room between their faces is
+//! 1.7 mm), and their round faces push it: unclamped, a thread lying 0.4 rad off their hinge axis
+//! slides 2-4 segments (6-12 mm) through them, and a presented tail, held taut, is pushed out
+//! sideways (the second throw's take). Real jaws clamp it where their faces meet it; so do these
 //! (`Grasp::squeezes`), holding it pressed between the faces.
 
 use super::common;

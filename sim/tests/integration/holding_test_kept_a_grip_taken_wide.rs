@@ -1,9 +1,9 @@
-//! Regression (session 44): jaws that took the tail at a wide angle kept it through the holding
-//! test. A grasp holds until the jaws open past the angle they took it at (opened less, they still
-//! squeeze it); the expert takes the tail with its jaws opened 0.8 rad, and closing on a tail at the
-//! jaws' centre they squeeze it from about 0.7. `SimWorld::release_all` (which starts the holding
-//! test) opened every instrument to 0.6 rad, so the left kept the tail, and the knot was judged with
-//! an instrument still holding it. It now opens each past its grasp.
+//! Guards against jaws that took the tail at a wide angle keeping it through the holding test. A
+//! grasp holds until the jaws open past the angle they took it at (opened less, they still squeeze
+//! it); the expert takes the tail with its jaws opened 0.8 rad, and closing on a tail at the jaws'
+//! centre they squeeze it from about 0.7. Opening every instrument to a fixed 0.6 rad,
+//! `SimWorld::release_all` (which starts the holding test) would leave the left holding the tail,
+//! and the knot would be judged with an instrument still holding it; it opens each past its grasp.
 
 use knotlab_hw::rig::{ArmName, Rig};
 use knotlab_sim::scene::parse_scene;

@@ -1,10 +1,11 @@
-//! Regression (session 46): closing jaws took a coil of the rope wound round them. The grasp fired
-//! as soon as any thread came within reach (1.6 mm) of the jaws' line where the gap between their
-//! capsules is narrower than the thread, and took the particle nearest that line, wherever round it
-//! it lay: on the rope scene's seed 3 (`looks-and-cinches.toml`) the left, its jaws still 0.66 rad
-//! open, took the long end's coil lying in the notch beside them, 1.32 mm from their line and all of
-//! it along the hinge, instead of the tail. The jaws now take only thread between their faces: its
-//! centre no further along the hinge than the jaws' radius less its own (1.5 - 0.4 mm).
+//! Guards against closing jaws taking a coil of the rope wound round them. A grasp that fires as
+//! soon as any thread comes within reach (1.6 mm) of the jaws' line where the gap between their
+//! capsules is narrower than the thread, and takes the particle nearest that line wherever round it
+//! it lies, takes the wrong thread: on the rope scene's seed 3 (`looks-and-cinches.toml`) the left,
+//! its jaws still 0.66 rad open, would take the long end's coil lying in the notch beside them,
+//! 1.32 mm from their line and all of it along the hinge, instead of the tail. The jaws take only
+//! thread between their faces: its centre no further along the hinge than the jaws' radius less its
+//! own (1.5 - 0.4 mm).
 
 use knotlab_sim::grasp::{Grasp, JawFaces, jaw_line_m};
 use knotlab_sim::rope::grasp::RopeGrasp;

@@ -1,9 +1,10 @@
-//! Regression (session 48): on the rope scene the right's gauge missed the thread's pull on the
-//! needle it holds. The rope pulls the needle through its swage, an impulse applied to the needle's
-//! body before Rapier's step; the jaws' joint takes it up in its first substeps, and the gauge read
-//! only the joint's last substep. In the expert's first throw the right drew the long end through
-//! the stitch against its friction and read 0.01-0.03 N all the while, so its pull never stopped at
-//! its set force. Now the gauge of jaws holding the needle adds what the rope did to the needle.
+//! Guards the right's gauge on the rope scene: it must read the thread's pull on the needle it
+//! holds. The rope pulls the needle through its swage, an impulse applied to the needle's body
+//! before Rapier's step; the jaws' joint takes it up in its first substeps, so a gauge reading only
+//! the joint's last substep misses it (in the expert's first throw the right, drawing the long end
+//! through the stitch against its friction, then reads 0.01-0.03 N all the while, and its pull never
+//! stops at its set force). The gauge of jaws holding the needle adds what the rope did to the
+//! needle.
 
 use knotlab_hw::rig::{ArmName, Rig};
 use knotlab_sim::grasp::GraspEvent;
@@ -73,7 +74,7 @@ fn the_right_reads_the_long_ends_pull_on_the_needle_it_holds() {
 #[test]
 fn at_the_shipped_scenes_resolution_the_right_reads_the_pull_too() {
     // At the shipped scene's coarser rope the assist's grip gives way in a jolt (2.7 N at one step,
-    // the right reading 2.0 N then; session 51), so the two are compared through the taut draw
+    // the right reading 2.0 N then), so the two are compared through the taut draw
     // before it: the medians of both gauges while the assist reads over 0.5 N.
     let (gauges, slipped) = drawn_taut(false);
     let taut: Vec<&(f64, f64, f64)> =

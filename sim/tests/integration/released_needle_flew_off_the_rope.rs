@@ -1,9 +1,9 @@
-//! Regression (session 43): with the suture as the rope, the needle is a body of its own with the
+//! Guards the released needle: with the suture as the rope, the needle is a body of its own with the
 //! rope swaged to it. Dynamic and pulled by the rope's reaction alone once the jaws let go of it,
-//! the 1 g needle and the rope's tension fed each other step after step, and the needle flew off at
-//! 100 m/s (the scene stopped unhealthy); and the jaws' colliders, let loose on the swaged end they
-//! had let through, threw it out at 23 m/s. Let go, the needle now rides on the rope's end, and the
-//! jaws let the rope's end out gently.
+//! the 1 g needle and the rope's tension would feed each other step after step until the needle flew
+//! off at 100 m/s (the scene stopped unhealthy); and the jaws' colliders, let loose on the swaged end
+//! they had let through, would throw it out at 23 m/s. Let go, the needle rides on the rope's end,
+//! and the jaws let the rope's end out gently.
 
 use super::common;
 

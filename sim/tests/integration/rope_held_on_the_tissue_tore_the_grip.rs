@@ -1,9 +1,9 @@
-//! Regression (session 44): jaws that took the rope where it lay on the tissue tore their own grip.
-//! The held particles were pinned where the jaws hold them while the tissue's collider pushed them
-//! out of it; with the jaws drifting down 2 µm a step (the expert's tremor), the two fought over
-//! micrometres, and at the rope's stiffness a micrometre is about a quarter of a newton a particle:
-//! the grip read 0.5, 2.1, 4.0, 6.0 N in four steps and slipped (the scene's grip: 5 N). A held
-//! particle now touches nothing but what holds it.
+//! Guards against jaws that take the rope where it lies on the tissue tearing their own grip. With
+//! the held particles pinned where the jaws hold them while the tissue's collider pushes them out of
+//! it, and the jaws drifting down 2 µm a step (the expert's tremor), the two fight over micrometres,
+//! and at the rope's stiffness a micrometre is about a quarter of a newton a particle: the grip reads
+//! 0.5, 2.1, 4.0, 6.0 N in four steps and slips (the scene's grip: 5 N). So a held particle touches
+//! nothing but what holds it.
 
 use knotlab_sim::rope::grasp::RopeGrasp;
 use knotlab_sim::rope::rigid::RigidContacts;

@@ -45,7 +45,7 @@ fn the_rope_scene_holds_the_needle_the_tail_and_the_stitch_standing_still() {
     assert!(w.arm(ArmName::Right).holds() && w.arm(ArmName::Assist).holds(), "{:?}", w.events());
     // The thread settles by a few millimetres as the scene starts (the assist's grip slides at the
     // first step), and the stitch's friction then holds it where it is (without it, it swung on by
-    // 1.8-2.6 mm: session 47).
+    // 1.8-2.6 mm).
     for ((b, s), a) in before.iter().zip(&settled).zip(&after) {
         assert!((b - a).abs() < 0.005, "the thread slid through the stitch: {before:?} -> {after:?} m");
         assert!((s - a).abs() < 0.001, "the thread slid once settled: {settled:?} -> {after:?} m");

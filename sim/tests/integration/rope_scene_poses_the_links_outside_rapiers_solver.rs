@@ -1,5 +1,5 @@
 //! With the rope as the suture Rapier has nothing to do with a moving link but carry the needle in
-//! the jaws (session 52): the links' colliders are out of its broad phase and the arms' own links
+//! the jaws: the links' colliders are out of its broad phase and the arms' own links
 //! are fixed bodies posed after each step, out of its solver. Posed so, every link must still stand
 //! where the rig's kinematics put it, step after step, as the kinematic ones do (a link left where it
 //! was built would show wrong in Rerun and in the thread's contacts); the jaws' carriers stay

@@ -1,7 +1,7 @@
 //! Jaws squeezing a suture hold it by friction: pulled along itself harder than that, the suture
-//! slides through them and they go on holding it (session 45). Before, the rope's grip let go
-//! altogether above its limit, and two grips on a taut thread tore one of them loose in a step (the
-//! left closing on a tail the assist held: 5.3 N within 0.2 s, seed 0 of the second-throw trials).
+//! slides through them and they go on holding it. A grip that let go altogether above its limit
+//! would let two grips on a taut thread tear one of them loose in a step (the left closing on a tail
+//! the assist held: 5.3 N within 0.2 s, seed 0 of the second-throw trials).
 //! Here the rope is held at its middle and drawn from a pinned end until it runs out of the jaws.
 
 use knotlab_sim::rope::grasp::RopeGrasp;

@@ -1,6 +1,6 @@
 //! While the rope's stitch moves the flaps on its slides (`SlideStitch`), the flaps' prismatic joints
 //! are disabled: Rapier would otherwise go on solving them every step between two bodies neither of
-//! which is dynamic (session 51, issue 11's throughput). Taken out of the stitch, the flaps are
+//! which is dynamic, at a cost to throughput. Taken out of the stitch, the flaps are
 //! dynamic bodies again and must be held by their joints once more, or they fall off the tissue.
 
 use super::common;

@@ -3,9 +3,9 @@
 //! and the flaps then loaded open as in the holding test: the flaps stay slow and within their stops,
 //! the pull stays near what was asked. The flaps' slides are solved inside the rope's substeps
 //! (`knotlab_sim::rope::slides`). With the flaps as Rapier's dynamic bodies taking the rope's summed
-//! pull once a step (session 43's coupling: the rope, inextensible and held at both ends, is as heavy
-//! as the world to a flap) the same cinch spiked the pull to 45 N, and in the expert's runs the lag
-//! fed back until a flap moved at 21-32 m/s (`device_fault`, or the holding test unhealthy).
+//! pull once a step (the rope, inextensible and held at both ends, is as heavy as the world to a
+//! flap) the same cinch spikes the pull to 45 N, and in the expert's runs the lag feeds back until a
+//! flap moves at 21-32 m/s (`device_fault`, or the holding test unhealthy).
 
 use super::common;
 

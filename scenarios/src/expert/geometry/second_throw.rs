@@ -23,7 +23,7 @@ pub struct SecondThrow {
     pub tail_held_to_m: Option<[f64; 3]>,
     /// ... but no further from the entry point than this share of the thread between the entry and
     /// the assist's jaws (the first throw leaves a longer or shorter tail: drawn to a fixed point, a
-    /// short one tore the assist's grip, 34 N, session 45); `None`: to `tail_held_to_m` itself.
+    /// short one tore the assist's grip, 34 N); `None`: to `tail_held_to_m` itself.
     pub tail_held_taut: Option<f64>,
     /// Once the right has wound, the assist brings the tail here (stitch frame) before the left
     /// fetches it ([`TieGeometry::tail_brought_to_m`]); `None`: as the first throw.
@@ -31,7 +31,7 @@ pub struct SecondThrow {
     /// The left lets go of the tail once the first throw's pulls are done, the right holding on: the
     /// double throw, cinched, holds by itself, and the assist then takes the tail where it lies (held
     /// taut by the left through the hand-over, the tail tore out of the left's jaws or the assist's,
-    /// 15-78 N, session 46).
+    /// 15-78 N).
     pub left_lets_go_first: bool,
     /// If set, the assist and the left swap parts for the rest of the throw: once the assist holds
     /// the tail by its end (`tail_hold_from_end_m`; drawn to `tail_held_to_m` if set), the left
@@ -39,9 +39,9 @@ pub struct SecondThrow {
     /// long end is wound round the assist's jaws, the left presents the tail and the assist takes
     /// it and draws it through, m.
     /// The assist's jaws can point where the left's cannot (along -x, from its trocar on the other
-    /// side), so the turn can be wound as the mirror image of one wound on the left's jaws. (Session
-    /// 36: that did not make the throw's mirror image, the other hand: the first knot, where both
-    /// legs start, is not mirrored.)
+    /// side), so the turn can be wound as the mirror image of one wound on the left's jaws. (That
+    /// does not make the throw's mirror image, the other hand: the first knot, where both legs
+    /// start, is not mirrored.)
     pub left_retakes_from_end_m: Option<f64>,
     /// The left's jaw centre while the long end is wound round them.
     pub winding_point_m: [f64; 3],
@@ -56,7 +56,7 @@ pub struct SecondThrow {
     /// them, as if the left had taken the tail there.
     pub left_keeps_tail: bool,
     /// The assist presents the tail ahead of the left's jaws instead of the left fetching it (a
-    /// fetch turns the jaws, and the turn slid off their tips on the way: session 31). Not with
+    /// fetch turns the jaws, and the turn slid off their tips on the way). Not with
     /// `left_keeps_tail`.
     pub assist_presents: bool,
     /// The tail is presented this far ahead of the left's jaw centre ([`TieGeometry::tail_ahead_m`]),
