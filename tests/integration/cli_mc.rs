@@ -383,3 +383,25 @@ fn resuming_with_another_skill_is_refused() {
         std::fs::remove_dir_all(&d).ok();
     }
 }
+
+/// Guards against a resume asking for fewer trials breaking its folder: `run.json` was rewritten with
+/// the smaller count while the lines beyond it stayed, and every later resume, report and merge
+/// refused "trial 1 is beyond the run's 1 trials". The run keeps its count; the smaller resume
+/// summarizes the trials asked for, and the folder still reports and resumes.
+#[test]
+fn a_resume_asking_for_fewer_trials_keeps_the_folder_whole() {
+    let out = dir("fewer");
+    assert_eq!(mc(&out, 2, 1).0, 0);
+    let (code, log) = mc(&out, 1, 1);
+    assert_eq!(code, 0, "{log}");
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    assert_eq!(summary["trials"], 1, "{summary}");
+    let run: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("run.json")).unwrap()).unwrap();
+    assert_eq!(run["trials"], 2, "{run}");
+    let (code, _, stderr) = knotlab(&["report", out.to_str().unwrap()]);
+    assert_eq!(code, 0, "{stderr}");
+    assert_eq!(mc(&out, 2, 1).0, 0);
+    std::fs::remove_dir_all(&out).ok();
+}

@@ -355,7 +355,9 @@ pub fn run_mc_with(
             }
             // The lines already there belong to this run (with as many trials as it had or has).
             check_lines(&done, &RunInfo { trials: there.trials.max(info.trials), ..info.clone() }, &file)?;
-            if there.trials != info.trials {
+            // A run grows by more trials; asked for fewer, it keeps its count (and its lines beyond
+            // them) and summarizes the trials asked for.
+            if info.trials > there.trials {
                 info.write(&options.out)?;
             }
         }
@@ -363,7 +365,8 @@ pub fn run_mc_with(
             return Err(McError::Results {
                 file,
                 reason: format!(
-                    "holds {} finished trials but the directory has no run.json: they cannot be told to                      belong to this run; give another --out, or remove results.jsonl to start anew",
+                    "holds {} finished trials but the directory has no run.json: they cannot be told to \
+                     belong to this run; give another --out, or remove results.jsonl to start anew",
                     done.len()
                 ),
             });

@@ -26,6 +26,7 @@ mod rope_stitch_hands_the_flaps_back_to_their_joints;
 mod rope_stitch_ignored_its_slide_friction;
 mod rope_stitch_stays_calm_through_a_cinch;
 mod scene_file;
+mod scene_reference;
 mod thread_drag;
 mod thread_laid_along_a_bent_path_starts_untwisted;
 mod thread_physics;
