@@ -38,6 +38,70 @@ fn table_line(text: &str, key: &str) -> usize {
         .map_or(0, |k| k + 1)
 }
 
+/// Largest TOML text knotlab reads, bytes: its files are a few to a few tens of kilobytes.
+pub const MAX_TOML_BYTES: usize = 1 << 20;
+
+/// Deepest nesting of arrays and inline tables in a TOML text: its files nest two or three deep. The
+/// toml parser's memory grows steeply with nesting (20,000 levels asked for half a gigabyte).
+pub const MAX_TOML_NESTING: usize = 64;
+
+/// Refuses a text longer than [`MAX_TOML_BYTES`] or nesting arrays and inline tables deeper than
+/// [`MAX_TOML_NESTING`], before the toml parser sees it. Brackets inside strings and comments do
+/// not count.
+pub fn check_bounds(text: &str) -> Result<(), TomlProblem> {
+    if text.len() > MAX_TOML_BYTES {
+        return Err(TomlProblem {
+            line: 0,
+            key: "(file)".to_owned(),
+            reason: format!("{} bytes; a TOML file may have at most {MAX_TOML_BYTES}", text.len()),
+        });
+    }
+    let bytes = text.as_bytes();
+    let (mut depth, mut i) = (0usize, 0usize);
+    while i < bytes.len() {
+        match bytes[i] {
+            b'#' => {
+                while i < bytes.len() && bytes[i] != b'\n' {
+                    i += 1;
+                }
+            }
+            quote @ (b'"' | b'\'') => {
+                let triple = bytes[i..].starts_with(if quote == b'"' { b"\"\"\"" } else { b"'''" });
+                let (open, escapes) = (if triple { 3 } else { 1 }, quote == b'"');
+                i += open;
+                while i < bytes.len() {
+                    if escapes && bytes[i] == b'\\' {
+                        i += 2;
+                        continue;
+                    }
+                    if bytes[i] == quote && (!triple || bytes[i..].starts_with(&[quote; 3])) {
+                        i += open - 1;
+                        break;
+                    }
+                    if !triple && bytes[i] == b'\n' {
+                        break;
+                    }
+                    i += 1;
+                }
+            }
+            b'[' | b'{' => {
+                depth += 1;
+                if depth > MAX_TOML_NESTING {
+                    return Err(TomlProblem {
+                        line: line_of(text, i),
+                        key: "(syntax)".to_owned(),
+                        reason: format!("arrays or inline tables nested deeper than {MAX_TOML_NESTING}"),
+                    });
+                }
+            }
+            b']' | b'}' => depth = depth.saturating_sub(1),
+            _ => {}
+        }
+        i += 1;
+    }
+    Ok(())
+}
+
 /// `file:line`, or `file` alone when the line is not known (0).
 pub fn located(file: &str, line: usize) -> String {
     if line == 0 { file.to_owned() } else { format!("{file}:{line}") }
@@ -56,6 +120,7 @@ pub fn syntax_problem(text: &str, error: &toml::de::Error) -> TomlProblem {
 /// naming the key's path and its line. Paths through `toml::Spanned` values read as the plain key. A
 /// fixed-length array (`[f64; 3]`) must hold exactly its length, not merely at least it (`strict::Strict`).
 pub fn deserialize<T: DeserializeOwned>(text: &str) -> Result<T, TomlProblem> {
+    check_bounds(text)?;
     let deserializer = toml::Deserializer::parse(text).map_err(|e| syntax_problem(text, &e))?;
     serde_path_to_error::deserialize(Strict(deserializer)).map_err(|e| {
         let key = e
@@ -167,5 +232,28 @@ mod tests {
         let p = deserialize::<Outer>("[inner\n").unwrap_err();
         assert_eq!((p.line, p.key.as_str()), (1, "(syntax)"), "{p}");
         assert_eq!(deserialize::<Outer>("[inner]\ncount = 2\n").unwrap().inner.count, 2);
+    }
+
+    /// A text nesting arrays deeper than the bound is refused at the line it passes it, before the
+    /// toml parser (whose memory grows steeply with nesting) sees it; brackets in strings and comments
+    /// do not count; a text past the size bound is refused.
+    #[test]
+    fn deep_nesting_and_huge_texts_are_refused_before_parsing() {
+        let deep =
+            format!("a = 1\nb = {}{}\n", "[".repeat(MAX_TOML_NESTING + 1), "]".repeat(MAX_TOML_NESTING + 1));
+        let p = check_bounds(&deep).unwrap_err();
+        assert_eq!((p.line, p.key.as_str()), (2, "(syntax)"), "{p}");
+        let fine = format!("{}{}", "[".repeat(MAX_TOML_NESTING), "]".repeat(MAX_TOML_NESTING));
+        assert!(check_bounds(&format!("b = {fine}\n")).is_ok());
+        let quoted = format!(
+            "s = \"{}\"\nt = '{}'\nu = \"\"\"{}\"\"\"\n# {}\n",
+            "[".repeat(100),
+            "{".repeat(100),
+            "[".repeat(100),
+            "[".repeat(100)
+        );
+        assert!(check_bounds(&quoted).is_ok(), "{:?}", check_bounds(&quoted));
+        let huge = "# padding\n".repeat(MAX_TOML_BYTES / 10 + 1);
+        assert_eq!(check_bounds(&huge).unwrap_err().key, "(file)");
     }
 }

@@ -101,6 +101,7 @@ pub fn parse_metadata(text: &str, file: &str) -> Result<MetadataFile, DemoError>
     };
 
     // 1. Format and version, before anything else.
+    knotlab_hw::toml_file::check_bounds(text).map_err(|p| err(p.line, &p.key, p.reason))?;
     let probe: VersionProbe = toml::from_str(text).map_err(syntax)?;
     let Some(format) = probe.format else {
         return Err(err(

@@ -147,6 +147,7 @@ pub fn parse_pattern(text: &str, file: &str) -> Result<TaskPattern, PatternError
     let line = |span: Range<usize>| line_of(text, span.start);
     let syntax = |e: toml::de::Error| err(e.span().map_or(0, &line), "(syntax)", e.message().to_owned());
 
+    knotlab_hw::toml_file::check_bounds(text).map_err(|p| err(p.line, &p.key, p.reason))?;
     let probe: VersionProbe = toml::from_str(text).map_err(syntax)?;
     let Some(format) = probe.format else {
         return Err(err(0, "format", format!("missing (a task pattern says format = \"{PATTERN_FORMAT}\")")));
