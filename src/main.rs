@@ -2,6 +2,7 @@
 
 mod cli;
 mod rerun_log;
+mod shipped;
 
 use clap::Parser;
 

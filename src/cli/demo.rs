@@ -10,22 +10,22 @@ use clap::Args;
 use serde::Serialize;
 
 use knotlab_learner::demonstration::write_demonstration;
-use knotlab_scenarios::expert::{DemoRun, RecordOptions, demonstrate_with, load_tie_geometry};
-use knotlab_sim::scene::load_scene;
+use knotlab_scenarios::expert::{DemoRun, RecordOptions, demonstrate_with};
 
 use super::csv_file;
 use super::numbers::{Numbers, parse_list};
 use super::output::{Output, outln};
 use crate::rerun_log::{self, RerunArgs};
+use crate::shipped;
 
 #[derive(Debug, Args)]
 pub struct DemoArgs {
-    /// The scene file.
-    #[arg(long, default_value = "scenarios/default.toml")]
-    scene: PathBuf,
-    /// The seed of one run: its human-like variation and sensor noise.
-    #[arg(long, conflicts_with = "seeds")]
-    seed: Option<u64>,
+    /// The scene file [default: the shipped scenarios/default.toml, built in].
+    #[arg(long)]
+    scene: Option<PathBuf>,
+    /// The seed of one run (without --seeds): its human-like variation and sensor noise.
+    #[arg(long, default_value_t = 0, conflicts_with = "seeds")]
+    seed: u64,
     /// Runs seeds A to B-1 (`A..B`), each recorded under OUT/seed-N.
     #[arg(long, value_parser = parse_seeds)]
     seeds: Option<(u64, u64)>,
@@ -37,9 +37,9 @@ pub struct DemoArgs {
     no_variation: bool,
     /// The expert's plan: where it puts things, from this TOML file (keys left out keep the base
     /// plan's, listed in scenarios/experts/base.toml). The shipped plan ties the double throw and
-    /// cinches it by both ends.
-    #[arg(long, value_name = "FILE", default_value = "scenarios/experts/instrument-tie.toml")]
-    expert: PathBuf,
+    /// cinches it by both ends [default: the shipped scenarios/experts/instrument-tie.toml, built in].
+    #[arg(long, value_name = "FILE")]
+    expert: Option<PathBuf>,
     /// Draw the scene into PNG files OUT/snapshot-T.png at these times, s from the start
     /// (comma-separated; times past the skill's end fall in the holding test, on the same clock), and
     /// write the thread's centreline beside each (OUT/centreline-T.csv, x_m,y_m,z_m from the needle end) and which of its
@@ -158,11 +158,7 @@ fn line(seed: u64, run: &DemoRun, dir: &Path) -> RunLine {
 }
 
 pub fn run(args: DemoArgs, out: &mut Output) -> anyhow::Result<ExitCode> {
-    let (first, end) = match (args.seed, args.seeds) {
-        (_, Some(range)) => range,
-        (Some(seed), None) => (seed, seed + 1),
-        (None, None) => (0, 1),
-    };
+    let (first, end) = args.seeds.unwrap_or((args.seed, args.seed + 1));
     let several = args.seeds.is_some();
     if several && args.rerun.wanted() {
         anyhow::bail!("--rerun/--rerun-connect records one trial: give --seed N, not --seeds");
@@ -173,8 +169,8 @@ pub fn run(args: DemoArgs, out: &mut Output) -> anyhow::Result<ExitCode> {
         anyhow::bail!("--until {t}: must be a positive number of seconds");
     }
     let recording = args.rerun.open("demo")?;
-    let scene = load_scene(&args.scene)?;
-    let scene_name = args.scene.display().to_string();
+    let scene = shipped::scene(args.scene.as_deref(), &shipped::SCENE)?;
+    let scene_name = shipped::name(args.scene.as_deref(), &shipped::SCENE);
     let options = RecordOptions {
         snapshot_times_s: args.snapshots.clone().unwrap_or_default(),
         cycles_per_sample: 10,
@@ -182,7 +178,7 @@ pub fn run(args: DemoArgs, out: &mut Output) -> anyhow::Result<ExitCode> {
         stop_after_s: args.until,
         knot_trace_every_s: args.knot_trace,
     };
-    let geometry = load_tie_geometry(&args.expert)?;
+    let geometry = shipped::tie_geometry(args.expert.as_deref())?;
     let mut results = Vec::new();
     for seed in first..end {
         let dir = if several { args.out.join(format!("seed-{seed}")) } else { args.out.clone() };
@@ -238,7 +234,7 @@ pub fn run(args: DemoArgs, out: &mut Output) -> anyhow::Result<ExitCode> {
     let successes = results.iter().filter(|r| r.success).count();
     let report = Report {
         scene: scene_name,
-        expert: args.expert.display().to_string(),
+        expert: shipped::name(args.expert.as_deref(), &shipped::EXPERT),
         human_variation: !args.no_variation,
         runs: results.len(),
         successes,

@@ -62,8 +62,9 @@ pub struct CavityArgs {
     /// The pressure solver.
     #[arg(long, value_enum, default_value_t = Solver::Direct)]
     solver: Solver,
-    /// The Ghia table (CSV `profile,coord,re100,re1000`, e.g. scenarios/reference/ghia1982-cavity.csv):
-    /// report the largest error against its column for --re 100 or 1000.
+    /// The Ghia table (CSV `profile,coord,re100,re1000`, e.g. scenarios/reference/ghia1982-cavity.csv,
+    /// which `knotlab shipped dump` writes out): report the largest error against its column for --re
+    /// 100 or 1000.
     #[arg(long)]
     reference: Option<PathBuf>,
     /// Print JSON instead of text.

@@ -16,20 +16,21 @@ use knotlab_bench::mc::{McOptions, Shard, merge, run_mc_with};
 use knotlab_learner::synthesis::Method;
 use knotlab_scenarios::expert::RecordOptions;
 use knotlab_scenarios::trial::{Learned, TrialError, TrialRun, TrialSetup, run_trial};
-use knotlab_sim::scene::load_scene;
 
 use super::output::{Output, outln};
 use super::skill_source::SkillSource;
 use crate::rerun_log::{self, RerunArgs};
+use crate::shipped;
 
 #[derive(Debug, Args)]
 #[command(args_conflicts_with_subcommands = true, subcommand_negates_reqs = true)]
 pub struct McArgs {
     #[command(subcommand)]
     command: Option<McCommand>,
-    /// The scene file (its [randomization] table says what each trial draws).
-    #[arg(long, default_value = "scenarios/default.toml")]
-    scene: PathBuf,
+    /// The scene file (its [randomization] table says what each trial draws) [default: the shipped
+    /// scenarios/default.toml, built in].
+    #[arg(long)]
+    scene: Option<PathBuf>,
     /// A preset of the scene file's [presets] applied to its randomization (e.g. endopar, ideal).
     #[arg(long)]
     preset: Option<String>,
@@ -216,17 +217,24 @@ pub fn run(mut args: McArgs, out: &mut Output) -> anyhow::Result<ExitCode> {
         anyhow::bail!("--record-trials {t}: no such trial in a run of trials 0 to {}", args.trials - 1);
     }
     let out_dir = out_dir(&args);
-    let mut scene = load_scene(&args.scene)?;
+    let scene_name = shipped::name(args.scene.as_deref(), &shipped::SCENE);
+    let mut scene = shipped::scene(args.scene.as_deref(), &shipped::SCENE)?;
     if let Some(preset) = &args.preset {
-        scene = scene.with_preset(preset).map_err(|e| anyhow::anyhow!("{}: {e}", args.scene.display()))?;
+        scene = scene.with_preset(preset).map_err(|e| anyhow::anyhow!("{scene_name}: {e}"))?;
     }
     let learned = args.source.learned()?;
+    // Each method once, in the order first given (`--method a --method b --method a` ran `a` twice).
     let mut methods = args.methods.clone();
-    methods.dedup();
+    let mut seen = Vec::new();
+    methods.retain(|m| {
+        let first = !seen.contains(m);
+        seen.push(*m);
+        first
+    });
     let jobs = args.jobs.unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()));
     let options = McOptions {
         scene,
-        scene_name: args.scene.display().to_string(),
+        scene_name,
         preset: args.preset.clone(),
         trials: args.trials,
         seed: args.seed,

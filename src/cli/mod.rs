@@ -14,6 +14,7 @@ mod report;
 mod rig;
 mod run;
 mod session;
+mod shipped;
 mod sim;
 mod skill_source;
 mod validate;
@@ -60,6 +61,10 @@ enum Command {
     Report(report::ReportArgs),
     /// The lab's workflow at a desk: teleoperate (a gamepad), the skill pedal, preview, execute; recorded.
     Session(session::SessionArgs),
+    /// The scenario files built into knotlab (its commands' defaults): list them, or write them out to
+    /// edit.
+    #[command(subcommand)]
+    Shipped(shipped::ShippedCommand),
     /// The suture checked against mechanics: stretch, the elastica, the capstan, a 3-0 suture's size
     /// and weight; measured, reference, tolerance and source per figure (exit 1: a check failed).
     Validate(validate::ValidateArgs),
@@ -81,6 +86,7 @@ pub fn run(cli: Cli) -> anyhow::Result<ExitCode> {
         Command::Session(args) => session::run(args, &mut out),
         Command::Mc(args) => mc::run(args, &mut out),
         Command::Report(args) => report::run(args, &mut out),
+        Command::Shipped(command) => shipped::run(command, &mut out),
         Command::Validate(args) => validate::run(args, &mut out),
     }
 }

@@ -17,12 +17,13 @@ use knotlab_learner::obstacles::{
     ArmState, CellVerdict, CollisionWorld, GridPlane, GridRequest, GridResult, PreparedGrid,
     SubcellOrientation, compute_cpu, cpu::thread_pool,
 };
-use knotlab_sim::scene::{SceneConfig, load_scene};
+use knotlab_sim::scene::SceneConfig;
 use knotlab_sim::world::SimWorld;
 
 use super::csv_file;
 use super::numbers::parse_vector3;
 use super::output::{Output, outln};
+use crate::shipped;
 
 /// Height of the default plane above the tissue surface, m.
 const DEFAULT_HEIGHT_M: f64 = 0.02;
@@ -41,9 +42,9 @@ pub enum Backend {
 #[derive(Debug, Args)]
 pub struct ObstaclesArgs {
     /// The scene file: trocars, obstacles, tissue and stitch; the other arms stand where the scene
-    /// starts them.
-    #[arg(long, default_value = "scenarios/default.toml")]
-    scene: PathBuf,
+    /// starts them [default: the shipped scenarios/default.toml, built in].
+    #[arg(long)]
+    scene: Option<PathBuf>,
     /// The arm whose tip moves over the grid: left, right, assist or camera.
     #[arg(long)]
     arm: ArmName,
@@ -150,9 +151,9 @@ fn trocar(scene: &SceneConfig, arm: ArmName) -> Vector3<f64> {
 }
 
 /// The collision world: the rig at the scene's starting joints, the scene's obstacles.
-fn collision_world(scene_file: &Path, scene: &SceneConfig) -> anyhow::Result<CollisionWorld> {
+fn collision_world(scene_name: &str, scene: &SceneConfig) -> anyhow::Result<CollisionWorld> {
     let rig = Rig::shipped().context("the shipped rig")?;
-    let sim = SimWorld::new(scene.clone(), rig).with_context(|| scene_file.display().to_string())?;
+    let sim = SimWorld::new(scene.clone(), rig).with_context(|| scene_name.to_owned())?;
     let states: Vec<ArmState> = ArmName::ALL
         .iter()
         .map(|&name| ArmState { name, trocar_m: trocar(scene, name), joints: sim.arm(name).command })
@@ -165,7 +166,7 @@ fn collision_world(scene_file: &Path, scene: &SceneConfig) -> anyhow::Result<Col
                 Vector3::from(o.centre_m),
                 Vector3::from(o.half_extents_m),
             )
-            .with_context(|| scene_file.display().to_string())?;
+            .with_context(|| scene_name.to_owned())?;
     }
     Ok(world)
 }
@@ -227,13 +228,13 @@ fn run_gpu(grid: &PreparedGrid, threads: Option<usize>, out: &mut Output) -> any
 
 fn obstacles(args: &ObstaclesArgs, out: &mut Output) -> anyhow::Result<()> {
     let threads = args.threads.map(usize::from);
-    let scene = load_scene(&args.scene)?;
+    let scene = shipped::scene(args.scene.as_deref(), &shipped::SCENE)?;
     let (plane, default_plane) = plane(args, &scene)?;
     let orientation = match args.jaw_dir {
         Some(d) => SubcellOrientation::JawDirection(d),
         None => SubcellOrientation::AlongShaft,
     };
-    let world = collision_world(&args.scene, &scene)?;
+    let world = collision_world(&scene_name(args), &scene)?;
     let request = GridRequest { arm: args.arm, plane, orientation };
     let prepare_start = Instant::now();
     let grid = PreparedGrid::new(&world, &request).context("--arm/--jaw-dir")?;
@@ -250,6 +251,11 @@ fn obstacles(args: &ObstaclesArgs, out: &mut Output) -> anyhow::Result<()> {
     std::fs::write(&png_path, picture(&run.result)?)
         .with_context(|| format!("writing {}", png_path.display()))?;
     report(args, &run, default_plane, &csv_path, &png_path, out)
+}
+
+/// The scene's name in messages and the report.
+fn scene_name(args: &ObstaclesArgs) -> String {
+    shipped::name(args.scene.as_deref(), &shipped::SCENE)
 }
 
 fn backend_name(backend: Backend) -> &'static str {
@@ -277,7 +283,7 @@ fn report(
         };
         let value = json!({
             "ok": true,
-            "scene": args.scene.display().to_string(),
+            "scene": scene_name(args),
             "arm": args.arm.as_str(),
             "backend": backend_name(run.backend),
             "device": run.device,

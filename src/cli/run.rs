@@ -22,12 +22,12 @@ use knotlab_learner::synthesis::Method;
 use knotlab_scenarios::expert::RecordOptions;
 use knotlab_scenarios::trial::{StitchMove, TrialRun, TrialSetup, run_trial};
 use knotlab_sim::knot::Verdict;
-use knotlab_sim::scene::load_scene;
 
 use super::numbers::parse_vector3;
 use super::output::{Output, outln};
 use super::skill_source::SkillSource;
 use crate::rerun_log::{self, RerunArgs};
+use crate::shipped;
 
 /// The exit code of a skill refused by a failed preview (1 is an error, 2 a bad command line).
 const REFUSED: u8 = 4;
@@ -36,9 +36,9 @@ const REFUSED: u8 = 4;
 pub struct RunArgs {
     #[command(flatten)]
     source: SkillSource,
-    /// The scene file.
-    #[arg(long, default_value = "scenarios/default.toml")]
-    scene: PathBuf,
+    /// The scene file [default: the shipped scenarios/default.toml, built in].
+    #[arg(long)]
+    scene: Option<PathBuf>,
     /// Seeds the trial's random draws (sensor noise).
     #[arg(long, default_value_t = 0)]
     seed: u64,
@@ -54,8 +54,9 @@ pub struct RunArgs {
     /// Stop at this time (s from the start) and evaluate what is there (a short trial, to debug).
     #[arg(long, value_name = "S")]
     until: Option<f64>,
-    /// The rig to execute on after the preview (a rig config, e.g. scenarios/rigs/melfa.toml). Without
-    /// it, or for a rig of simulated and dummy devices, the simulated trial is all there is.
+    /// The rig to execute on after the preview (a rig config, e.g. scenarios/rigs/melfa.toml, which
+    /// `knotlab shipped dump` writes out). Without it, or for a rig of simulated and dummy devices, the
+    /// simulated trial is all there is.
     #[arg(long)]
     rig: Option<PathBuf>,
     /// Execute on a rig's real devices even though the preview in the simulator failed.
@@ -173,9 +174,9 @@ pub fn run(args: RunArgs, out: &mut Output) -> anyhow::Result<ExitCode> {
     // The rig config is read before the trial runs: a bad one is reported at once, not after it.
     let rig_config = args.rig.as_ref().map(|path| load_rig_config(path)).transpose()?;
     let learned = args.source.learned()?;
-    let scene_name = args.scene.display().to_string();
+    let scene_name = shipped::name(args.scene.as_deref(), &shipped::SCENE);
     let setup = TrialSetup {
-        scene: load_scene(&args.scene)?,
+        scene: shipped::scene(args.scene.as_deref(), &shipped::SCENE)?,
         scene_name: scene_name.clone(),
         seed: args.seed,
         stitch: StitchMove {

@@ -11,25 +11,25 @@ use serde::Serialize;
 
 use knotlab_hw::controller::TeleopSettings;
 use knotlab_hw::rig::Rig;
-use knotlab_hw::rig_config::load_rig_config;
 use knotlab_learner::demonstration::write_demonstration;
 use knotlab_learner::synthesis::Method;
 use knotlab_scenarios::session::run_session;
-use knotlab_sim::scene::load_scene;
 use knotlab_sim::world::SimWorld;
 
 use super::output::{Output, outln};
 use super::skill_source::SkillSource;
+use crate::shipped;
 
 #[derive(Debug, Args)]
 pub struct SessionArgs {
     /// The rig: which masters and pedals steer (scenarios/rigs/sim-gamepad.toml needs the `gamepad`
-    /// feature; scenarios/rigs/sim.toml has dummy ones that stay still).
-    #[arg(long, default_value = "scenarios/rigs/sim-gamepad.toml")]
-    rig: PathBuf,
-    /// The scene file.
-    #[arg(long, default_value = "scenarios/default.toml")]
-    scene: PathBuf,
+    /// feature; scenarios/rigs/sim.toml, which `knotlab shipped dump` writes out, has dummy ones that
+    /// stay still) [default: the shipped scenarios/rigs/sim-gamepad.toml, built in].
+    #[arg(long)]
+    rig: Option<PathBuf>,
+    /// The scene file [default: the shipped scenarios/default.toml, built in].
+    #[arg(long)]
+    scene: Option<PathBuf>,
     #[command(flatten)]
     source: SkillSource,
     /// How the skill is carried to the stitch: fluid, dmp or replay.
@@ -67,11 +67,13 @@ pub fn run(args: SessionArgs, out: &mut Output) -> anyhow::Result<ExitCode> {
     if !(args.seconds.is_finite() && args.seconds > 0.0) {
         anyhow::bail!("--seconds {}: must be a positive number of seconds", args.seconds);
     }
-    let config = load_rig_config(&args.rig)?;
+    let rig_name = shipped::name(args.rig.as_deref(), &shipped::GAMEPAD_RIG);
+    let config = shipped::rig_config(args.rig.as_deref(), &shipped::GAMEPAD_RIG)?;
     let learned = args.source.learned()?;
     let rig = Rig::shipped().context("the shipped rig")?;
-    let world = SimWorld::new(load_scene(&args.scene)?, rig.clone())
-        .with_context(|| args.scene.display().to_string())?;
+    let scene_name = shipped::name(args.scene.as_deref(), &shipped::SCENE);
+    let world = SimWorld::new(shipped::scene(args.scene.as_deref(), &shipped::SCENE)?, rig.clone())
+        .with_context(|| scene_name.clone())?;
     let teleop = TeleopSettings { scale: args.scale, ..TeleopSettings::default() };
     let mut report = run_session(
         world,
@@ -84,9 +86,9 @@ pub fn run(args: SessionArgs, out: &mut Output) -> anyhow::Result<ExitCode> {
         args.seconds,
         !args.unpaced,
     )
-    .with_context(|| format!("the session on {}", args.rig.display()))?;
-    report.demonstration.metadata.scene = args.scene.display().to_string();
-    report.demonstration.metadata.source = format!("teleoperation ({})", args.rig.display());
+    .with_context(|| format!("the session on {rig_name}"))?;
+    report.demonstration.metadata.scene = scene_name;
+    report.demonstration.metadata.source = format!("teleoperation ({rig_name})");
     write_demonstration(&args.out, &report.demonstration)
         .with_context(|| format!("writing the session's recording to {}", args.out.display()))?;
     let r = Report {

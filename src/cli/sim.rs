@@ -11,19 +11,19 @@ use clap::Args;
 
 use knotlab_hw::rig::Rig;
 use knotlab_scenarios::stress::run_stress;
-use knotlab_sim::scene::load_scene;
 use knotlab_sim::snapshot::{View, render_png};
 use knotlab_sim::world::SimWorld;
 
 use super::numbers::{Numbers, parse_list};
 use super::output::{Output, outln};
+use crate::shipped;
 
 #[derive(Debug, Args)]
 pub struct SimArgs {
     /// The scene file (its suture the capsule chain: the nominal scene's rope has no joints to
-    /// stretch).
-    #[arg(long, default_value = "scenarios/chain.toml")]
-    scene: PathBuf,
+    /// stretch) [default: the shipped scenarios/chain.toml, built in].
+    #[arg(long)]
+    scene: Option<PathBuf>,
     /// Simulated seconds of the stress sequence (its moves scale with it).
     #[arg(long, default_value_t = 6.0)]
     seconds: f64,
@@ -54,9 +54,10 @@ pub fn run(args: SimArgs, out: &mut Output) -> anyhow::Result<ExitCode> {
     if !(args.seconds.is_finite() && args.seconds > 0.0 && args.seconds <= 3600.0) {
         anyhow::bail!("--seconds: must be within 0..3600, got {}", args.seconds);
     }
-    let scene = load_scene(&args.scene)?;
+    let scene_name = shipped::name(args.scene.as_deref(), &shipped::CHAIN_SCENE);
+    let scene = shipped::scene(args.scene.as_deref(), &shipped::CHAIN_SCENE)?;
     let rig = Rig::shipped().context("the shipped rig")?;
-    let mut world = SimWorld::new(scene, rig).with_context(|| args.scene.display().to_string())?;
+    let mut world = SimWorld::new(scene, rig).with_context(|| scene_name.clone())?;
     world.reseed(args.seed);
     let times = match (&args.snapshot, &args.at) {
         (Some(_), Some(times)) => times.clone(),
@@ -86,7 +87,7 @@ pub fn run(args: SimArgs, out: &mut Output) -> anyhow::Result<ExitCode> {
     if args.json {
         let mut value = serde_json::to_value(&report).context("report as JSON")?;
         if let Some(map) = value.as_object_mut() {
-            map.insert("scene".into(), args.scene.display().to_string().into());
+            map.insert("scene".into(), scene_name.clone().into());
             map.insert("snapshots".into(), written.clone().into());
         }
         out.line(serde_json::to_string_pretty(&value).context("writing JSON")?);
@@ -94,7 +95,7 @@ pub fn run(args: SimArgs, out: &mut Output) -> anyhow::Result<ExitCode> {
         outln!(
             out,
             "scene {} ({} bodies), {} steps, {:.2} s simulated in {:.2} s: {:.2}x real time",
-            args.scene.display(),
+            scene_name,
             report.bodies,
             report.steps,
             report.simulated_s,

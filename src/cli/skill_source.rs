@@ -6,10 +6,10 @@ use std::path::PathBuf;
 use anyhow::Context;
 use clap::Args;
 
-use knotlab_learner::demonstration::load_demonstration;
-use knotlab_learner::pattern::load_pattern;
 use knotlab_learner::primitive::{learn, load_knowledge_base};
 use knotlab_scenarios::trial::Learned;
+
+use crate::shipped;
 
 #[derive(Debug, Args)]
 pub struct SkillSource {
@@ -17,24 +17,30 @@ pub struct SkillSource {
     /// here and now with `--pattern`.
     #[arg(long)]
     pub skill: Option<PathBuf>,
-    /// The demonstration (learned from without `--skill`; played back by `--method replay`).
-    #[arg(long, default_value = "scenarios/demos/instrument-tie")]
-    pub demo: PathBuf,
-    /// The task pattern (used without `--skill`).
-    #[arg(long, default_value = "scenarios/patterns/knot_tying.toml")]
-    pub pattern: PathBuf,
+    /// The demonstration (learned from without `--skill`; played back by `--method replay`)
+    /// [default: the shipped scenarios/demos/instrument-tie, built in].
+    #[arg(long)]
+    pub demo: Option<PathBuf>,
+    /// The task pattern (used without `--skill`) [default: the shipped
+    /// scenarios/patterns/knot_tying.toml, built in].
+    #[arg(long)]
+    pub pattern: Option<PathBuf>,
 }
 
 impl SkillSource {
     /// The knowledge base and the demonstration.
     pub fn learned(&self) -> anyhow::Result<Learned> {
-        let demonstration = load_demonstration(&self.demo)?;
+        let demonstration = shipped::demonstration(self.demo.as_deref())?;
         let knowledge = match &self.skill {
             Some(path) => load_knowledge_base(path)?,
             None => {
-                let pattern = load_pattern(&self.pattern)?;
+                let pattern = shipped::pattern(self.pattern.as_deref())?;
                 learn(&demonstration, &pattern).with_context(|| {
-                    format!("learning from {} with {}", self.demo.display(), self.pattern.display())
+                    format!(
+                        "learning from {} with {}",
+                        shipped::demo_name(self.demo.as_deref()),
+                        shipped::name(self.pattern.as_deref(), &shipped::PATTERN)
+                    )
                 })?
             }
         };

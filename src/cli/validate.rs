@@ -9,16 +9,17 @@ use std::process::ExitCode;
 use anyhow::Context;
 use clap::Args;
 
-use knotlab_sim::scene::load_scene;
 use knotlab_sim::validation::{Check, SutureUnderTest, figure_text, run_all};
 
 use super::output::{Output, outln};
+use crate::shipped;
 
 #[derive(Debug, Args)]
 pub struct ValidateArgs {
-    /// The scene whose suture is checked (its `[thread]`, which must be the rope, and its step).
-    #[arg(long, default_value = "scenarios/default.toml")]
-    suture_from: PathBuf,
+    /// The scene whose suture is checked (its `[thread]`, which must be the rope, and its step)
+    /// [default: the shipped scenarios/default.toml, built in].
+    #[arg(long, value_name = "SCENE")]
+    suture_from: Option<PathBuf>,
     /// Also write `validation.json` and `validation.md` (the table) into this directory.
     #[arg(long)]
     out: Option<PathBuf>,
@@ -54,14 +55,14 @@ fn table(checks: &[Check]) -> String {
 }
 
 pub fn run(args: ValidateArgs, out: &mut Output) -> anyhow::Result<ExitCode> {
-    let scene = load_scene(&args.suture_from)?;
-    let suture = SutureUnderTest::from_scene(&scene)
-        .map_err(|e| anyhow::anyhow!("{}: {e}", args.suture_from.display()))?;
+    let name = shipped::name(args.suture_from.as_deref(), &shipped::SCENE);
+    let scene = shipped::scene(args.suture_from.as_deref(), &shipped::SCENE)?;
+    let suture = SutureUnderTest::from_scene(&scene).map_err(|e| anyhow::anyhow!("{name}: {e}"))?;
     let checks = run_all(&suture);
     let failed = checks.iter().filter(|c| c.passed == Some(false)).count();
     let judged = checks.iter().filter(|c| c.passed.is_some()).count();
     let report = serde_json::json!({
-        "suture_from": args.suture_from.display().to_string(),
+        "suture_from": name,
         "judged": judged,
         "failed": failed,
         "checks": checks,

@@ -140,7 +140,7 @@ fn snapshots_zoom_to_the_half_width_asked_for() {
         let (code, stdout, err) = knotlab(&["knot", "classify", csv.to_str().unwrap()]);
         assert_eq!(code, 0, "{stdout}{err}");
         assert!(stdout.contains("unknot"), "no knot yet at 0.2 s: {stdout}");
-        // The same snapshot with the tail drawn back along the left's jaws (issue 6's what-if).
+        // The same snapshot with the tail drawn back along the left's jaws (the draw-through what-if).
         let dir_arg = out.to_str().unwrap();
         let draw = |grip: &str, more: &[&str]| {
             let mut args = vec!["knot", "draw-through", dir_arg, "--at", "0.2", "--grip", grip];

@@ -405,3 +405,18 @@ fn a_resume_asking_for_fewer_trials_keeps_the_folder_whole() {
     assert_eq!(mc(&out, 2, 1).0, 0);
     std::fs::remove_dir_all(&out).ok();
 }
+
+/// Guards against a method given twice with another between running twice per trial (only adjacent
+/// repeats were dropped): the duplicate lines then made every resume, report and merge refuse the
+/// folder. Each method runs once, in the order first given.
+#[test]
+fn a_method_given_twice_runs_once() {
+    let out = dir("methods-twice");
+    let (code, log) = mc_with(&out, 1, 1, &["--method", "dmp"]);
+    assert_eq!(code, 0, "{log}");
+    let run: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("run.json")).unwrap()).unwrap();
+    assert_eq!(run["methods"], serde_json::json!(["dmp", "replay"]), "{run}");
+    assert_eq!(lines(&out).len(), 2);
+    std::fs::remove_dir_all(&out).ok();
+}

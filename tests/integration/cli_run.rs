@@ -94,10 +94,10 @@ fn bad_arguments_are_named() {
 /// accepts, the wound closed and the preview passed.
 #[test]
 fn the_canonical_demonstration_replayed_at_its_own_stitch_ties_the_knot() {
-    // Issue 6: the recording captures what matters. Played back open-loop at the nominal scene (every
+    // The recording captures what matters. Played back open-loop at the nominal scene (every
     // recorded tip frame and jaw angle, 0.2 s apart), it leaves the knot the evaluator accepts, as the
     // expert's run that recorded it did. Played back by the jaws' direction alone, the right's jaws
-    // rolled otherwise than recorded and the needle was torn out of them (session 49).
+    // roll otherwise than recorded and the needle is torn out of them.
     ties_at_its_own_stitch("replay");
 }
 
@@ -105,11 +105,11 @@ fn the_canonical_demonstration_replayed_at_its_own_stitch_ties_the_knot() {
 /// surgeon's knot the evaluator accepts without any grip slipping.
 #[test]
 fn the_skill_learned_from_the_canonical_demonstration_ties_the_knot_at_its_own_stitch() {
-    // Issue 10: learned by the shipped pattern and carried to the stitch by the paper's method (the
-    // winding regenerated through the fluid, the pull force-controlled), the skill ties the knot the
-    // evaluator accepts. Before session 50 it did not: the jaws were commanded by direction alone (the
-    // needle torn out of the right's jaws, 17.4 N), and the pulls were one force-controlled primitive
-    // that opened the jaws at the draw's friction (no knot).
+    // Learned by the shipped pattern and carried to the stitch by the paper's method (the winding
+    // regenerated through the fluid, the pull force-controlled), the skill ties the knot the evaluator
+    // accepts. Both its jaws' full frames and its split pulls matter: with the jaws commanded by
+    // direction alone the needle is torn out of the right's jaws (17.4 N), and with the pulls as one
+    // force-controlled primitive the jaws open at the draw's friction (no knot).
     let r = ties_at_its_own_stitch("fluid");
     let events = r["events"].as_array().unwrap();
     assert!(!events.iter().any(|e| e.as_str().unwrap().starts_with("Slipped")), "no grip torn: {r}");

@@ -4,6 +4,7 @@
 mod common;
 
 mod backend_melfa_agreement;
+mod cli_anywhere;
 mod cli_demo;
 mod cli_fluid;
 mod cli_knot;
@@ -17,4 +18,5 @@ mod cli_run;
 mod cli_session;
 mod cli_sim;
 mod fuzz;
+mod readme_commands;
 mod rerun_recording;
