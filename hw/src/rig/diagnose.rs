@@ -31,7 +31,9 @@ pub const MAX_DEPTH: usize = 64;
 /// roxmltree, whose parser keeps its own stack); `None` otherwise, also when it is no XML at all
 /// (urdf-rs and [`diagnose`] say why).
 pub fn too_deep(text: &str) -> Option<Problem> {
-    let doc = roxmltree::Document::parse(text).ok()?;
+    let Ok(doc) = roxmltree::Document::parse(text) else {
+        return lexically_too_deep(text);
+    };
     let mut depth = vec![0usize; doc.descendants().count() + 1];
     for node in doc.descendants() {
         let d = node.parent().map_or(0, |p| depth[p.id().get() as usize] + 1);
@@ -44,6 +46,51 @@ pub fn too_deep(text: &str) -> Option<Problem> {
                 format!("elements nested deeper than {MAX_DEPTH} (line {line})"),
             ));
         }
+    }
+    None
+}
+
+/// [`too_deep`] for a text that is no well-formed XML (elements left open, say), which urdf-rs still
+/// reads by recursion before it refuses it: opening tags less closing ones, comments, processing
+/// instructions, CDATA and declarations skipped.
+fn lexically_too_deep(text: &str) -> Option<Problem> {
+    let bytes = text.as_bytes();
+    let (mut depth, mut i) = (0usize, 0usize);
+    let skip_to = |from: usize, end: &[u8]| {
+        bytes[from..].windows(end.len()).position(|w| w == end).map_or(bytes.len(), |k| from + k + end.len())
+    };
+    while i < bytes.len() {
+        if bytes[i] != b'<' {
+            i += 1;
+            continue;
+        }
+        let rest = &bytes[i..];
+        i = if rest.starts_with(b"<!--") {
+            skip_to(i, b"-->")
+        } else if rest.starts_with(b"<![CDATA[") {
+            skip_to(i, b"]]>")
+        } else if rest.starts_with(b"<?") {
+            skip_to(i, b"?>")
+        } else if rest.starts_with(b"<!") {
+            skip_to(i, b">")
+        } else if rest.starts_with(b"</") {
+            depth = depth.saturating_sub(1);
+            skip_to(i, b">")
+        } else {
+            let end = skip_to(i, b">");
+            if end > i + 1 && bytes[end.saturating_sub(2)] != b'/' {
+                depth += 1;
+                if depth > MAX_DEPTH {
+                    let line = text[..i].matches('\n').count() + 1;
+                    return Some(Problem::new(
+                        "document",
+                        "depth",
+                        format!("elements nested deeper than {MAX_DEPTH} (line {line})"),
+                    ));
+                }
+            }
+            end
+        };
     }
     None
 }

@@ -134,3 +134,25 @@ fn garbage_is_a_parse_error() {
         );
     }
 }
+
+/// A document nested deeper than urdf-rs can read without overflowing its stack (it reads elements by
+/// recursion: 1,500 levels overflowed a test thread) is refused before urdf-rs sees it, whether it is
+/// well-formed or its elements are left open (which roxmltree refuses but urdf-rs still recursed
+/// into), naming the depth.
+#[test]
+fn a_document_nested_too_deep_is_refused_open_or_closed() {
+    let closed = format!("<robot name=\"r\">{}{}</robot>", "<a>".repeat(3000), "</a>".repeat(3000));
+    let open = format!("<robot name=\"r\">{}", "<link name=\"l\">".repeat(3000));
+    for text in [closed, open] {
+        let e = load_err(&text);
+        assert!(e.contains("elements nested deeper than 64"), "{e}");
+    }
+    // Comments, declarations and self-closing elements do not deepen it.
+    let shallow = format!(
+        "<?xml version=\"1.0\"?><!-- {} --><robot name=\"r\">{}</robot>",
+        "<a>".repeat(100),
+        "<b/>".repeat(100)
+    );
+    let e = load_err(&shallow);
+    assert!(!e.contains("nested deeper"), "{e}");
+}
