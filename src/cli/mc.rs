@@ -151,7 +151,7 @@ fn print_summary(out: &mut Output, summary: &knotlab_bench::mc::Summary) -> anyh
         if let (Some(median), Some(max)) = (t.median, t.max) {
             outln!(
                 out,
-                "  the thread passed through itself in {} of {} trials; stretched beyond 5 % in {} of {} (median {:.1} s), at most {:.0} % (median {:.0} %)",
+                "  the thread passed through itself in {} of {} trials; stretched beyond 5 % in {} of {} (for a median {:.1} s a trial), at most {:.0} % (median {:.0} %)",
                 x.trials_with_any,
                 x.counted_trials,
                 t.trials_over_5_percent,

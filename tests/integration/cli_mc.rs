@@ -87,7 +87,7 @@ fn the_same_seed_gives_the_same_summary_with_one_or_two_jobs() {
     let (code, text) = mc(&a, 3, 1);
     assert_eq!(code, 0, "{text}");
     // The console's summary says how far the thread stretched, as summary.json does.
-    assert!(text.contains("stretched beyond 5 % in") && text.contains("of 3 (median"), "{text}");
+    assert!(text.contains("stretched beyond 5 % in") && text.contains("of 3 (for a median"), "{text}");
     assert_eq!(mc(&b, 3, 2).0, 0);
     let (sa, sb) =
         (std::fs::read(a.join("summary.json")).unwrap(), std::fs::read(b.join("summary.json")).unwrap());
