@@ -245,10 +245,11 @@ pub fn run(args: RunArgs, out: &mut Output) -> anyhow::Result<ExitCode> {
             }
         }
     };
+    let verdict = trial.verdict();
     let report = Report {
-        success: e.verdict == Verdict::Success,
-        verdict: e.verdict.label(),
-        failure_mode: match e.verdict {
+        success: verdict == Verdict::Success,
+        verdict: verdict.label(),
+        failure_mode: match verdict {
             Verdict::Success => None,
             Verdict::Failure(mode) => Some(mode.name()),
         },

@@ -267,7 +267,7 @@ fn run_one(options: &McOptions, trial: u64, method: Method, runner: &TrialRunner
                 seed: options.seed,
                 method: method.to_string(),
                 draw: draw_json,
-                verdict: e.verdict.label().to_owned(),
+                verdict: t.verdict().label().to_owned(),
                 knot: e.knot_before.map(|k| k.name().to_owned()),
                 wound_gap_m: Some(e.gap_after_m.unwrap_or(e.gap_before_m)),
                 thread_max_stretch: e.thread_most_stretched.map(|s| s.ratio),

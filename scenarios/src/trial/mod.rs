@@ -22,6 +22,7 @@ use knotlab_learner::synthesis::{
     ApproachSettings, Method, PrimitiveSettings, ReplaySettings, Site, StartPose, SynthesisError, Trocars,
     prepend_approach, relocation, replay, synthesize,
 };
+use knotlab_sim::knot::{FailureMode, Verdict};
 use knotlab_sim::scene::SceneConfig;
 use knotlab_sim::world::{SimWorld, trocar_of};
 use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};
@@ -102,6 +103,22 @@ pub struct TrialRun {
     /// The collision preview: the first link collision along the skill, if any (not looked for when
     /// the kinematic preview failed).
     pub collision: Option<LinkCollision>,
+}
+
+impl TrialRun {
+    /// The trial's verdict as the preview gate sees it: a skill whose kinematic preview found a
+    /// target out of reach is `unreachable`, one whose collision preview found a link collision is
+    /// `collision` (on real devices neither would be executed), whatever the simulated knot; else the
+    /// knot's verdict.
+    pub fn verdict(&self) -> Verdict {
+        if self.kinematics.is_err() {
+            Verdict::Failure(FailureMode::Unreachable)
+        } else if self.collision.is_some() {
+            Verdict::Failure(FailureMode::Collision)
+        } else {
+            self.run.evaluation.verdict
+        }
+    }
 }
 
 /// The kinematic preview of `skill` on `world`'s instruments as they stand.

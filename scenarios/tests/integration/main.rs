@@ -31,3 +31,4 @@ mod scene_determinism;
 mod scene_variants_differ_from_the_nominal_only_in_the_suture;
 mod short_suture_scene_is_the_chain_one_with_less_thread;
 mod suture_stretch_watch;
+mod trial_preview_verdicts;

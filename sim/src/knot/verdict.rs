@@ -20,9 +20,11 @@ pub enum FailureMode {
     KnotSlipped,
     /// The simulated thread blew up or tunnelled through itself.
     ThreadUnstable,
-    /// An instrument or arm collided.
+    /// The skill's collision preview found an arm's link against something (the trial's
+    /// `TrialRun::verdict`): on real devices it would not run.
     Collision,
-    /// A motion's target was out of the arms' reach.
+    /// A motion's target was out of the arms' reach in the kinematic preview, or (Monte Carlo) the
+    /// trial could not be set up.
     Unreachable,
     /// A device reported a fault.
     DeviceFault,

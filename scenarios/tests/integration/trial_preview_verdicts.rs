@@ -1,0 +1,79 @@
+//! A trial's verdict as the preview gate sees it: a skill whose collision preview finds a link
+//! against something is judged `collision`, whatever the simulated knot.
+
+use std::path::Path;
+
+use knotlab_hw::controller::ArmSetup;
+use knotlab_hw::kinematics::ArmJoints;
+use knotlab_hw::rig::{ArmName, Rig};
+use knotlab_hw::skill::preview::kinematic_trajectory;
+use knotlab_learner::demonstration::load_demonstration;
+use knotlab_learner::pattern::load_pattern;
+use knotlab_learner::primitive::learn;
+use knotlab_learner::synthesis::Method;
+use knotlab_scenarios::expert::RecordOptions;
+use knotlab_scenarios::trial::{Learned, StitchMove, TrialSetup, run_trial};
+use knotlab_sim::knot::{FailureMode, Verdict};
+use knotlab_sim::scene::{Obstacle, parse_scene};
+use knotlab_sim::world::{SimWorld, trocar_of};
+use nalgebra::Vector3;
+
+/// Guards against a failure mode the reports list but nothing produced: a box standing where the left
+/// arm's elbow passes halfway through the skill makes the collision preview find the left arm against
+/// it, and the trial is judged `collision` (on real devices the skill would not run), though the
+/// simulated trial ran; without the box the same short trial is judged by its knot.
+#[test]
+fn a_skill_whose_preview_hits_an_obstacle_is_judged_collision() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let demonstration =
+        load_demonstration(&root.join("demos/instrument-tie")).expect("the shipped demonstration");
+    let pattern = load_pattern(&root.join("patterns/knot_tying.toml")).expect("the shipped pattern");
+    let knowledge = learn(&demonstration, &pattern).expect("learned");
+    let learned = Learned { knowledge, demonstration };
+    let scene = parse_scene(include_str!("../../default.toml"), "default.toml").expect("the nominal scene");
+    let rig = Rig::shipped().expect("the shipped rig");
+    let options =
+        RecordOptions { cycles_per_sample: 10, stop_after_s: Some(0.3), ..RecordOptions::default() };
+    let trial = |scene| {
+        let setup = TrialSetup {
+            scene,
+            scene_name: "default.toml".to_owned(),
+            seed: 0,
+            stitch: StitchMove { offset_m: Vector3::zeros(), rotate_rad: 0.0 },
+            method: Method::Replay,
+        };
+        run_trial(&learned, &setup, &options, None).expect("the trial runs")
+    };
+    let clear = trial(scene.clone());
+    assert!(clear.collision.is_none(), "{:?}", clear.collision);
+    assert_eq!(clear.verdict(), clear.run.evaluation.verdict);
+    // Where the left elbow is halfway through the skill, by the preview's own trajectory.
+    let world = SimWorld::new(scene.clone(), rig.clone()).expect("the nominal world");
+    let arms = [ArmName::Left, ArmName::Right, ArmName::Assist];
+    let setups: Vec<ArmSetup> = arms
+        .iter()
+        .map(|&a| ArmSetup { arm: a, model: rig.arm(a).model, world_trocar_m: trocar_of(world.config(), a) })
+        .collect();
+    let current: Vec<(ArmName, ArmJoints)> = arms.iter().map(|&a| (a, world.arm(a).command)).collect();
+    let trajectory = kinematic_trajectory(&clear.skill, &setups, &current, 0.02).expect("reachable");
+    let left = &trajectory.iter().find(|(a, _)| *a == ArmName::Left).expect("the left's joints").1;
+    let model = rig.arm(ArmName::Left).model;
+    let elbow_at = |j: &ArmJoints| -> Vector3<f64> {
+        (model.world_from_base * model.geometry.base_from_frames(&j.arm_rad)[2]).translation.vector
+    };
+    // The elbow where it is farthest from where it starts (a box it touches at the start is how the
+    // world stands, and the preview leaves it out).
+    let start = elbow_at(&left[0]);
+    let middle = left
+        .iter()
+        .map(elbow_at)
+        .max_by(|a, b| (a - start).norm().total_cmp(&(b - start).norm()))
+        .expect("joints");
+    assert!((middle - start).norm() > 0.1, "the elbow moves: {start} to {middle}");
+    let mut boxed = scene;
+    boxed.obstacles.push(Obstacle { centre_m: middle.into(), half_extents_m: [0.01; 3] });
+    let hit = trial(boxed);
+    let collision = hit.collision.as_ref().expect("the left arm meets the box");
+    assert_eq!(collision.arm, ArmName::Left, "{collision}");
+    assert_eq!(hit.verdict(), Verdict::Failure(FailureMode::Collision));
+}
