@@ -64,12 +64,18 @@ fn every_readme_command_exists_with_its_flags() {
     for command in &commands {
         let words: Vec<&str> = command.split_whitespace().skip(1).collect();
         let path: Vec<&str> = words.iter().take_while(|w| !w.starts_with('-')).copied().collect();
-        // The subcommand path: its words up to the first positional argument.
-        let mut sub = Vec::new();
+        // The subcommand path: each word the help of the path before it lists among its commands
+        // (`knotlab report runs/x`: `runs/x` is the report's argument, not a command).
+        let mut sub: Vec<&str> = Vec::new();
         for word in path {
             let mut probe = sub.clone();
-            probe.extend([word, "--help"]);
-            if knotlab_in(&dir, &probe).0 != 0 {
+            probe.push("--help");
+            let (_, help) = knotlab_in(&dir, &probe);
+            let listed = help
+                .lines()
+                .skip_while(|l| !l.starts_with("Commands:"))
+                .any(|l| l.split_whitespace().next() == Some(word) && l.starts_with("  "));
+            if !listed {
                 break;
             }
             sub.push(word);
