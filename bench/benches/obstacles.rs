@@ -20,7 +20,7 @@ use knotlab_learner::obstacles::{
 };
 use knotlab_sim::scene::{SceneConfig, parse_scene};
 use knotlab_sim::world::SimWorld;
-use nalgebra::{IsometryMatrix3, Rotation3, Vector3};
+use nalgebra::{IsometryMatrix3, Vector3};
 
 const SCENE: &str = include_str!("../../scenarios/default.toml");
 
@@ -42,8 +42,9 @@ fn setup(scene: &SceneConfig) -> Result<(CollisionWorld, GridPlane), Box<dyn Err
     for (k, o) in scene.obstacles.iter().enumerate() {
         world.add_obstacle(&format!("obstacles[{k}]"), o.centre_m.into(), o.half_extents_m.into())?;
     }
-    let wound = Rotation3::from_axis_angle(&Vector3::z_axis(), scene.tissue.yaw_rad);
-    let stitch = Vector3::from(scene.tissue.centre_m) + wound * Vector3::new(scene.stitch.along_m, 0.0, 0.0);
+    let world_from_tissue = knotlab_sim::tissue::Tissue::frame(&scene.tissue);
+    let wound = world_from_tissue.rotation.to_rotation_matrix();
+    let stitch = (world_from_tissue * nalgebra::Point3::new(scene.stitch.along_m, 0.0, 0.0)).coords;
     let plane = GridPlane::centred(
         stitch + Vector3::z() * 0.02,
         wound * Vector3::x(),

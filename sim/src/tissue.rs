@@ -80,11 +80,13 @@ pub struct Tissue {
 const DEEP_INSET_M: f64 = 0.001;
 
 impl Tissue {
-    /// The tissue frame of a scene.
+    /// The tissue frame of a scene: at its centre, turned by its yaw about the world's z and then
+    /// tilted about the wound (the turned x).
     pub fn frame(params: &TissueParams) -> Isometry3<f64> {
         Isometry3::from_parts(
             Translation3::from(Vector3::from(params.centre_m)),
-            UnitQuaternion::from_axis_angle(&Vector3::z_axis(), params.yaw_rad),
+            UnitQuaternion::from_axis_angle(&Vector3::z_axis(), params.yaw_rad)
+                * UnitQuaternion::from_axis_angle(&Vector3::x_axis(), params.tilt_rad),
         )
     }
 

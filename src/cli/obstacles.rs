@@ -111,9 +111,9 @@ pub fn run(args: ObstaclesArgs, out: &mut Output) -> anyhow::Result<ExitCode> {
 
 /// The scene's stitch point on the tissue surface and the wound's direction.
 fn stitch(scene: &SceneConfig) -> (Vector3<f64>, Rotation3<f64>) {
-    let tissue_from_world = Rotation3::from_axis_angle(&Vector3::z_axis(), scene.tissue.yaw_rad);
-    let centre = Vector3::from(scene.tissue.centre_m);
-    (centre + tissue_from_world * Vector3::new(scene.stitch.along_m, 0.0, 0.0), tissue_from_world)
+    let world_from_tissue = knotlab_sim::tissue::Tissue::frame(&scene.tissue);
+    let stitch = world_from_tissue * nalgebra::Point3::new(scene.stitch.along_m, 0.0, 0.0);
+    (stitch.coords, world_from_tissue.rotation.to_rotation_matrix())
 }
 
 fn plane(args: &ObstaclesArgs, scene: &SceneConfig) -> anyhow::Result<(GridPlane, bool)> {
@@ -125,7 +125,7 @@ fn plane(args: &ObstaclesArgs, scene: &SceneConfig) -> anyhow::Result<(GridPlane
         }
         _ => {
             let (point, rotation) = stitch(scene);
-            let centre = point + Vector3::z() * DEFAULT_HEIGHT_M;
+            let centre = point + rotation * Vector3::z() * DEFAULT_HEIGHT_M;
             let plane = GridPlane::centred(
                 centre,
                 rotation * Vector3::x(),

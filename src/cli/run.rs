@@ -51,6 +51,10 @@ pub struct RunArgs {
     /// Turns the stitch (the tissue) about its normal by this much, degrees.
     #[arg(long, allow_hyphen_values = true, default_value_t = 0.0)]
     stitch_rotate: f64,
+    /// Tilts the tissue about the wound by this much, degrees (a wound on a sloped surface; the
+    /// tail's flap raised for a positive tilt). With the scene's own tilt at most 45.
+    #[arg(long, allow_hyphen_values = true, default_value_t = 0.0)]
+    stitch_tilt: f64,
     /// Stop at this time (s from the start) and evaluate what is there (a short trial, to debug).
     #[arg(long, value_name = "S")]
     until: Option<f64>,
@@ -102,6 +106,7 @@ struct Report {
     scene: String,
     stitch_offset_m: [f64; 3],
     stitch_rotate_deg: f64,
+    stitch_tilt_deg: f64,
     approach_s: f64,
     skill_duration_s: f64,
     fault: Option<String>,
@@ -175,13 +180,24 @@ pub fn run(args: RunArgs, out: &mut Output) -> anyhow::Result<ExitCode> {
     let rig_config = args.rig.as_ref().map(|path| load_rig_config(path)).transpose()?;
     let learned = args.source.learned()?;
     let scene_name = shipped::name(args.scene.as_deref(), &shipped::SCENE);
+    let scene = shipped::scene(args.scene.as_deref(), &shipped::SCENE)?;
+    let tilt_deg = scene.tissue.tilt_rad.to_degrees() + args.stitch_tilt;
+    let most_deg = knotlab_sim::scene::MAX_TILT_RAD.to_degrees();
+    if !(tilt_deg.is_finite() && tilt_deg.abs() <= most_deg) {
+        anyhow::bail!(
+            "--stitch-tilt {}: with the scene's tilt ({} degrees) the tissue would tilt {tilt_deg} degrees; at most {most_deg} either way",
+            args.stitch_tilt,
+            scene.tissue.tilt_rad.to_degrees()
+        );
+    }
     let setup = TrialSetup {
-        scene: shipped::scene(args.scene.as_deref(), &shipped::SCENE)?,
+        scene,
         scene_name: scene_name.clone(),
         seed: args.seed,
         stitch: StitchMove {
             offset_m: args.stitch_offset.unwrap_or_else(Vector3::zeros),
             rotate_rad: args.stitch_rotate.to_radians(),
+            tilt_rad: args.stitch_tilt.to_radians(),
         },
         method: args.method,
     };
@@ -269,6 +285,7 @@ pub fn run(args: RunArgs, out: &mut Output) -> anyhow::Result<ExitCode> {
         scene: scene_name,
         stitch_offset_m: setup.stitch.offset_m.into(),
         stitch_rotate_deg: args.stitch_rotate,
+        stitch_tilt_deg: args.stitch_tilt,
         approach_s: trial.approach_s,
         skill_duration_s: trial.skill.duration_s(),
         fault: trial.run.fault.clone(),

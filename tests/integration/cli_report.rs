@@ -18,8 +18,9 @@ fn dir(name: &str) -> PathBuf {
     d
 }
 
-/// 2 methods x 6 trials; play, calibration and offset vary with the trial unless `fixed_play`.
-fn hand_made_lines(fixed_play: bool) -> Vec<Value> {
+/// 2 methods x 6 trials; play, calibration, offset, turn and tilt vary with the trial, but play and
+/// tilt not when `fixed`.
+fn hand_made_lines(fixed: bool) -> Vec<Value> {
     let verdicts = [
         ("dmp", ["success", "wrong_knot_type", "no_knot", "no_knot", "success", "unreachable"]),
         ("fluid", ["success", "no_knot", "success", "loose", "success", "success"]),
@@ -28,14 +29,16 @@ fn hand_made_lines(fixed_play: bool) -> Vec<Value> {
     for trial in 0..6u64 {
         for (method, v) in &verdicts {
             let t = trial as f64;
-            let play_rad = if fixed_play { 0.0 } else { 0.001 * t };
+            let play_rad = if fixed { 0.0 } else { 0.001 * t };
+            let tilt_rad = if fixed { 0.0 } else { -0.05 + 0.02 * t };
             lines.push(json!({
                 "trial": trial,
                 "seed": 42,
                 "method": method,
                 "draw": {
-                    "stitch_offset_m": [0.002 * t, 0.001, -0.0005 * t],
+                    "stitch_offset_m": [0.002 * t, 0.001 * (trial % 3) as f64, -0.0005 * t],
                     "stitch_rotate_rad": 0.01 * t,
+                    "stitch_tilt_rad": tilt_rad,
                     "play_rad": play_rad,
                     "calibration_max_rad": 0.002 + 0.0005 * t,
                     "thread_friction": 0.3,
@@ -69,7 +72,8 @@ fn number(v: &Value) -> f64 {
     v.as_f64().expect("a number in the hand-made line")
 }
 
-/// Charts expected: methods side by side, failure modes (when any failed), one per varying parameter.
+/// Charts expected: methods side by side, failure modes (when any failed), one per varying parameter,
+/// and a map per method for each pair of parameters (shift x and y; turn and tilt) that both vary.
 fn expected_charts(lines: &[Value]) -> usize {
     let varies = |f: &dyn Fn(&Value) -> f64| {
         let first = f(&lines[0]);
@@ -79,10 +83,18 @@ fn expected_charts(lines: &[Value]) -> usize {
         let offset = l["draw"]["stitch_offset_m"].as_array().expect("an offset in the hand-made line");
         offset.iter().map(|c| number(c).powi(2)).sum::<f64>()
     };
+    let shift = |axis: usize| move |l: &Value| number(&l["draw"]["stitch_offset_m"][axis]);
+    let turn = |l: &Value| number(&l["draw"]["stitch_rotate_rad"]);
+    let tilt = |l: &Value| number(&l["draw"]["stitch_tilt_rad"]);
+    let maps =
+        usize::from(varies(&shift(0)) && varies(&shift(1))) + usize::from(varies(&turn) && varies(&tilt));
     1 + usize::from(lines.iter().any(|l| l["verdict"] != "success"))
         + usize::from(varies(&|l| number(&l["draw"]["play_rad"])))
         + usize::from(varies(&|l| number(&l["draw"]["calibration_max_rad"])))
         + usize::from(varies(&norm))
+        + usize::from(varies(&turn))
+        + usize::from(varies(&tilt))
+        + maps * METHODS.len()
 }
 
 fn method_table<'a>(html: &'a str, method: &str) -> &'a str {
@@ -115,7 +127,7 @@ fn the_report_shows_every_method_and_a_chart_per_varying_parameter() {
     let path = d.join("report.html");
     assert!(stdout.contains(&path.display().to_string()), "{stdout}");
     let html = std::fs::read_to_string(&path).expect("report.html written");
-    assert_eq!(expected_charts(&lines), 5);
+    assert_eq!(expected_charts(&lines), 11);
     assert_eq!(html.matches("<svg").count(), expected_charts(&lines));
     for title in [
         "Methods side by side",
@@ -123,9 +135,15 @@ fn the_report_shows_every_method_and_a_chart_per_varying_parameter() {
         "Success against play",
         "Success against calibration error",
         "Success against stitch displacement",
+        "Success against stitch turn",
+        "Success against tissue tilt",
+        "Success over shift along x and shift along y",
+        "Success over turn and tilt",
     ] {
         assert!(html.contains(&format!("<h2>{title}</h2>")), "{title}");
     }
+    // The one trial out of reach (dmp's last) is marked on both of dmp's maps, and on no other.
+    assert_eq!(html.matches("1 out of reach").count(), 2, "the reachable boundary");
     for m in METHODS {
         let (trials, won) = successes(&lines, m);
         let table = method_table(&html, m);
@@ -173,11 +191,15 @@ fn a_fixed_parameter_is_said_in_text_and_json_matches_the_lines() {
         assert!((reported["success_rate"].as_f64().unwrap() - won as f64 / trials as f64).abs() < 1e-12);
     }
     let html = std::fs::read_to_string(&out).expect("the report at --out");
-    assert_eq!(expected_charts(&lines), 4);
+    assert_eq!(expected_charts(&lines), 7);
     assert_eq!(html.matches("<svg").count(), expected_charts(&lines));
     assert!(
         html.contains("The play was the same in every trial (0.000 mrad): no chart."),
         "no text for fixed play"
+    );
+    assert!(
+        html.contains("The turn and the tilt did not both vary across the trials: no map."),
+        "no text for the flat map"
     );
     assert!(!d.join("report.html").exists());
     assert_self_contained(&html);

@@ -4,7 +4,8 @@
 
 use knotlab_scenarios::trial::StitchMove;
 use knotlab_sim::scene::{Obstacle, SceneConfig};
-use nalgebra::{Isometry3, Point3, Translation3, UnitQuaternion, Vector3};
+use knotlab_sim::tissue::Tissue;
+use nalgebra::{Point3, Vector3};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use serde::Serialize;
@@ -16,6 +17,8 @@ pub struct Draw {
     pub stitch_offset_m: [f64; 3],
     /// The stitch's turn, rad.
     pub stitch_rotate_rad: f64,
+    /// The tissue's tilt about the wound, rad (added to the scene's).
+    pub stitch_tilt_rad: f64,
     /// Backlash of every arm joint, rad.
     pub play_rad: f64,
     /// The largest calibration offset drawn over the arms' joints, rad.
@@ -52,6 +55,8 @@ pub fn draw(scene: &SceneConfig, seed: u64, trial: u64) -> (SceneConfig, StitchM
     let offset =
         [uniform(&mut rng, r.stitch_x_m), uniform(&mut rng, r.stitch_y_m), uniform(&mut rng, r.stitch_z_m)];
     let rotate = uniform(&mut rng, r.stitch_rotate_rad);
+    // Nothing drawn for a tilt of one value: a scene without tilt draws what it drew before.
+    let tilt = uniform(&mut rng, r.stitch_tilt_rad);
     let play = uniform(&mut rng, r.play_rad);
     let mut out = scene.clone();
     let mut calibration_max: f64 = 0.0;
@@ -68,10 +73,10 @@ pub fn draw(scene: &SceneConfig, seed: u64, trial: u64) -> (SceneConfig, StitchM
     let noise = uniform(&mut rng, r.force_noise_n);
     let sim_seed = rng.random();
     // Obstacles last, so that a scene without them draws what it drew before they existed.
-    let world_from_tissue = Isometry3::from_parts(
-        Translation3::from(Vector3::from(scene.tissue.centre_m) + Vector3::from(offset)),
-        UnitQuaternion::from_axis_angle(&Vector3::z_axis(), scene.tissue.yaw_rad + rotate),
-    );
+    let stitch = StitchMove { offset_m: Vector3::from(offset), rotate_rad: rotate, tilt_rad: tilt };
+    let mut moved = scene.clone();
+    stitch.apply(&mut moved);
+    let world_from_tissue = Tissue::frame(&moved.tissue);
     let mut obstacles = Vec::new();
     for o in &r.obstacles {
         let present = rng.random_bool(o.probability.clamp(0.0, 1.0));
@@ -90,10 +95,10 @@ pub fn draw(scene: &SceneConfig, seed: u64, trial: u64) -> (SceneConfig, StitchM
         drawn(stiffness, r.thread_bend_stiffness, scene.thread.bend_stiffness_n_m_per_rad);
     out.sensor.force_noise_n = drawn(noise, r.force_noise_n, scene.sensor.force_noise_n);
     out.obstacles.extend(obstacles.iter().copied());
-    let stitch = StitchMove { offset_m: Vector3::from(offset), rotate_rad: rotate };
     let d = Draw {
         stitch_offset_m: offset,
         stitch_rotate_rad: rotate,
+        stitch_tilt_rad: tilt,
         play_rad: out.servo.play_rad,
         calibration_max_rad: calibration_max,
         thread_friction: out.thread.friction,
@@ -138,10 +143,9 @@ mod tests {
             assert_eq!(s1.obstacles.len(), plain.obstacles.len() + 1);
             let o = d1.obstacles[0];
             // In the moved tissue frame, its centre is within the bounds.
-            let tissue = Isometry3::from_parts(
-                Translation3::from(Vector3::from(plain.tissue.centre_m) + m1.offset_m),
-                UnitQuaternion::from_axis_angle(&Vector3::z_axis(), plain.tissue.yaw_rad + m1.rotate_rad),
-            );
+            let mut moved = plain.clone();
+            m1.apply(&mut moved);
+            let tissue = Tissue::frame(&moved.tissue);
             let local = tissue.inverse() * Point3::from(Vector3::from(o.centre_m));
             for (axis, [lo, hi]) in sure.offset_m.iter().enumerate() {
                 assert!(local[axis] >= lo - 1e-12 && local[axis] <= hi + 1e-12, "{local:?}");

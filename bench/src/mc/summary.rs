@@ -176,6 +176,7 @@ fn binned(lines: &[&TrialLine]) -> BTreeMap<String, Vec<Bin>> {
     let mut out = BTreeMap::new();
     out.insert("stitch_displacement_m".to_owned(), bins(lines, displacement));
     out.insert("stitch_rotate_rad".to_owned(), bins(lines, |l| number(l, "stitch_rotate_rad").abs()));
+    out.insert("stitch_tilt_rad".to_owned(), bins(lines, |l| number(l, "stitch_tilt_rad").abs()));
     for key in
         ["play_rad", "calibration_max_rad", "thread_friction", "thread_bend_stiffness", "force_noise_n"]
     {

@@ -1,4 +1,5 @@
-//! Success against a drawn parameter (play, calibration error, stitch displacement): equal-width bins
+//! Success against a drawn parameter (play, calibration error, the stitch's displacement, turn and
+//! tilt): equal-width bins
 //! over the range observed across all methods, and per method and bin the trials, the successes and the
 //! 95 % Wilson interval. Plain numbers, no drawing.
 
@@ -20,11 +21,22 @@ pub enum Parameter {
     Calibration,
     /// The norm of the stitch's shift, `|draw.stitch_offset_m|`.
     StitchDisplacement,
+    /// The stitch's turn about the tissue's normal, `draw.stitch_rotate_rad` (signed: a turn one way
+    /// and the other are not the same for the instruments).
+    StitchTurn,
+    /// The tissue's tilt about the wound, `draw.stitch_tilt_rad` (signed).
+    StitchTilt,
 }
 
 impl Parameter {
     /// Every parameter, in the report's order.
-    pub const ALL: [Parameter; 3] = [Parameter::Play, Parameter::Calibration, Parameter::StitchDisplacement];
+    pub const ALL: [Parameter; 5] = [
+        Parameter::Play,
+        Parameter::Calibration,
+        Parameter::StitchDisplacement,
+        Parameter::StitchTurn,
+        Parameter::StitchTilt,
+    ];
 
     /// Its name in prose.
     pub fn name(self) -> &'static str {
@@ -32,6 +44,8 @@ impl Parameter {
             Parameter::Play => "play",
             Parameter::Calibration => "calibration error",
             Parameter::StitchDisplacement => "stitch displacement",
+            Parameter::StitchTurn => "stitch turn",
+            Parameter::StitchTilt => "tissue tilt",
         }
     }
 
@@ -41,6 +55,8 @@ impl Parameter {
             Parameter::Play => "play_rad",
             Parameter::Calibration => "calibration_max_rad",
             Parameter::StitchDisplacement => "stitch_offset_m",
+            Parameter::StitchTurn => "stitch_rotate_rad",
+            Parameter::StitchTilt => "stitch_tilt_rad",
         }
     }
 
@@ -49,19 +65,25 @@ impl Parameter {
         match self {
             Parameter::Play | Parameter::Calibration => "mrad",
             Parameter::StitchDisplacement => "mm",
+            Parameter::StitchTurn | Parameter::StitchTilt => "deg",
         }
     }
 
-    /// Shown units per SI unit (rad to mrad, m to mm).
+    /// Shown units per SI unit (rad to mrad, m to mm, rad to degrees).
     pub fn shown_per_si(self) -> f64 {
-        1e3
+        match self {
+            Parameter::StitchTurn | Parameter::StitchTilt => 180.0 / std::f64::consts::PI,
+            _ => 1e3,
+        }
     }
 
     /// The value of a line, in SI units (rad, m); none when its draw lacks it or it is not finite.
     pub fn value_si(self, line: &TrialLine) -> Option<f64> {
         let field = line.draw.get(self.field())?;
         let value = match self {
-            Parameter::Play | Parameter::Calibration => field.as_f64()?,
+            Parameter::Play | Parameter::Calibration | Parameter::StitchTurn | Parameter::StitchTilt => {
+                field.as_f64()?
+            }
             Parameter::StitchDisplacement => {
                 let xyz = field.as_array()?;
                 if xyz.len() != 3 {

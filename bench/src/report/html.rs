@@ -2,6 +2,7 @@
 //! or links to fetch), with the run's header, a table per method and the tables beside the charts.
 
 use super::bins::{Bin, MethodBins, Parameter};
+use super::map::{Axis, MethodMap};
 use super::methods::{MethodStats, RunOverview};
 use super::plots::method_colour;
 
@@ -213,4 +214,36 @@ mod tests {
             "{table}"
         );
     }
+}
+
+/// One method's map as a table: per cell with trials its ranges, successes / trials with the rate and
+/// its 95 % Wilson interval, its failure modes (most frequent first) and its trials out of reach.
+pub fn map_table(x: Axis, y: Axis, method: &MethodMap) -> String {
+    let mut out = format!(
+        "<table class=\"bins\">\n<tr><th>{} ({})</th><th>{} ({})</th><th>successes / trials (rate; 95 % Wilson)</th><th>failure modes</th><th>out of reach</th></tr>\n",
+        escape(x.name()),
+        x.shown_unit(),
+        escape(y.name()),
+        y.shown_unit()
+    );
+    let (sx, sy) = (x.shown_per_si(), y.shown_per_si());
+    for c in &method.cells {
+        let modes: Vec<String> =
+            c.failures_by_count().iter().map(|(mode, n)| format!("{} {n}", escape(mode))).collect();
+        out.push_str(&format!(
+            "<tr><td>{:.1}&ndash;{:.1}</td><td>{:.1}&ndash;{:.1}</td><td>{} / {} ({}; {})</td><td>{}</td><td>{}</td></tr>\n",
+            c.x[0] * sx,
+            c.x[1] * sx,
+            c.y[0] * sy,
+            c.y[1] * sy,
+            c.successes,
+            c.trials,
+            percent(c.success_rate),
+            interval(c.wilson_95),
+            if modes.is_empty() { "&ndash;".to_owned() } else { modes.join(", ") },
+            c.out_of_reach
+        ));
+    }
+    out.push_str("</table>\n");
+    out
 }

@@ -1,10 +1,13 @@
 //! The report of a Monte Carlo run (`knotlab report DIR`): one self-contained HTML file from
 //! `DIR/results.jsonl` with per method the success rate, its 95 % Wilson interval and the failure
-//! modes, the methods side by side, and success against play, calibration error and stitch
-//! displacement in bins. The figures come from [`methods`] and [`bins`]; [`plots`] only draws them.
+//! modes, the methods side by side, success against play, calibration error and the stitch's
+//! displacement, turn and tilt in bins, and the workspace maps (success per cell of the stitch's
+//! shift, and of its turn and tilt). The figures come from [`methods`], [`bins`] and [`map`];
+//! [`plots`] only draws them.
 
 pub mod bins;
 pub mod html;
+pub mod map;
 pub mod methods;
 pub mod plots;
 
@@ -16,6 +19,7 @@ use crate::mc::{McError, TrialLine, read_results};
 
 use bins::{BIN_COUNT, Parameter, SweepShape, sweep};
 use html::{Section, note};
+use map::{Axis, MAP_CELLS, MapShape, map};
 use methods::{MethodStats, RunOverview, failure_modes, method_stats, run_overview, unique_lines};
 use plots::{FAILURES_TITLE, METHODS_TITLE, PlotError};
 
@@ -209,6 +213,35 @@ fn render(
             )));
         }
         sections.push(Section { title: plots::sweep_title(parameter), body });
+    }
+    for (x, y) in [(Axis::ShiftX, Axis::ShiftY), (Axis::Turn, Axis::Tilt)] {
+        let m = map(&lines, &info.methods, x, y, MAP_CELLS);
+        let mut body = match &m.shape {
+            MapShape::Flat => note(&format!(
+                "The {} and the {} did not both vary across the trials: no map.",
+                x.name(),
+                y.name()
+            )),
+            MapShape::Grid { x: x_range, y: y_range, cells, methods } => {
+                let mut body = note(&format!(
+                    "{cells} by {cells} equal cells over the values drawn; cells without trials left out. \
+                     Outlined: cells with trials the arms could not do ({}).",
+                    map::OUT_OF_REACH.join(", ")
+                ));
+                for method in methods {
+                    body.push_str(&plots::map_chart(x, y, *x_range, *y_range, method)?);
+                    body.push_str(&html::map_table(x, y, method));
+                }
+                body
+            }
+        };
+        if m.lines_without_value > 0 {
+            body.push_str(&note(&format!(
+                "{} line(s) without both values in their draw left out.",
+                m.lines_without_value
+            )));
+        }
+        sections.push(Section { title: plots::map_title(x, y), body });
     }
     let page = html::page(title, &html::header(&info, scene), &sections);
     Ok((page, info, stats))

@@ -1,12 +1,14 @@
 //! The report's charts, drawn by plotters into SVG strings: success per method with Wilson error bars,
-//! failure modes per method, and success against a drawn parameter in bins. Only draws figures that
+//! failure modes per method, success against a drawn parameter in bins, and the workspace maps. Only draws figures that
 //! [`super::methods`] and [`super::bins`] computed.
 
 use plotters::coord::combinators::WithKeyPoints;
 use plotters::coord::types::RangedCoordi32;
 use plotters::prelude::*;
+use plotters::style::text_anchor::{HPos, Pos, VPos};
 
 use super::bins::{MethodBins, Parameter};
+use super::map::{Axis, Cell, MethodMap};
 use super::methods::MethodStats;
 
 /// The first chart's title.
@@ -203,6 +205,88 @@ pub fn sweep_chart(
             chart.draw_series(m.bins.iter().zip(&points).map(|(b, &(x, rate))| {
                 ErrorBar::new_vertical(x, 100.0 * b.wilson_95[0], rate, 100.0 * b.wilson_95[1], colour, 10)
             }))?;
+        }
+        root.present()
+    })
+}
+
+/// A map's title: "Success over shift along x and shift along y", ...
+pub fn map_title(x: Axis, y: Axis) -> String {
+    format!("Success over {} and {}", x.name(), y.name())
+}
+
+/// The colour of a success rate: red at 0, yellow at one half, green at 1.
+fn rate_colour(rate: f64) -> RGBColor {
+    let r = rate.clamp(0.0, 1.0);
+    let mix = |a: f64, b: f64, t: f64| (a + (b - a) * t).round() as u8;
+    if r < 0.5 {
+        RGBColor(mix(215.0, 250.0, 2.0 * r), mix(48.0, 220.0, 2.0 * r), mix(39.0, 90.0, 2.0 * r))
+    } else {
+        RGBColor(
+            mix(250.0, 40.0, 2.0 * r - 1.0),
+            mix(220.0, 160.0, 2.0 * r - 1.0),
+            mix(90.0, 70.0, 2.0 * r - 1.0),
+        )
+    }
+}
+
+/// One method's map: each cell with trials coloured by its success rate and labelled with its
+/// successes over its trials and its Wilson interval; a cell with trials out of reach outlined in black
+/// and marked with their count (the reachable boundary). Ranges and values SI.
+pub fn map_chart(
+    x: Axis,
+    y: Axis,
+    x_range: [f64; 2],
+    y_range: [f64; 2],
+    method: &MethodMap,
+) -> Result<String, PlotError> {
+    let title = format!("{} ({})", map_title(x, y), method.method);
+    svg(&title, |text| {
+        let root = SVGBackend::with_string(text, (560, 520)).into_drawing_area();
+        root.fill(&WHITE)?;
+        let (sx, sy) = (x.shown_per_si(), y.shown_per_si());
+        let mut chart = ChartBuilder::on(&root)
+            .caption(&title, (FONT, 18))
+            .margin(12)
+            .x_label_area_size(40)
+            .y_label_area_size(56)
+            .build_cartesian_2d(x_range[0] * sx..x_range[1] * sx, y_range[0] * sy..y_range[1] * sy)?;
+        chart
+            .configure_mesh()
+            .disable_mesh()
+            .x_desc(format!("{} ({})", x.name(), x.shown_unit()))
+            .y_desc(format!("{} ({})", y.name(), y.shown_unit()))
+            .draw()?;
+        let corners = |c: &Cell| [(c.x[0] * sx, c.y[0] * sy), (c.x[1] * sx, c.y[1] * sy)];
+        chart.draw_series(
+            method.cells.iter().map(|c| Rectangle::new(corners(c), rate_colour(c.success_rate).filled())),
+        )?;
+        chart.draw_series(method.cells.iter().map(|c| {
+            let outline = if c.out_of_reach > 0 { BLACK.stroke_width(3) } else { WHITE.stroke_width(1) };
+            Rectangle::new(corners(c), outline)
+        }))?;
+        let centred = TextStyle::from((FONT, 14)).pos(Pos::new(HPos::Center, VPos::Center));
+        let small = TextStyle::from((FONT, 11)).pos(Pos::new(HPos::Center, VPos::Center));
+        for c in &method.cells {
+            let (cx, cy) = (0.5 * (c.x[0] + c.x[1]) * sx, 0.5 * (c.y[0] + c.y[1]) * sy);
+            let h = (c.y[1] - c.y[0]) * sy;
+            chart.draw_series(std::iter::once(Text::new(
+                format!("{}/{}", c.successes, c.trials),
+                (cx, cy + 0.18 * h),
+                centred.clone(),
+            )))?;
+            chart.draw_series(std::iter::once(Text::new(
+                format!("{:.0}-{:.0} %", 100.0 * c.wilson_95[0], 100.0 * c.wilson_95[1]),
+                (cx, cy),
+                small.clone(),
+            )))?;
+            if c.out_of_reach > 0 {
+                chart.draw_series(std::iter::once(Text::new(
+                    format!("{} out of reach", c.out_of_reach),
+                    (cx, cy - 0.18 * h),
+                    small.clone(),
+                )))?;
+            }
         }
         root.present()
     })

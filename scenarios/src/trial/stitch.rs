@@ -1,5 +1,6 @@
 //! Moving the stitch: the tissue (and with it the wound, the stitch and the task's start condition,
-//! which the scene places in the tissue frame) shifted and turned about its normal.
+//! which the scene places in the tissue frame) shifted, turned about its normal and tilted about the
+//! wound.
 
 use knotlab_sim::scene::SceneConfig;
 use nalgebra::Vector3;
@@ -11,6 +12,8 @@ pub struct StitchMove {
     pub offset_m: Vector3<f64>,
     /// Turn about the tissue's normal, rad.
     pub rotate_rad: f64,
+    /// Tilt about the wound, rad (added to the scene's `tissue.tilt_rad`).
+    pub tilt_rad: f64,
 }
 
 impl StitchMove {
@@ -20,6 +23,7 @@ impl StitchMove {
             *c += d;
         }
         scene.tissue.yaw_rad += self.rotate_rad;
+        scene.tissue.tilt_rad += self.tilt_rad;
     }
 
     /// How far the stitch moved, m.

@@ -39,7 +39,7 @@ fn a_skill_whose_preview_hits_an_obstacle_is_judged_collision() {
             scene,
             scene_name: "default.toml".to_owned(),
             seed: 0,
-            stitch: StitchMove { offset_m: Vector3::zeros(), rotate_rad: 0.0 },
+            stitch: StitchMove::default(),
             method: Method::Replay,
         };
         run_trial(&learned, &setup, &options, None).expect("the trial runs")

@@ -58,6 +58,8 @@ pub struct RandomizationPreset {
     pub stitch_z_m: Option<[f64; 2]>,
     /// See [`Randomization::stitch_rotate_rad`].
     pub stitch_rotate_rad: Option<[f64; 2]>,
+    /// See [`Randomization::stitch_tilt_rad`].
+    pub stitch_tilt_rad: Option<[f64; 2]>,
     /// See [`Randomization::play_rad`].
     pub play_rad: Option<[f64; 2]>,
     /// See [`Randomization::calibration_rad`].
@@ -78,6 +80,7 @@ impl RandomizationPreset {
             stitch_y_m: self.stitch_y_m.unwrap_or(base.stitch_y_m),
             stitch_z_m: self.stitch_z_m.unwrap_or(base.stitch_z_m),
             stitch_rotate_rad: self.stitch_rotate_rad.unwrap_or(base.stitch_rotate_rad),
+            stitch_tilt_rad: self.stitch_tilt_rad.unwrap_or(base.stitch_tilt_rad),
             play_rad: self.play_rad.unwrap_or(base.play_rad),
             calibration_rad: self.calibration_rad.unwrap_or(base.calibration_rad),
             thread_friction: self.thread_friction.unwrap_or(base.thread_friction),
@@ -129,6 +132,8 @@ pub struct Randomization {
     pub stitch_z_m: [f64; 2],
     /// Turn of the stitch about the tissue's normal, rad.
     pub stitch_rotate_rad: [f64; 2],
+    /// Tilt of the tissue about the wound (a wound on a sloped surface), rad ([`TissueParams::tilt_rad`]).
+    pub stitch_tilt_rad: [f64; 2],
     /// Backlash of every arm joint, rad (servo.play_rad).
     pub play_rad: [f64; 2],
     /// Calibration error: every arm joint's offset, drawn each, rad.
@@ -178,6 +183,10 @@ pub struct TissueParams {
     pub centre_m: [f64; 3],
     /// Rotation of the pad about the world z axis, rad (the wound runs along the rotated x).
     pub yaw_rad: f64,
+    /// Tilt of the pad about the wound (the yawed x axis), rad: a wound on a sloped surface, the
+    /// flap on the tail's side (+y) raised for a positive tilt. None by default.
+    #[serde(default)]
+    pub tilt_rad: f64,
     /// Size of each flap: along the wound, across it, thickness, m.
     pub flap_size_m: [f64; 3],
     /// Wound gap at rest, m.
@@ -301,18 +310,24 @@ pub struct Obstacle {
     pub half_extents_m: [f64; 3],
 }
 
+/// The steepest tilt of the tissue a scene or a draw may give, rad (45 degrees; with a trial's tilt
+/// added to the scene's, the sum is checked again when the trial's world is built).
+pub const MAX_TILT_RAD: f64 = std::f64::consts::FRAC_PI_4;
+
 /// One value out of its range: the key and why.
 pub(crate) type RangeProblem = (String, String);
 
 struct Check<'a>(&'a mut Vec<RangeProblem>);
 
 /// The range checks of a `[randomization]` table (or a preset applied to it), keys under `prefix`.
-fn randomization_problems(c: &mut Check<'_>, prefix: &str, r: &Randomization) {
+/// `scene_tilt_rad` is the scene's own tilt, to which a trial's is added.
+fn randomization_problems(c: &mut Check<'_>, prefix: &str, r: &Randomization, scene_tilt_rad: f64) {
     for (key, [lo, hi], min, max) in [
         ("stitch_x_m", r.stitch_x_m, -0.1, 0.1),
         ("stitch_y_m", r.stitch_y_m, -0.1, 0.1),
         ("stitch_z_m", r.stitch_z_m, -0.1, 0.1),
         ("stitch_rotate_rad", r.stitch_rotate_rad, -3.2, 3.2),
+        ("stitch_tilt_rad", r.stitch_tilt_rad, -MAX_TILT_RAD, MAX_TILT_RAD),
         ("play_rad", r.play_rad, 0.0, 0.1),
         ("calibration_rad", r.calibration_rad, -0.2, 0.2),
         ("thread_friction", r.thread_friction, 0.0, 2.0),
@@ -323,6 +338,20 @@ fn randomization_problems(c: &mut Check<'_>, prefix: &str, r: &Randomization) {
         c.range(&format!("{prefix}.{key}[1]"), hi, min, max);
         if hi < lo {
             problems_push(c, format!("{prefix}.{key}"), format!("the high bound {hi} is below the low {lo}"));
+        }
+    }
+    let [lo, hi] = r.stitch_tilt_rad;
+    for bound in [lo, hi] {
+        let sum = scene_tilt_rad + bound;
+        if scene_tilt_rad.is_finite() && bound.is_finite() && sum.abs() > MAX_TILT_RAD {
+            problems_push(
+                c,
+                format!("{prefix}.stitch_tilt_rad"),
+                format!(
+                    "the tissue's tilt {scene_tilt_rad} plus {bound} is {sum}, beyond the {MAX_TILT_RAD} a tissue may tilt"
+                ),
+            );
+            break;
         }
     }
     for (i, o) in r.obstacles.iter().enumerate() {
@@ -425,6 +454,7 @@ impl SceneConfig {
         let ti = &self.tissue;
         c.point("tissue.centre_m", &ti.centre_m);
         c.range("tissue.yaw_rad", ti.yaw_rad, -7.0, 7.0);
+        c.range("tissue.tilt_rad", ti.tilt_rad, -MAX_TILT_RAD, MAX_TILT_RAD);
         for (axis, v) in ["along", "across", "thickness"].iter().zip(&ti.flap_size_m) {
             c.range(&format!("tissue.flap_size_m.{axis}"), *v, 0.002, 0.3);
         }
@@ -488,9 +518,15 @@ impl SceneConfig {
                 c.range(&format!("servo.calibration_offset_rad.{name}[{i}]"), *v, -0.2, 0.2);
             }
         }
-        randomization_problems(&mut c, "randomization", &self.randomization);
+        let tilt = self.tissue.tilt_rad;
+        randomization_problems(&mut c, "randomization", &self.randomization, tilt);
         for (name, preset) in &self.presets {
-            randomization_problems(&mut c, &format!("presets.{name}"), &preset.apply(&self.randomization));
+            randomization_problems(
+                &mut c,
+                &format!("presets.{name}"),
+                &preset.apply(&self.randomization),
+                tilt,
+            );
         }
         for (i, obstacle) in self.obstacles.iter().enumerate() {
             c.point(&format!("obstacles[{i}].centre_m"), &obstacle.centre_m);

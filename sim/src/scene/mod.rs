@@ -6,8 +6,8 @@ mod evaluation;
 mod load;
 
 pub use config::{
-    NeedleParams, Obstacle, RandomObstacle, Randomization, RandomizationPreset, SceneConfig, SensorParams,
-    ServoParams, StartParams, StitchParams, TissueParams, Trocars, UnknownPreset,
+    MAX_TILT_RAD, NeedleParams, Obstacle, RandomObstacle, Randomization, RandomizationPreset, SceneConfig,
+    SensorParams, ServoParams, StartParams, StitchParams, TissueParams, Trocars, UnknownPreset,
 };
 pub use evaluation::EvaluationParams;
 pub use load::{SceneError, load_scene, parse_scene};
