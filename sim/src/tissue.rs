@@ -143,11 +143,20 @@ impl Tissue {
                 &mut physics.bodies,
             );
             // Outward is +y for A and -y for B; the joint's coordinate is the outward displacement.
+            // On a tilted tissue the body beneath carries the flap's weight along the slope, not the
+            // wound's load: the load's rest is set off by that weight, so the wound rests at its gap.
+            let outward = world_from_tissue.rotation * Vector3::new(0.0, s, 0.0);
+            let weight_outward_n = params.flap_mass_kg * to_na(physics.gravity).dot(&outward);
+            let rest_m = if params.opening_stiffness_n_per_m > 0.0 {
+                -weight_outward_n / params.opening_stiffness_n_per_m
+            } else {
+                0.0
+            };
             let joint = PrismaticJointBuilder::new(Vector::new(0.0, s, 0.0))
                 .local_anchor1(to_rapier(&tissue_from_flap))
                 .local_anchor2(Vector::ZERO)
                 .limits([-0.5 * params.rest_gap_m, FLAP_OUTWARD_TRAVEL_M])
-                .motor_position(0.0, params.opening_stiffness_n_per_m, params.opening_damping_n_s_per_m)
+                .motor_position(rest_m, params.opening_stiffness_n_per_m, params.opening_damping_n_s_per_m)
                 .motor_model(MotorModel::ForceBased)
                 .contacts_enabled(false);
             joints.push(physics.impulse_joints.insert(base, body, joint, true));

@@ -44,6 +44,42 @@ fn the_start_condition_holds_needle_and_tail_through_the_stitch() {
     assert!((-5e-4..1.2e-3).contains(&closed_by), "closed by {closed_by} m");
 }
 
+/// A tissue tilted about the wound lies on its slope and stays where it lies: its normal is the upright
+/// turned by the tilt about the wound, and its flaps keep their places (the body beneath carries
+/// their weight along the slope; on the wound's load alone they would slide down it by m g sin(tilt)
+/// / k, 2.4 mm at 0.25 rad, and the upper one would meet the wound's centre line), the gap at rest.
+#[test]
+fn a_tilted_tissue_lies_on_its_slope_its_flaps_where_they_were_laid() {
+    let tilt_rad = 0.25;
+    let mut scene =
+        parse_scene(include_str!("../../../scenarios/chain.toml"), "chain.toml").expect("shipped scene");
+    scene.tissue.tilt_rad = tilt_rad;
+    let mut w = SimWorld::new(scene, Rig::shipped().expect("shipped rig")).expect("the tilted scene builds");
+    let normal = w.tissue().normal();
+    let expected_normal = nalgebra::Vector3::new(0.0, -tilt_rad.sin(), tilt_rad.cos());
+    assert!((normal - expected_normal).norm() < 1e-12, "normal {normal:?}");
+    w.free_thread();
+    let far = w.tissue().world_from_tissue.translation.vector + nalgebra::Vector3::new(0.0, 0.0, 0.5);
+    let (suture, physics) = w.suture_and_physics_mut();
+    chain(suture).thread().lay_straight(physics, &far, &nalgebra::Vector3::x());
+    // Where each flap sits along the slope (the tissue frame's y).
+    let along_slope = |w: &SimWorld| {
+        let tissue_from_world = w.tissue().world_from_tissue.inverse();
+        [Flap::A, Flap::B].map(|flap| {
+            let t = w.physics().bodies[w.tissue().flap(flap)].translation();
+            (tissue_from_world * nalgebra::Point3::new(t.x, t.y, t.z)).y
+        })
+    };
+    let start = along_slope(&w);
+    run(&mut w, 3000);
+    let end = along_slope(&w);
+    for k in 0..2 {
+        assert!((end[k] - start[k]).abs() < 1e-4, "flap {k} moved {} m along the slope", end[k] - start[k]);
+    }
+    let rest = w.config().tissue.rest_gap_m;
+    assert!((w.wound_gap_m() - rest).abs() < 1e-4, "gap {}", w.wound_gap_m());
+}
+
 /// The wound's elastic load closes by the push over its stiffness within 15 % and reopens to its rest gap
 /// once the push stops.
 #[test]
