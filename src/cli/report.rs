@@ -17,6 +17,10 @@ pub struct ReportArgs {
     /// Where the HTML goes (default: DIR/report.html).
     #[arg(long)]
     out: Option<PathBuf>,
+    /// Also write each chart as its own SVG file in this folder (for a paper or the docs):
+    /// methods.svg, failures.svg, play.svg, ..., map-shift-METHOD.svg, map-turn-tilt-METHOD.svg.
+    #[arg(long, value_name = "DIR")]
+    charts: Option<PathBuf>,
     /// Print the report's path and the per-method figures as JSON.
     #[arg(long)]
     json: bool,
@@ -24,11 +28,19 @@ pub struct ReportArgs {
 
 pub fn run(args: ReportArgs, out: &mut Output) -> anyhow::Result<ExitCode> {
     let path = args.out.clone().unwrap_or_else(|| args.dir.join("report.html"));
-    let summary = write_report(&args.dir, &path)?;
+    let summary = write_report(&args.dir, &path, args.charts.as_deref())?;
     if args.json {
         outln!(out, "{}", serde_json::to_string_pretty(&summary)?);
     } else {
         outln!(out, "report: {}", summary.report);
+        if !summary.charts.is_empty() {
+            outln!(
+                out,
+                "charts: {} SVG files in {}",
+                summary.charts.len(),
+                args.charts.as_deref().unwrap_or(&path).display()
+            );
+        }
         for m in &summary.methods {
             outln!(
                 out,

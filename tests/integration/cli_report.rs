@@ -122,13 +122,40 @@ fn the_report_shows_every_method_and_a_chart_per_varying_parameter() {
     let d = dir("full");
     let lines = hand_made_lines(false);
     write_results(&d, &lines);
-    let (code, stdout, stderr) = knotlab(&["report", d.to_str().expect("a UTF-8 path")]);
+    let charts = d.join("charts");
+    let (code, stdout, stderr) = knotlab(&[
+        "report",
+        d.to_str().expect("a UTF-8 path"),
+        "--charts",
+        charts.to_str().expect("a UTF-8 path"),
+    ]);
     assert_eq!(code, 0, "{stdout}{stderr}");
     let path = d.join("report.html");
     assert!(stdout.contains(&path.display().to_string()), "{stdout}");
     let html = std::fs::read_to_string(&path).expect("report.html written");
     assert_eq!(expected_charts(&lines), 11);
     assert_eq!(html.matches("<svg").count(), expected_charts(&lines));
+    // Each chart also on its own, as the page has it.
+    let mut files: Vec<String> = std::fs::read_dir(&charts)
+        .expect("the charts' folder")
+        .map(|e| e.expect("an entry").file_name().to_string_lossy().into_owned())
+        .collect();
+    files.sort();
+    assert_eq!(files.len(), expected_charts(&lines), "{files:?}");
+    for name in [
+        "methods.svg",
+        "failures.svg",
+        "stitch-turn.svg",
+        "tissue-tilt.svg",
+        "map-shift-dmp.svg",
+        "map-turn-tilt-fluid.svg",
+    ] {
+        assert!(files.iter().any(|f| f == name), "{name} in {files:?}");
+    }
+    for f in &files {
+        let svg = std::fs::read_to_string(charts.join(f)).expect("a chart");
+        assert!(svg.starts_with("<svg") && html.contains(&svg), "{f} is not the page's chart");
+    }
     for title in [
         "Methods side by side",
         "Failure modes",

@@ -93,15 +93,19 @@ fn check_draws(lines: &[TrialLine], at: impl Fn(usize, &TrialLine) -> String) ->
 pub struct ReportSummary {
     /// The HTML file written.
     pub report: String,
+    /// Each chart written on its own as an SVG file (with `charts_dir`), in the report's order.
+    pub charts: Vec<String>,
     /// The run.
     pub run: RunOverview,
     /// Per method.
     pub methods: Vec<MethodStats>,
 }
 
-/// Reads `dir/results.jsonl` and writes the report to `out`; the scene is taken from `dir/run.json`
-/// (or `dir/summary.json`) when one names it.
-pub fn write_report(dir: &Path, out: &Path) -> Result<ReportSummary, ReportError> {
+/// Reads `dir/results.jsonl` and writes the report to `out`, and with `charts_dir` each of its charts
+/// as an SVG file there (`methods.svg`, `failures.svg`, `play.svg`, ..., `map-shift-METHOD.svg`,
+/// `map-turn-tilt-METHOD.svg`); the scene is taken from `dir/run.json` (or `dir/summary.json`) when
+/// one names it.
+pub fn write_report(dir: &Path, out: &Path, charts_dir: Option<&Path>) -> Result<ReportSummary, ReportError> {
     let results = dir.join("results.jsonl");
     let file = results.display().to_string();
     if !results.is_file() {
@@ -126,15 +130,41 @@ pub fn write_report(dir: &Path, out: &Path) -> Result<ReportSummary, ReportError
     check_draws(&lines, |k, _| format!("{file} line {}", k + 1))?;
     let scene = scene_of(dir);
     let title = format!("Monte Carlo run {}", dir.display());
-    let (text, run, methods) = render(&lines, &title, scene.as_deref())?;
-    let written = out.display().to_string();
-    if let Some(parent) = out.parent().filter(|p| !p.as_os_str().is_empty()) {
+    let (text, run, methods, charts) = render(&lines, &title, scene.as_deref())?;
+    let written = write_file(out, &text)?;
+    let mut chart_files = Vec::new();
+    if let Some(charts_dir) = charts_dir {
+        for (name, svg) in &charts {
+            chart_files.push(write_file(&charts_dir.join(format!("{name}.svg")), svg)?);
+        }
+    }
+    Ok(ReportSummary { report: written, charts: chart_files, run, methods })
+}
+
+/// Writes `text` to `path`, making its folder; returns the path as shown.
+fn write_file(path: &Path, text: &str) -> Result<String, ReportError> {
+    let written = path.display().to_string();
+    if let Some(parent) = path.parent().filter(|p| !p.as_os_str().is_empty()) {
         std::fs::create_dir_all(parent)
             .map_err(|e| ReportError::Write { file: written.clone(), reason: e.to_string() })?;
     }
-    std::fs::write(out, text)
+    std::fs::write(path, text)
         .map_err(|e| ReportError::Write { file: written.clone(), reason: e.to_string() })?;
-    Ok(ReportSummary { report: written, run, methods })
+    Ok(written)
+}
+
+/// A chart's file name from its words: lower case, letters, digits and dashes only.
+fn file_stem(words: &str) -> String {
+    let mut stem = String::new();
+    for c in words.chars() {
+        if c.is_ascii_alphanumeric() {
+            stem.push(c.to_ascii_lowercase());
+        } else if !stem.ends_with('-') && !stem.is_empty() {
+            stem.push('-');
+        }
+    }
+    let stem = stem.trim_end_matches('-').to_owned();
+    if stem.is_empty() { "chart".to_owned() } else { stem }
 }
 
 /// The scene named by `dir/run.json` (with its preset) or else `dir/summary.json`, if either is there
@@ -156,21 +186,28 @@ fn scene_of(dir: &Path) -> Option<String> {
 
 /// The report's page for `lines` (any order; each (trial, method) counted once).
 pub fn render_report(lines: &[TrialLine], title: &str) -> Result<String, ReportError> {
-    render(lines, title, None).map(|(text, _, _)| text)
+    render(lines, title, None).map(|(text, _, _, _)| text)
 }
 
-fn render(
-    lines: &[TrialLine],
-    title: &str,
-    scene: Option<&str>,
-) -> Result<(String, RunOverview, Vec<MethodStats>), ReportError> {
+/// The page, the run, the methods' figures, and each chart with its file name (no extension).
+type Rendered = (String, RunOverview, Vec<MethodStats>, Vec<(String, String)>);
+
+fn render(lines: &[TrialLine], title: &str, scene: Option<&str>) -> Result<Rendered, ReportError> {
     check_draws(lines, |_, l| format!("trial {} ({})", l.trial, l.method))?;
     let lines = unique_lines(lines);
     let info = run_overview(&lines).ok_or(ReportError::NoTrials)?;
     let stats = method_stats(&lines, &info.methods);
+    let mut charts: Vec<(String, String)> = Vec::new();
+    let mut chart = |name: String, svg: String| {
+        charts.push((name, svg.clone()));
+        svg
+    };
     let mut sections = vec![
         Section { title: "Per method".to_owned(), body: html::method_tables(&stats) },
-        Section { title: METHODS_TITLE.to_owned(), body: plots::methods_chart(&stats)? },
+        Section {
+            title: METHODS_TITLE.to_owned(),
+            body: chart("methods".to_owned(), plots::methods_chart(&stats)?),
+        },
     ];
     let modes = failure_modes(&stats);
     sections.push(Section {
@@ -178,7 +215,7 @@ fn render(
         body: if modes.is_empty() {
             note("No failures: every trial of every method tied the knot.")
         } else {
-            plots::failures_chart(&stats, &modes)?
+            chart("failures".to_owned(), plots::failures_chart(&stats, &modes)?)
         },
     });
     for parameter in Parameter::ALL {
@@ -196,7 +233,7 @@ fn render(
             SweepShape::Binned { lo, hi, methods } => format!(
                 "{}{}{}{}",
                 html::legend(&info.methods),
-                plots::sweep_chart(parameter, *lo, *hi, methods)?,
+                chart(file_stem(parameter.name()), plots::sweep_chart(parameter, *lo, *hi, methods)?),
                 note(&format!(
                     "{BIN_COUNT} equal-width bins over {} to {}; bins without trials left out.",
                     shown(*lo),
@@ -214,7 +251,8 @@ fn render(
         }
         sections.push(Section { title: plots::sweep_title(parameter), body });
     }
-    for (x, y) in [(Axis::ShiftX, Axis::ShiftY), (Axis::Turn, Axis::Tilt)] {
+    for (x, y, name) in [(Axis::ShiftX, Axis::ShiftY, "map-shift"), (Axis::Turn, Axis::Tilt, "map-turn-tilt")]
+    {
         let m = map(&lines, &info.methods, x, y, MAP_CELLS);
         let mut body = match &m.shape {
             MapShape::Flat => note(&format!(
@@ -229,7 +267,10 @@ fn render(
                     map::OUT_OF_REACH.join(", ")
                 ));
                 for method in methods {
-                    body.push_str(&plots::map_chart(x, y, *x_range, *y_range, method)?);
+                    body.push_str(&chart(
+                        file_stem(&format!("{name} {}", method.method)),
+                        plots::map_chart(x, y, *x_range, *y_range, method)?,
+                    ));
                     body.push_str(&html::map_table(x, y, method));
                 }
                 body
@@ -244,7 +285,7 @@ fn render(
         sections.push(Section { title: plots::map_title(x, y), body });
     }
     let page = html::page(title, &html::header(&info, scene), &sections);
-    Ok((page, info, stats))
+    Ok((page, info, stats, charts))
 }
 
 /// A results line for the report's unit tests: trial 0 of seed 1, `method`, `draw`, `verdict`.
