@@ -176,38 +176,41 @@ fn no_primitive_starts_before_those_it_waits_for_and_a_longer_one_delays_them() 
 }
 
 /// A fluid or DMP skill made at a moved stitch is the nominal skill moved, within 0.2 mm, with the same
-/// timing and jaw keys.
+/// timing and jaw keys: shifted and turned about the tissue's normal, and shifted and tilted about the
+/// wound (a wound on a sloped surface).
 #[test]
 fn a_skill_made_at_a_moved_stitch_is_the_nominal_skill_moved() {
     let (kb, demo) = learned(33);
     let here = nominal(&kb);
-    let motion = Isometry3::from_parts(
-        Translation3::new(0.02, -0.015, 0.01),
-        UnitQuaternion::from_axis_angle(&Vector3::z_axis(), 25f64.to_radians()),
-    );
-    // The motion turns about the stitch.
-    let there = Isometry3::from_parts(
-        Translation3::from(here.translation.vector + motion.translation.vector),
-        motion.rotation * here.rotation,
-    );
-    let moved = relocation(&here, &there);
-    for method in [Method::Fluid, Method::Dmp] {
-        let a = make(&kb, &demo, method, here);
-        let b = make(&kb, &demo, method, there);
-        for (ta, tb) in a.skill.tracks.iter().zip(&b.skill.tracks) {
-            assert_eq!(ta.poses.len(), tb.poses.len(), "{method}: {} keys", ta.arm);
-            for (ka, kb_) in ta.poses.iter().zip(&tb.poses) {
-                let pa = moved.transform_point(&Vector3::from(ka.world_position_m).into()).coords;
-                let err = (pa - Vector3::from(kb_.world_position_m)).norm();
-                assert!(
-                    err < 2e-4,
-                    "{method} {} at {:.2} s: {err:.2e} m from the nominal key moved",
-                    ta.arm,
-                    ka.time_s
-                );
-                assert!((ka.time_s - kb_.time_s).abs() < 1e-9);
+    let turned = UnitQuaternion::from_axis_angle(&Vector3::z_axis(), 25f64.to_radians());
+    let wound = nalgebra::Unit::new_normalize(here.rotation * Vector3::x());
+    let tilted = UnitQuaternion::from_axis_angle(&wound, 15f64.to_radians());
+    for (site, rotation) in [("turned", turned), ("tilted", tilted)] {
+        let shift = Vector3::new(0.02, -0.015, 0.01);
+        // The motion turns about the stitch.
+        let there = Isometry3::from_parts(
+            Translation3::from(here.translation.vector + shift),
+            rotation * here.rotation,
+        );
+        let moved = relocation(&here, &there);
+        for method in [Method::Fluid, Method::Dmp] {
+            let a = make(&kb, &demo, method, here);
+            let b = make(&kb, &demo, method, there);
+            for (ta, tb) in a.skill.tracks.iter().zip(&b.skill.tracks) {
+                assert_eq!(ta.poses.len(), tb.poses.len(), "{site}, {method}: {} keys", ta.arm);
+                for (ka, kb_) in ta.poses.iter().zip(&tb.poses) {
+                    let pa = moved.transform_point(&Vector3::from(ka.world_position_m).into()).coords;
+                    let err = (pa - Vector3::from(kb_.world_position_m)).norm();
+                    assert!(
+                        err < 2e-4,
+                        "{site}, {method} {} at {:.2} s: {err:.2e} m from the nominal key moved",
+                        ta.arm,
+                        ka.time_s
+                    );
+                    assert!((ka.time_s - kb_.time_s).abs() < 1e-9);
+                }
+                assert_eq!(ta.jaw, tb.jaw);
             }
-            assert_eq!(ta.jaw, tb.jaw);
         }
     }
 }
