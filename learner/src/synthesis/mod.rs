@@ -25,7 +25,7 @@ pub use method::Method;
 pub use replay::{ReplaySettings, replay};
 pub use schedule::{Schedule, Slot};
 pub use site::relocation;
-pub use skill::{ObstacleSource, PrimitiveSettings, Site, Synthesis, synthesize};
+pub use skill::{ObstacleSource, PrimitiveSettings, REACH_MARGIN_M, Reach, Site, Synthesis, synthesize};
 
 use nalgebra::Vector3;
 use thiserror::Error;

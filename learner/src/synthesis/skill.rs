@@ -3,8 +3,9 @@
 //! - linear: from where the instrument is to the moved end, straight, with the demonstrated speed
 //!   profile (stretched to the new length, the demonstrated duration kept);
 //! - force-controlled: the demonstrated movement, moved, then on along its line (start to where it
-//!   came to rest) until the line is elongated by [`PrimitiveSettings::force_elongation`], then back to
-//!   the line's end; the jaw opens once the recorded maximum force is reached (a force event);
+//!   came to rest) until the line is elongated by [`PrimitiveSettings::force_elongation`] or, short of
+//!   that, as far as the instrument reaches ([`Site::reach`]), then back to the line's end; the jaw
+//!   opens once the recorded maximum force is reached (a force event);
 //! - 2D: regenerated through the fluid around obstacles ([`Method::Fluid`]) or by a DMP from where the
 //!   instrument is ([`Method::Dmp`]);
 //! - synchronized: the stored offsets from the reference applied to every point of the reference's new
@@ -20,6 +21,7 @@
 
 use nalgebra::{Isometry3, UnitQuaternion, Vector2, Vector3};
 
+use knotlab_hw::kinematics::TipTarget;
 use knotlab_hw::rig::ArmName;
 use knotlab_hw::skill::{ForceAction, ForceEvent, JawKey, Skill};
 
@@ -84,7 +86,24 @@ pub struct Site<'a> {
     pub trocars: &'a Trocars,
     /// Where the instruments are.
     pub starts: &'a [StartPose],
+    /// Which tip targets each instrument can take; `None`: every one.
+    pub reach: Option<Reach<'a>>,
 }
+
+/// Whether an instrument can take a tip target (its arm's inverse kinematics with the shaft through
+/// its trocar, as the kinematic preview solves it).
+#[derive(Clone, Copy)]
+pub struct Reach<'a>(pub &'a dyn Fn(ArmName, &TipTarget) -> bool);
+
+impl std::fmt::Debug for Reach<'_> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str("Reach(..)")
+    }
+}
+
+/// How far short of the farthest reachable point a force-controlled pull stops, m: the arm's own
+/// margin against play and rounding.
+pub const REACH_MARGIN_M: f64 = 0.002;
 
 /// Real and virtual obstacles in a 2D primitive's plane: given the primitive, its instrument, the
 /// moved plane and the grid region, the blocked cells.
@@ -279,6 +298,7 @@ fn force_keys(
     slot: (f64, f64),
     world_from_stitch: &Isometry3<f64>,
     settings: &PrimitiveSettings,
+    reach: Option<Reach<'_>>,
 ) {
     let (start, start_aim) = placed(world_from_stitch, &p.start_pose);
     let (end, end_aim) = placed(world_from_stitch, &p.end_pose);
@@ -290,7 +310,8 @@ fn force_keys(
     let shift = slot.0 - p.start_s;
     transfer(track, path, (p.start_s, p.end_s), |t| t + shift, world_from_stitch);
     track.key(slot.0 + d, end, end_aim);
-    let far = start + (line_end - start) * settings.force_elongation;
+    let elongation = pull_within_reach(track, reach, start, line_end, end_aim, settings.force_elongation);
+    let far = start + (line_end - start) * elongation;
     track.move_to(slot.0 + settings.force_elongation * d, far, end_aim, 20);
     track.move_to(slot.1, line_end, end_aim, 20);
     let (from_rad, to_rad) = (p.jaw.from_rad, p.jaw.to_rad);
@@ -306,6 +327,42 @@ fn force_keys(
         fires_with: None,
         action: ForceAction::OpenJaw { jaw_rad: to_rad },
     });
+}
+
+/// How far along the line from `start` through `line_end` a force-controlled pull goes on, as a
+/// multiple of the line: `elongation`, or less where the instrument would not reach that far (the
+/// farthest multiple from 1 up whose point, [`REACH_MARGIN_M`] further on, it reaches, by bisection;
+/// 1 where it reaches no further than the line's end).
+fn pull_within_reach(
+    track: &TrackKeys,
+    reach: Option<Reach<'_>>,
+    start: Vector3<f64>,
+    line_end: Vector3<f64>,
+    aim: Aim,
+    elongation: f64,
+) -> f64 {
+    let Some(Reach(reaches)) = reach else { return elongation };
+    let line = line_end - start;
+    let length_m = line.norm();
+    if length_m < 1e-9 || elongation <= 1.0 {
+        return elongation;
+    }
+    let fits = |f: f64| {
+        let at = start + line * (f + REACH_MARGIN_M / length_m);
+        reaches(track.arm, &track.target(at, aim))
+    };
+    if fits(elongation) {
+        return elongation;
+    }
+    let (mut lo, mut hi) = (1.0, elongation);
+    if !fits(lo) {
+        return 1.0;
+    }
+    for _ in 0..20 {
+        let mid = 0.5 * (lo + hi);
+        if fits(mid) { lo = mid } else { hi = mid }
+    }
+    lo
 }
 
 /// The reference path of a synchronized primitive: times and world points of a 2D primitive's new path.
@@ -573,7 +630,9 @@ pub fn synthesize(
         cursor[t] = cursor[t].max(slot.demo_s.1);
         match p {
             Primitive::Linear(l) => linear_keys(track, l, path, slot.new_s, &world_from_stitch),
-            Primitive::Force(f) => force_keys(track, f, path, slot.new_s, &world_from_stitch, settings),
+            Primitive::Force(f) => {
+                force_keys(track, f, path, slot.new_s, &world_from_stitch, settings, site.reach)
+            }
             Primitive::TwoD(t) => {
                 let (path, inst) = two_d_path(
                     slot.instrument,

@@ -4,6 +4,7 @@
 
 use nalgebra::Vector3;
 
+use knotlab_hw::kinematics::TipTarget;
 use knotlab_hw::rig::ArmName;
 use knotlab_hw::skill::profile::min_jerk;
 use knotlab_hw::skill::{ForceEvent, JawKey, PoseKey, Track};
@@ -66,6 +67,14 @@ impl TrackKeys {
             self.aim = aim;
         }
         self.time_s = self.time_s.max(time_s);
+    }
+
+    /// The tip target a key at `position_m` aimed by `aim` asks of the arm.
+    pub fn target(&self, position_m: Vector3<f64>, aim: Aim) -> TipTarget {
+        TipTarget {
+            world_position_m: position_m,
+            orientation: aim.orientation(&position_m, &self.trocar_m).to_tip_orientation(),
+        }
     }
 
     /// Stays where it is until `time_s`.

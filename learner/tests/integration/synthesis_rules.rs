@@ -8,6 +8,7 @@ use std::path::Path;
 
 use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};
 
+use knotlab_hw::kinematics::TipTarget;
 use knotlab_hw::rig::ArmName;
 use knotlab_hw::skill::{ForceAction, Orientation, Skill, Track};
 use knotlab_learner::demonstration::Demonstration;
@@ -16,8 +17,8 @@ use knotlab_learner::pattern::load_pattern;
 use knotlab_learner::primitive::{KnowledgeBase, Primitive, learn};
 use knotlab_learner::synthesis::site::pose_isometry;
 use knotlab_learner::synthesis::{
-    Method, PrimitiveSettings, ReplaySettings, Schedule, Site, StartPose, Synthesis, Trocars, relocation,
-    replay, synthesize,
+    Method, PrimitiveSettings, REACH_MARGIN_M, Reach, ReplaySettings, Schedule, Site, StartPose, Synthesis,
+    Trocars, relocation, replay, synthesize,
 };
 use knotlab_learner::synthetic::{SyntheticSettings, canonical_demonstration};
 
@@ -58,9 +59,20 @@ fn make(
     method: Method,
     world_from_stitch: Isometry3<f64>,
 ) -> Synthesis {
+    make_within(kb, demo, method, world_from_stitch, None)
+}
+
+/// [`make`] with the instruments' reach.
+fn make_within(
+    kb: &KnowledgeBase,
+    demo: &Demonstration,
+    method: Method,
+    world_from_stitch: Isometry3<f64>,
+    reach: Option<Reach<'_>>,
+) -> Synthesis {
     let trocars = trocars(&world_from_stitch);
     let starts = starts(kb, demo, &world_from_stitch);
-    let site = Site { new_world_from_stitch: world_from_stitch, trocars: &trocars, starts: &starts };
+    let site = Site { new_world_from_stitch: world_from_stitch, trocars: &trocars, starts: &starts, reach };
     let mut free = |_: &str, _: ArmName, _: &_, region: &knotlab_learner::fluid::GridRegion| {
         Ok(ObstacleMask::free(region.n))
     };
@@ -116,6 +128,38 @@ fn a_force_controlled_primitive_goes_on_to_125_percent_and_comes_back_opening_at
         // Closed until the window ends, open after it.
         assert_eq!(t.jaw_at(slot.new_s.0 + 0.5), Some(p.jaw.from_rad), "{name}: holds while pulling");
         assert!((t.jaw_at(slot.new_s.1).unwrap() - p.jaw.to_rad).abs() < 1e-12, "{name}: open at the end");
+    }
+}
+
+/// A force-controlled pull that would leave the instrument's reach stops where the reach ends, short
+/// of 125 % of its line (here the right reaches 110 % of R5's line, less the 2 mm margin), and still
+/// comes back to the line's end; with the reach ending before the line's end it pulls to the end, as
+/// demonstrated.
+#[test]
+fn a_force_controlled_pull_stops_where_the_instruments_reach_ends() {
+    let (kb, demo) = learned(31);
+    let world = nominal(&kb);
+    let Some(Primitive::Force(p)) = kb.primitive("R5") else { panic!("R5 is force-controlled") };
+    let start = world * nalgebra::Point3::from(Vector3::from(p.start_pose.position_m));
+    let end = world * nalgebra::Point3::from(Vector3::from(p.line_end_m));
+    let line = end - start;
+    let progress = |x: Vector3<f64>| (x - start.coords).dot(&line) / line.norm_squared();
+    for (reaches_to, furthest_expected) in [(1.1, 1.1 - REACH_MARGIN_M / line.norm()), (0.9, 1.0)] {
+        let reaches = |arm: ArmName, target: &TipTarget| {
+            arm != ArmName::Right || progress(target.world_position_m) <= reaches_to
+        };
+        let made = make_within(&kb, &demo, Method::Fluid, world, Some(Reach(&reaches)));
+        let slot = made.schedule.slot("R5").expect("scheduled");
+        let t = track(&made.skill, ArmName::Right);
+        let furthest = (0..=1000)
+            .map(|k| slot.new_s.0 + (slot.new_s.1 - slot.new_s.0) * k as f64 / 1000.0)
+            .map(|s| progress(position(t, s)))
+            .fold(f64::MIN, f64::max);
+        assert!(
+            (furthest - furthest_expected).abs() < 0.005,
+            "reaching {reaches_to} of the line, the pull went to {furthest:.4} (expected {furthest_expected:.4})"
+        );
+        assert!((position(t, slot.new_s.1) - end.coords).norm() < 1e-9, "back to the line's end");
     }
 }
 

@@ -8,7 +8,7 @@ pub mod stitch;
 pub use stitch::StitchMove;
 
 use knotlab_hw::controller::ArmSetup;
-use knotlab_hw::kinematics::ArmJoints;
+use knotlab_hw::kinematics::{ArmJoints, TipTarget};
 use knotlab_hw::rig::{ArmName, Rig};
 use knotlab_hw::rig_config::parse_rig_config;
 use knotlab_hw::skill::Skill;
@@ -19,8 +19,8 @@ use knotlab_learner::obstacles::{LinkCollision, first_link_collision};
 use knotlab_learner::primitive::{KnowledgeBase, Primitive};
 use knotlab_learner::synthesis::site::pose_isometry;
 use knotlab_learner::synthesis::{
-    ApproachSettings, Method, PrimitiveSettings, ReplaySettings, Site, StartPose, SynthesisError, Trocars,
-    prepend_approach, relocation, replay, synthesize,
+    ApproachSettings, Method, PrimitiveSettings, Reach, ReplaySettings, Site, StartPose, SynthesisError,
+    Trocars, prepend_approach, relocation, replay, synthesize,
 };
 use knotlab_sim::knot::{FailureMode, Verdict};
 use knotlab_sim::scene::SceneConfig;
@@ -73,7 +73,9 @@ pub enum TrialError {
         reason: SynthesisError,
     },
     /// The scene cannot be built with its stitch moved there.
-    #[error("{scene} with the stitch moved by {offset_m:?} m and turned {rotate_deg} deg: {reason}")]
+    #[error(
+        "{scene} with the stitch moved by {offset_m:?} m, turned {rotate_deg} deg and tilted {tilt_deg} deg: {reason}"
+    )]
     Site {
         /// The scene file.
         scene: String,
@@ -81,6 +83,8 @@ pub enum TrialError {
         offset_m: [f64; 3],
         /// The turn, degrees.
         rotate_deg: f64,
+        /// The tilt, degrees.
+        tilt_deg: f64,
         /// Why.
         reason: knotlab_sim::world::WorldError,
     },
@@ -212,7 +216,21 @@ pub fn synthesize_for(
                 log.grids.push((name.to_owned(), mask.count_blocked(), region.n * region.n));
                 Ok(mask)
             };
-            let site = Site { new_world_from_stitch, trocars: &trocars, starts: &starts };
+            // The pull of a force-controlled primitive stops where the arm's reach ends.
+            let reaches = |arm: ArmName, target: &TipTarget| {
+                world
+                    .rig()
+                    .arm(arm)
+                    .model
+                    .solve_tip(target, &trocar_of(world.config(), arm), &arm.ready_joints())
+                    .is_ok()
+            };
+            let site = Site {
+                new_world_from_stitch,
+                trocars: &trocars,
+                starts: &starts,
+                reach: Some(Reach(&reaches)),
+            };
             let made =
                 synthesize(&learned.knowledge, method, &site, &PrimitiveSettings::default(), &mut source)?;
             for (name, inst) in made.fluid {
@@ -245,6 +263,7 @@ pub fn run_trial(
         scene: setup.scene_name.clone(),
         offset_m: setup.stitch.offset_m.into(),
         rotate_deg: setup.stitch.rotate_rad.to_degrees(),
+        tilt_deg: setup.stitch.tilt_rad.to_degrees(),
         reason,
     })?;
     world.reseed(setup.seed);

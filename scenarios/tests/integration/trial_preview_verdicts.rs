@@ -77,3 +77,33 @@ fn a_skill_whose_preview_hits_an_obstacle_is_judged_collision() {
     assert_eq!(collision.arm, ArmName::Left, "{collision}");
     assert_eq!(hit.verdict(), Verdict::Failure(FailureMode::Collision));
 }
+
+/// Guards the force-controlled pull within reach: at a stitch moved 2.8 cm towards the right's side
+/// (and 7 mm along the wound) the right's pull of R5, on to 125 % of its line, would take its wrist
+/// centre beyond the arm's reach (0.8166 m from the shoulder) 40 s into the skill, and the trial was
+/// judged `unreachable`; the pull now stops where the reach ends and the kinematic preview passes.
+#[test]
+fn a_pull_that_would_leave_the_reach_stops_within_it() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let demonstration =
+        load_demonstration(&root.join("demos/instrument-tie")).expect("the shipped demonstration");
+    let pattern = load_pattern(&root.join("patterns/knot_tying.toml")).expect("the shipped pattern");
+    let knowledge = learn(&demonstration, &pattern).expect("learned");
+    let learned = Learned { knowledge, demonstration };
+    let scene = parse_scene(include_str!("../../default.toml"), "default.toml").expect("the nominal scene");
+    let options =
+        RecordOptions { cycles_per_sample: 10, stop_after_s: Some(0.1), ..RecordOptions::default() };
+    let setup = TrialSetup {
+        scene,
+        scene_name: "default.toml".to_owned(),
+        seed: 0,
+        stitch: StitchMove {
+            offset_m: Vector3::new(0.0066, -0.0281, -0.0001),
+            rotate_rad: 0.0373,
+            tilt_rad: -0.0245,
+        },
+        method: Method::Fluid,
+    };
+    let trial = run_trial(&learned, &setup, &options, None).expect("the trial runs");
+    assert_eq!(trial.kinematics, Ok(()), "the kinematic preview");
+}
