@@ -185,37 +185,6 @@ pub fn page(title: &str, header: &str, sections: &[Section]) -> String {
     out
 }
 
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    /// Text taken from the results file is HTML-escaped, so it cannot inject markup into the page.
-    #[test]
-    fn text_from_the_results_file_is_escaped() {
-        assert_eq!(escape("<b>\"a\" & 'b'</b>"), "&lt;b&gt;&quot;a&quot; &amp; &#39;b&#39;&lt;/b&gt;");
-    }
-
-    /// A method's table shows the thread's self-crossings as the total in the trials with any, of those
-    /// that counted them.
-    #[test]
-    fn a_method_table_counts_the_threads_self_crossings() {
-        let line = |trial, crossings| crate::mc::TrialLine {
-            trial,
-            thread_self_crossings: crossings,
-            ..crate::report::test_line("replay", serde_json::Value::Null, "no_knot")
-        };
-        let lines = [line(0, Some(3)), line(1, Some(0)), line(2, None)];
-        let stats = crate::report::methods::method_stats(&lines, &["replay".to_owned()]);
-        let table = method_tables(&stats);
-        assert!(
-            table.contains(
-                "<th>thread self-crossings (solver failures)</th><td>3 in 1 of 2 trials counted</td>"
-            ),
-            "{table}"
-        );
-    }
-}
-
 /// One method's map as a table: per cell with trials its ranges, successes / trials with the rate and
 /// its 95 % Wilson interval, its failure modes (most frequent first) and its trials out of reach.
 pub fn map_table(x: Axis, y: Axis, method: &MethodMap) -> String {
@@ -246,4 +215,35 @@ pub fn map_table(x: Axis, y: Axis, method: &MethodMap) -> String {
     }
     out.push_str("</table>\n");
     out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Text taken from the results file is HTML-escaped, so it cannot inject markup into the page.
+    #[test]
+    fn text_from_the_results_file_is_escaped() {
+        assert_eq!(escape("<b>\"a\" & 'b'</b>"), "&lt;b&gt;&quot;a&quot; &amp; &#39;b&#39;&lt;/b&gt;");
+    }
+
+    /// A method's table shows the thread's self-crossings as the total in the trials with any, of those
+    /// that counted them.
+    #[test]
+    fn a_method_table_counts_the_threads_self_crossings() {
+        let line = |trial, crossings| crate::mc::TrialLine {
+            trial,
+            thread_self_crossings: crossings,
+            ..crate::report::test_line("replay", serde_json::Value::Null, "no_knot")
+        };
+        let lines = [line(0, Some(3)), line(1, Some(0)), line(2, None)];
+        let stats = crate::report::methods::method_stats(&lines, &["replay".to_owned()]);
+        let table = method_tables(&stats);
+        assert!(
+            table.contains(
+                "<th>thread self-crossings (solver failures)</th><td>3 in 1 of 2 trials counted</td>"
+            ),
+            "{table}"
+        );
+    }
 }

@@ -86,7 +86,7 @@ pub enum TrialError {
         /// The tilt, degrees.
         tilt_deg: f64,
         /// Why.
-        reason: knotlab_sim::world::WorldError,
+        reason: Box<knotlab_sim::world::WorldError>,
     },
 }
 
@@ -264,7 +264,7 @@ pub fn run_trial(
         offset_m: setup.stitch.offset_m.into(),
         rotate_deg: setup.stitch.rotate_rad.to_degrees(),
         tilt_deg: setup.stitch.tilt_rad.to_degrees(),
-        reason,
+        reason: Box::new(reason),
     })?;
     world.reseed(setup.seed);
     let Synthesized { skill, approach_s, obstacles, fluid } =
