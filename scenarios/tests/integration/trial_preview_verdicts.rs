@@ -18,19 +18,24 @@ use knotlab_sim::scene::{Obstacle, parse_scene};
 use knotlab_sim::world::{SimWorld, trocar_of};
 use nalgebra::Vector3;
 
+/// The skill learned from the shipped demonstration, and the nominal scene.
+fn shipped() -> (Learned, knotlab_sim::scene::SceneConfig) {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let demonstration =
+        load_demonstration(&root.join("demos/instrument-tie")).expect("the shipped demonstration");
+    let pattern = load_pattern(&root.join("patterns/knot_tying.toml")).expect("the shipped pattern");
+    let knowledge = learn(&demonstration, &pattern).expect("learned");
+    let scene = parse_scene(include_str!("../../default.toml"), "default.toml").expect("the nominal scene");
+    (Learned { knowledge, demonstration }, scene)
+}
+
 /// Guards against a failure mode the reports list but nothing produced: a box standing where the left
 /// arm's elbow passes halfway through the skill makes the collision preview find the left arm against
 /// it, and the trial is judged `collision` (on real devices the skill would not run), though the
 /// simulated trial ran; without the box the same short trial is judged by its knot.
 #[test]
 fn a_skill_whose_preview_hits_an_obstacle_is_judged_collision() {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
-    let demonstration =
-        load_demonstration(&root.join("demos/instrument-tie")).expect("the shipped demonstration");
-    let pattern = load_pattern(&root.join("patterns/knot_tying.toml")).expect("the shipped pattern");
-    let knowledge = learn(&demonstration, &pattern).expect("learned");
-    let learned = Learned { knowledge, demonstration };
-    let scene = parse_scene(include_str!("../../default.toml"), "default.toml").expect("the nominal scene");
+    let (learned, scene) = shipped();
     let rig = Rig::shipped().expect("the shipped rig");
     let options =
         RecordOptions { cycles_per_sample: 10, stop_after_s: Some(0.3), ..RecordOptions::default() };
@@ -84,13 +89,7 @@ fn a_skill_whose_preview_hits_an_obstacle_is_judged_collision() {
 /// judged `unreachable`; the pull now stops where the reach ends and the kinematic preview passes.
 #[test]
 fn a_pull_that_would_leave_the_reach_stops_within_it() {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
-    let demonstration =
-        load_demonstration(&root.join("demos/instrument-tie")).expect("the shipped demonstration");
-    let pattern = load_pattern(&root.join("patterns/knot_tying.toml")).expect("the shipped pattern");
-    let knowledge = learn(&demonstration, &pattern).expect("learned");
-    let learned = Learned { knowledge, demonstration };
-    let scene = parse_scene(include_str!("../../default.toml"), "default.toml").expect("the nominal scene");
+    let (learned, scene) = shipped();
     let options =
         RecordOptions { cycles_per_sample: 10, stop_after_s: Some(0.1), ..RecordOptions::default() };
     let setup = TrialSetup {
