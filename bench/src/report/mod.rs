@@ -198,8 +198,16 @@ fn render(lines: &[TrialLine], title: &str, scene: Option<&str>) -> Result<Rende
     let info = run_overview(&lines).ok_or(ReportError::NoTrials)?;
     let stats = method_stats(&lines, &info.methods);
     let mut charts: Vec<(String, String)> = Vec::new();
+    // Each chart under a name of its own: a name already taken (two methods whose names differ only
+    // in what a file name leaves out) gets -2, -3, ...
     let mut chart = |name: String, svg: String| {
-        charts.push((name, svg.clone()));
+        let mut unique = name.clone();
+        let mut k = 1;
+        while charts.iter().any(|(taken, _)| *taken == unique) {
+            k += 1;
+            unique = format!("{name}-{k}");
+        }
+        charts.push((unique, svg.clone()));
         svg
     };
     let mut sections = vec![
@@ -307,5 +315,41 @@ pub(crate) fn test_line(method: &str, draw: serde_json::Value, verdict: &str) ->
         sim_seconds: 0.0,
         wall_seconds: 0.0,
         error: None,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Two methods whose names differ only in what a file name leaves out get charts of their own, not
+    /// one file written over the other.
+    #[test]
+    fn charts_of_methods_alike_in_file_names_do_not_overwrite_each_other() {
+        let draw = |x: f64| {
+            serde_json::json!({
+                "stitch_offset_m": [x, -x, 0.0], "stitch_rotate_rad": x, "stitch_tilt_rad": -x,
+                "play_rad": 0.0, "calibration_max_rad": 0.0
+            })
+        };
+        let mut lines = Vec::new();
+        for method in ["a b", "a-b"] {
+            for trial in 0..3u64 {
+                let mut line = test_line(
+                    method,
+                    draw(0.01 * trial as f64),
+                    if trial == 0 { "success" } else { "no_knot" },
+                );
+                line.trial = trial;
+                lines.push(line);
+            }
+        }
+        let (_, _, _, charts) = render(&lines, "two methods", None).expect("rendered");
+        let names: Vec<&str> = charts.iter().map(|(name, _)| name.as_str()).collect();
+        assert!(names.contains(&"map-shift-a-b") && names.contains(&"map-shift-a-b-2"), "{names:?}");
+        let mut unique = names.clone();
+        unique.sort_unstable();
+        unique.dedup();
+        assert_eq!(unique.len(), names.len(), "{names:?}");
     }
 }
