@@ -85,8 +85,8 @@ fn a_skill_whose_preview_hits_an_obstacle_is_judged_collision() {
 
 /// Guards the force-controlled pull within reach: at a stitch moved 2.8 cm towards the right's side
 /// (and 7 mm along the wound) the right's pull of R5, on to 125 % of its line, would take its wrist
-/// centre beyond the arm's reach (0.8166 m from the shoulder) 40 s into the skill, and the trial was
-/// judged `unreachable`; the pull now stops where the reach ends and the kinematic preview passes.
+/// centre beyond the arm's reach (0.8166 m from the shoulder) 40 s into the skill, and the trial would
+/// be judged `unreachable`; the pull stops where the reach ends and the kinematic preview passes.
 #[test]
 fn a_pull_that_would_leave_the_reach_stops_within_it() {
     let (learned, scene) = shipped();
