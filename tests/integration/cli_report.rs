@@ -165,7 +165,7 @@ fn the_report_shows_every_method_and_a_chart_per_varying_parameter() {
         "Success against stitch turn",
         "Success against tissue tilt",
         "Success over shift along x and shift along y",
-        "Success over turn and tilt",
+        "Success over stitch turn and tissue tilt",
     ] {
         assert!(html.contains(&format!("<h2>{title}</h2>")), "{title}");
     }
@@ -225,7 +225,7 @@ fn a_fixed_parameter_is_said_in_text_and_json_matches_the_lines() {
         "no text for fixed play"
     );
     assert!(
-        html.contains("The turn and the tilt did not both vary across the trials: no map."),
+        html.contains("The stitch turn and the tissue tilt did not both vary across the trials: no map."),
         "no text for the flat map"
     );
     assert!(!d.join("report.html").exists());

@@ -9,7 +9,7 @@ use serde::Serialize;
 
 use crate::mc::{TrialLine, wilson_interval};
 
-use super::bins::{bin_index, is_degenerate, observed_range};
+use super::bins::{Parameter, bin_index, is_degenerate, observed_range};
 use super::methods::is_success;
 
 /// Cells along each axis of a map.
@@ -33,45 +33,45 @@ pub enum Axis {
 }
 
 impl Axis {
+    /// The sweep parameter it is, for the turn and the tilt (their name, unit and value are the
+    /// sweep's).
+    fn parameter(self) -> Option<Parameter> {
+        match self {
+            Axis::ShiftX | Axis::ShiftY => None,
+            Axis::Turn => Some(Parameter::StitchTurn),
+            Axis::Tilt => Some(Parameter::StitchTilt),
+        }
+    }
+
     /// Its name in prose.
     pub fn name(self) -> &'static str {
-        match self {
-            Axis::ShiftX => "shift along x",
-            Axis::ShiftY => "shift along y",
-            Axis::Turn => "turn",
-            Axis::Tilt => "tilt",
+        match (self, self.parameter()) {
+            (_, Some(p)) => p.name(),
+            (Axis::ShiftY, None) => "shift along y",
+            (_, None) => "shift along x",
         }
     }
 
     /// The unit it is shown in.
     pub fn shown_unit(self) -> &'static str {
-        match self {
-            Axis::ShiftX | Axis::ShiftY => "mm",
-            Axis::Turn | Axis::Tilt => "deg",
-        }
+        self.parameter().map_or(Parameter::StitchDisplacement.shown_unit(), Parameter::shown_unit)
     }
 
     /// Shown units per SI unit.
     pub fn shown_per_si(self) -> f64 {
-        match self {
-            Axis::ShiftX | Axis::ShiftY => 1e3,
-            Axis::Turn | Axis::Tilt => 180.0 / std::f64::consts::PI,
-        }
+        self.parameter().map_or(Parameter::StitchDisplacement.shown_per_si(), Parameter::shown_per_si)
     }
 
     /// The value of a line, SI; none when its draw lacks it or it is not finite.
     pub fn value_si(self, line: &TrialLine) -> Option<f64> {
-        let value = match self {
-            Axis::ShiftX | Axis::ShiftY => {
-                let xyz = line.draw.get("stitch_offset_m")?.as_array()?;
-                if xyz.len() != 3 {
-                    return None;
-                }
-                xyz[usize::from(self == Axis::ShiftY)].as_f64()?
-            }
-            Axis::Turn => line.draw.get("stitch_rotate_rad")?.as_f64()?,
-            Axis::Tilt => line.draw.get("stitch_tilt_rad")?.as_f64()?,
-        };
+        if let Some(p) = self.parameter() {
+            return p.value_si(line);
+        }
+        let xyz = line.draw.get(Parameter::StitchDisplacement.field())?.as_array()?;
+        if xyz.len() != 3 {
+            return None;
+        }
+        let value = xyz[usize::from(self == Axis::ShiftY)].as_f64()?;
         value.is_finite().then_some(value)
     }
 }
