@@ -2,7 +2,6 @@
 
 mod cli;
 mod rerun_log;
-mod shipped;
 
 use clap::Parser;
 

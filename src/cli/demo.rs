@@ -16,7 +16,7 @@ use super::csv_file;
 use super::numbers::{Numbers, parse_list};
 use super::output::{Output, outln};
 use crate::rerun_log::{self, RerunArgs};
-use crate::shipped;
+use knotlab_scenarios::shipped;
 
 #[derive(Debug, Args)]
 pub struct DemoArgs {

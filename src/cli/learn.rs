@@ -17,7 +17,7 @@ use knotlab_learner::segment::{Decomposition, FailureReason, Rejection, decompos
 
 use super::output::{Output, outln};
 use crate::rerun_log::{self, RerunArgs};
-use crate::shipped;
+use knotlab_scenarios::shipped;
 
 /// The exit code of a rejected demonstration (1 is a bad file, 2 a bad command line).
 const REJECTED: u8 = 3;

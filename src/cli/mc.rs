@@ -20,7 +20,7 @@ use knotlab_scenarios::trial::{Learned, TrialError, TrialRun, TrialSetup, run_tr
 use super::output::{Output, outln};
 use super::skill_source::SkillSource;
 use crate::rerun_log::{self, RerunArgs};
-use crate::shipped;
+use knotlab_scenarios::shipped;
 
 #[derive(Debug, Args)]
 #[command(args_conflicts_with_subcommands = true, subcommand_negates_reqs = true)]

@@ -23,7 +23,7 @@ use knotlab_sim::world::SimWorld;
 use super::csv_file;
 use super::numbers::parse_vector3;
 use super::output::{Output, outln};
-use crate::shipped;
+use knotlab_scenarios::shipped;
 
 /// Height of the default plane above the tissue surface, m.
 const DEFAULT_HEIGHT_M: f64 = 0.02;

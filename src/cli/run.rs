@@ -10,7 +10,6 @@ use std::process::ExitCode;
 use anyhow::Context;
 use clap::Args;
 use nalgebra::Vector3;
-use serde::Serialize;
 
 use knotlab_hw::controller::RunOutcome;
 use knotlab_hw::gate::{PreviewOutcome, may_execute, real_devices};
@@ -20,14 +19,14 @@ use knotlab_hw::skill::Skill;
 use knotlab_learner::demonstration::write_demonstration;
 use knotlab_learner::synthesis::Method;
 use knotlab_scenarios::expert::RecordOptions;
+use knotlab_scenarios::trial::report::{Execution, TrialReport};
 use knotlab_scenarios::trial::{StitchMove, TrialRun, TrialSetup, run_trial};
-use knotlab_sim::knot::Verdict;
 
 use super::numbers::parse_vector3;
 use super::output::{Output, outln};
 use super::skill_source::SkillSource;
 use crate::rerun_log::{self, RerunArgs};
-use crate::shipped;
+use knotlab_scenarios::shipped;
 
 /// The exit code of a skill refused by a failed preview (1 is an error, 2 a bad command line).
 const REFUSED: u8 = 4;
@@ -74,62 +73,6 @@ pub struct RunArgs {
     json: bool,
     #[command(flatten)]
     rerun: RerunArgs,
-}
-
-#[derive(Serialize)]
-struct Report {
-    success: bool,
-    verdict: &'static str,
-    failure_mode: Option<&'static str>,
-    knot: Option<&'static str>,
-    knot_after_release: Option<&'static str>,
-    wound_gap_m: f64,
-    wound_gap_after_release_m: Option<f64>,
-    knot_height_m: Option<f64>,
-    knot_stitch_distance_m: Option<f64>,
-    /// The thread outside the tissue between the stitch and the knot, both sides (about the two bites
-    /// for a knot cinched down on the wound); not part of the verdict.
-    knot_loop_outside_m: Option<f64>,
-    /// How much of each free end the knot drew in during the holding test (a knot that slips lets
-    /// one through).
-    knot_slid: Option<knotlab_sim::evaluate::Slid>,
-    /// How often the thread passed through itself during the trial (a solver failure: a knot tied
-    /// with any is not a real thread's); not part of the verdict.
-    thread_self_crossings: usize,
-    /// The first ten of them: when (s of the scene's simulated time) and which two segments.
-    first_self_crossings: Vec<knotlab_sim::thread_watch::SelfCrossing>,
-    /// The suture at its most stretched (its most stretched segment beyond its rest length, a
-    /// fraction of it, and when; and how long it was beyond 5 %); not part of the verdict.
-    thread_most_stretched: Option<knotlab_sim::thread_watch::Stretch>,
-    method: &'static str,
-    seed: u64,
-    scene: String,
-    stitch_offset_m: [f64; 3],
-    stitch_rotate_deg: f64,
-    stitch_tilt_deg: f64,
-    approach_s: f64,
-    skill_duration_s: f64,
-    fault: Option<String>,
-    sim_seconds: f64,
-    wall_seconds: f64,
-    events: Vec<String>,
-    preview: Preview,
-    execution: Execution,
-}
-
-#[derive(Serialize)]
-struct Preview {
-    passed: bool,
-    reason: String,
-}
-
-#[derive(Serialize)]
-struct Execution {
-    /// `simulated` (the trial was the run), `refused` (a failed preview on real devices), `completed`
-    /// or `emergency_stopped` (on the rig's devices).
-    status: &'static str,
-    rig: Option<String>,
-    message: String,
 }
 
 /// The synthesized skill for the Rerun viewer: each instrument's planned tip path
@@ -220,27 +163,15 @@ pub fn run(args: RunArgs, out: &mut Output) -> anyhow::Result<ExitCode> {
         write_demonstration(dir, &trial.run.demonstration)
             .with_context(|| format!("writing the trial's recording to {}", dir.display()))?;
     }
-    let e = &trial.run.evaluation;
-    let preview = match (&trial.run.fault, e.verdict) {
-        _ if trial.kinematics.is_err() => Preview {
-            passed: false,
-            reason: trial.kinematics.as_ref().err().map(ToString::to_string).unwrap_or_default(),
-        },
-        _ if trial.collision.is_some() => Preview {
-            passed: false,
-            reason: trial.collision.as_ref().map(|c| format!("link collision: {c}")).unwrap_or_default(),
-        },
-        (Some(fault), _) => Preview { passed: false, reason: format!("fault: {fault}") },
-        (None, Verdict::Success) => Preview { passed: true, reason: String::new() },
-        (None, verdict) => Preview { passed: false, reason: format!("knot: {}", verdict.label()) },
-    };
+    let simulated = TrialReport::new(&setup, &trial, Execution::simulated());
+    let preview = &simulated.preview;
     let mut code = ExitCode::SUCCESS;
     let execution = match (&args.rig, rig_config) {
-        (None, _) | (_, None) => Execution { status: "simulated", rig: None, message: String::new() },
+        (None, _) | (_, None) => Execution::simulated(),
         (Some(path), Some(config)) => {
             let rig_name = Some(path.display().to_string());
             if real_devices(&config).is_empty() {
-                Execution { status: "simulated", rig: rig_name, message: "no real devices".into() }
+                Execution { status: "simulated".into(), rig: rig_name, message: "no real devices".into() }
             } else {
                 let outcome = PreviewOutcome { passed: preview.passed, reason: preview.reason.clone() };
                 match may_execute(&config, &outcome, args.execute_despite_failed_preview) {
@@ -250,51 +181,18 @@ pub fn run(args: RunArgs, out: &mut Output) -> anyhow::Result<ExitCode> {
                             path.display()
                         ));
                         code = ExitCode::from(REFUSED);
-                        Execution { status: "refused", rig: rig_name, message: refused.to_string() }
+                        Execution { status: "refused".into(), rig: rig_name, message: refused.to_string() }
                     }
                     Ok(()) => {
                         let status = execute_on_rig(&config, trial.skill.clone())
                             .with_context(|| format!("executing on {}", path.display()))?;
-                        Execution { status, rig: rig_name, message: String::new() }
+                        Execution { status: status.into(), rig: rig_name, message: String::new() }
                     }
                 }
             }
         }
     };
-    let verdict = trial.verdict();
-    let report = Report {
-        success: verdict == Verdict::Success,
-        verdict: verdict.label(),
-        failure_mode: match verdict {
-            Verdict::Success => None,
-            Verdict::Failure(mode) => Some(mode.name()),
-        },
-        knot: e.knot_before.map(|k| k.name()),
-        knot_after_release: e.knot_after.map(|k| k.name()),
-        wound_gap_m: e.gap_after_m.unwrap_or(e.gap_before_m),
-        wound_gap_after_release_m: e.gap_after_m,
-        knot_height_m: e.height_m,
-        knot_stitch_distance_m: e.stitch_distance_m,
-        knot_loop_outside_m: e.loop_outside_m,
-        knot_slid: e.slid,
-        thread_self_crossings: e.thread_self_crossings,
-        first_self_crossings: trial.run.first_self_crossings().to_vec(),
-        thread_most_stretched: e.thread_most_stretched,
-        method: args.method.as_str(),
-        seed: args.seed,
-        scene: scene_name,
-        stitch_offset_m: setup.stitch.offset_m.into(),
-        stitch_rotate_deg: args.stitch_rotate,
-        stitch_tilt_deg: args.stitch_tilt,
-        approach_s: trial.approach_s,
-        skill_duration_s: trial.skill.duration_s(),
-        fault: trial.run.fault.clone(),
-        sim_seconds: trial.run.simulated_s,
-        wall_seconds: trial.run.wall_s,
-        events: trial.run.events.clone(),
-        preview,
-        execution,
-    };
+    let report = TrialReport { execution, ..simulated };
     if args.json {
         outln!(out, "{}", serde_json::to_string_pretty(&report)?);
     } else {
@@ -303,7 +201,7 @@ pub fn run(args: RunArgs, out: &mut Output) -> anyhow::Result<ExitCode> {
             "{} ({}): knot {}, wound gap {:.2} mm{}; {:.1} s simulated in {:.1} s",
             report.verdict,
             report.method,
-            report.knot.unwrap_or("-"),
+            report.knot.as_deref().unwrap_or("-"),
             report.wound_gap_m * 1e3,
             report.fault.as_deref().map(|f| format!(", fault: {f}")).unwrap_or_default(),
             report.sim_seconds,

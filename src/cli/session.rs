@@ -18,7 +18,7 @@ use knotlab_sim::world::SimWorld;
 
 use super::output::{Output, outln};
 use super::skill_source::SkillSource;
-use crate::shipped;
+use knotlab_scenarios::shipped;
 
 #[derive(Debug, Args)]
 pub struct SessionArgs {

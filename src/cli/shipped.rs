@@ -10,7 +10,7 @@ use clap::{Args, Subcommand};
 use serde_json::json;
 
 use super::output::{Output, outln};
-use crate::shipped::{self, ShippedFile};
+use knotlab_scenarios::shipped::{self, ShippedFile};
 
 #[derive(Debug, Subcommand)]
 pub enum ShippedCommand {

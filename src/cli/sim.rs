@@ -16,7 +16,7 @@ use knotlab_sim::world::SimWorld;
 
 use super::numbers::{Numbers, parse_list};
 use super::output::{Output, outln};
-use crate::shipped;
+use knotlab_scenarios::shipped;
 
 #[derive(Debug, Args)]
 pub struct SimArgs {

@@ -9,7 +9,7 @@ use clap::Args;
 use knotlab_learner::primitive::{learn, load_knowledge_base};
 use knotlab_scenarios::trial::Learned;
 
-use crate::shipped;
+use knotlab_scenarios::shipped;
 
 #[derive(Debug, Args)]
 pub struct SkillSource {

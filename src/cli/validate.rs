@@ -12,7 +12,7 @@ use clap::Args;
 use knotlab_sim::validation::{Check, SutureUnderTest, figure_text, run_all};
 
 use super::output::{Output, outln};
-use crate::shipped;
+use knotlab_scenarios::shipped;
 
 #[derive(Debug, Args)]
 pub struct ValidateArgs {

@@ -3,6 +3,7 @@
 //! traits, and the knot it leaves evaluated.
 
 pub mod obstacles;
+pub mod report;
 pub mod stitch;
 
 pub use stitch::StitchMove;

@@ -1,14 +1,14 @@
-//! The shipped scenario files, built into the binary: the scenes, the demonstration, the task pattern,
-//! the expert's plan and the rig configs that the commands default to, so that `knotlab` runs from any
-//! directory. A file named on the command line replaces the built-in one; `knotlab shipped dump` writes
-//! them out, under their repository paths, to be edited.
+//! The shipped scenario files, built in: the scenes, the demonstration, the task pattern, the expert's
+//! plan and the rig configs that the `knotlab` commands and the Python package default to, so that
+//! they run from any directory. A file named on the command line replaces the built-in one; `knotlab
+//! shipped dump` writes them out, under their repository paths, to be edited.
 
 use std::path::Path;
 
+use crate::expert::{GeometryFileError, TieGeometry, load_tie_geometry, parse_tie_geometry};
 use knotlab_hw::rig_config::{RigConfig, RigConfigError, load_rig_config, parse_rig_config};
 use knotlab_learner::demonstration::{DemoError, Demonstration, load_demonstration, read_demonstration_dir};
 use knotlab_learner::pattern::{PatternError, TaskPattern, load_pattern, parse_pattern};
-use knotlab_scenarios::expert::{GeometryFileError, TieGeometry, load_tie_geometry, parse_tie_geometry};
 use knotlab_sim::scene::{SceneConfig, SceneError, load_scene, parse_scene};
 
 /// One shipped file: its path in the repository (the name outputs and errors give it) and its text.
@@ -22,12 +22,13 @@ pub struct ShippedFile {
     pub about: &'static str,
 }
 
-/// `shipped!("scenarios/x.toml", "about")`: the repository's file, built in.
+/// `shipped!("x.toml", "about")`: the file `scenarios/x.toml` of the repository (this crate's
+/// directory), built in.
 macro_rules! shipped {
-    ($path:literal, $about:literal) => {
+    ($file:literal, $about:literal) => {
         ShippedFile {
-            path: $path,
-            text: include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/", $path)),
+            path: concat!("scenarios/", $file),
+            text: include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/", $file)),
             about: $about,
         }
     };
@@ -35,46 +36,40 @@ macro_rules! shipped {
 
 /// The nominal scene: `mc`, `run`, `demo`, `obstacles`, `validate` and `session` default to it.
 pub const SCENE: ShippedFile = shipped!(
-    "scenarios/default.toml",
+    "default.toml",
     "the scene (with its randomization and presets) of mc, run, demo, obstacles, validate, session"
 );
 /// The capsule-chain scene `sim` defaults to.
-pub const CHAIN_SCENE: ShippedFile = shipped!("scenarios/chain.toml", "the capsule-chain scene of sim");
+pub const CHAIN_SCENE: ShippedFile = shipped!("chain.toml", "the capsule-chain scene of sim");
 /// The knot-tying task pattern.
 pub const PATTERN: ShippedFile =
-    shipped!("scenarios/patterns/knot_tying.toml", "the task pattern of learn, run, mc, session");
+    shipped!("patterns/knot_tying.toml", "the task pattern of learn, run, mc, session");
 /// The scripted expert's plan `demo` runs.
-pub const EXPERT: ShippedFile =
-    shipped!("scenarios/experts/instrument-tie.toml", "the expert's plan of demo");
+pub const EXPERT: ShippedFile = shipped!("experts/instrument-tie.toml", "the expert's plan of demo");
 /// Every key of an expert's plan with its base value (a reference to edit a plan by).
 pub const EXPERT_BASE: ShippedFile =
-    shipped!("scenarios/experts/base.toml", "every key of an expert's plan, at its base value");
+    shipped!("experts/base.toml", "every key of an expert's plan, at its base value");
 /// The rig `session` defaults to.
 pub const GAMEPAD_RIG: ShippedFile =
-    shipped!("scenarios/rigs/sim-gamepad.toml", "the rig of session (a gamepad steers)");
+    shipped!("rigs/sim-gamepad.toml", "the rig of session (a gamepad steers)");
 /// The simulated rig with dummy masters and pedals.
 pub const SIM_RIG: ShippedFile =
-    shipped!("scenarios/rigs/sim.toml", "a rig of dummy masters and pedals (session --rig)");
+    shipped!("rigs/sim.toml", "a rig of dummy masters and pedals (session --rig)");
 /// The rig of the MELFA arms.
 pub const MELFA_RIG: ShippedFile =
-    shipped!("scenarios/rigs/melfa.toml", "the MELFA arms' rig (run --rig, session --rig)");
+    shipped!("rigs/melfa.toml", "the MELFA arms' rig (run --rig, session --rig)");
 /// Ghia, Ghia and Shin's lid-driven cavity table.
-pub const GHIA: ShippedFile = shipped!(
-    "scenarios/reference/ghia1982-cavity.csv",
-    "the lid-driven cavity's reference (fluid cavity --reference)"
-);
+pub const GHIA: ShippedFile =
+    shipped!("reference/ghia1982-cavity.csv", "the lid-driven cavity's reference (fluid cavity --reference)");
 
 /// The canonical demonstration's directory.
 pub const DEMO_DIR: &str = "scenarios/demos/instrument-tie";
 /// The canonical demonstration's files (`DEMO_DIR/...`).
 pub const DEMO: [ShippedFile; 4] = [
-    shipped!(
-        "scenarios/demos/instrument-tie/demo.toml",
-        "the demonstration of learn, run, mc, session: its metadata"
-    ),
-    shipped!("scenarios/demos/instrument-tie/left.csv", "the demonstration: the left instrument"),
-    shipped!("scenarios/demos/instrument-tie/right.csv", "the demonstration: the right instrument"),
-    shipped!("scenarios/demos/instrument-tie/assist.csv", "the demonstration: the assisting instrument"),
+    shipped!("demos/instrument-tie/demo.toml", "the demonstration of learn, run, mc, session: its metadata"),
+    shipped!("demos/instrument-tie/left.csv", "the demonstration: the left instrument"),
+    shipped!("demos/instrument-tie/right.csv", "the demonstration: the right instrument"),
+    shipped!("demos/instrument-tie/assist.csv", "the demonstration: the assisting instrument"),
 ];
 
 /// Every shipped file, in the order `knotlab shipped list` gives them.
