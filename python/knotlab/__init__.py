@@ -1,0 +1,41 @@
+"""knotlab from Python: surgical knot tying from one demonstration, on knotlab's simulator.
+
+The batch API runs what the ``knotlab`` command line runs, on the same engine:
+
+- ``learn(demo=None, pattern=None)`` / ``load_skill(path)``: a learned skill (``Skill``);
+- ``scene_info(path=None, preset=None)``: a scene file's presets and randomization;
+- ``run_trial(...)``: one trial, reported as ``knotlab run --json`` reports it (a dict);
+- ``run_mc(out, trials, ...)``: a Monte Carlo run into a folder, as ``knotlab mc`` makes it
+  (resumable, sharded, the same results whatever the number of jobs); its summary (a dict);
+- ``read_run(dir)``: a run folder as a pandas DataFrame (one row per trial and method, the drawn
+  parameters as columns) and its summary.
+
+Every file argument defaults to the shipped one (``scenarios/default.toml``, the shipped
+demonstration and task pattern), built into the module. Errors of knotlab's crates are raised as
+``KnotlabError`` with the message the command line gives (the file, line, field and value).
+"""
+
+from ._knotlab import (
+    KnotlabError,
+    Skill,
+    __version__,
+    learn,
+    load_skill,
+    run_mc,
+    run_trial,
+    scene_info,
+)
+from .runs import read_run, trials_frame
+
+__all__ = [
+    "KnotlabError",
+    "Skill",
+    "__version__",
+    "learn",
+    "load_skill",
+    "read_run",
+    "run_mc",
+    "run_trial",
+    "scene_info",
+    "trials_frame",
+]
