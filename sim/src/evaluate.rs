@@ -167,6 +167,24 @@ pub fn hold_watched(
     stable.then(|| world.wound_gap_m())
 }
 
+/// The evaluation of a run the controller stopped on a device fault: no knot judged, the verdict
+/// `device_fault`, the wound and the thread as they are.
+pub fn fault_evaluation(world: &SimWorld) -> KnotEvaluation {
+    KnotEvaluation {
+        verdict: Verdict::Failure(FailureMode::DeviceFault),
+        knot_before: None,
+        knot_after: None,
+        height_m: None,
+        stitch_distance_m: None,
+        loop_outside_m: None,
+        gap_before_m: world.wound_gap_m(),
+        gap_after_m: None,
+        thread_self_crossings: world.suture().self_crossings().len(),
+        thread_most_stretched: world.suture().most_stretched(),
+        slid: None,
+    }
+}
+
 /// Judges the thread as it lies, then (if the knot is right and down) lets go of everything and runs
 /// the holding test. Advances the world by the settle time when the holding test runs.
 pub fn evaluate_knot(world: &mut SimWorld, params: &EvaluationParams) -> KnotEvaluation {

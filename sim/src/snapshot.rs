@@ -114,6 +114,18 @@ fn rgb(r: u8, g: u8, b: u8) -> Color {
 
 /// Draws the scene as it stands: three views side by side, returned as PNG bytes.
 pub fn render_png(world: &SimWorld, view: &View) -> Result<Vec<u8>, SnapshotError> {
+    render(world, view)?.encode_png().map_err(|e| SnapshotError::Encode(e.to_string()))
+}
+
+/// The picture of [`render_png`] as rows of RGB pixels, top row first: `3 * view.pixels` wide,
+/// `view.pixels` high, three bytes a pixel.
+pub fn render_rgb(world: &SimWorld, view: &View) -> Result<Vec<u8>, SnapshotError> {
+    let pixmap = render(world, view)?;
+    // Every pixel is opaque (the background is filled), so the premultiplied colour is the colour.
+    Ok(pixmap.pixels().iter().flat_map(|p| [p.red(), p.green(), p.blue()]).collect())
+}
+
+fn render(world: &SimWorld, view: &View) -> Result<Pixmap, SnapshotError> {
     if view.pixels == 0 || view.pixels > 4096 {
         return Err(SnapshotError::Size(view.pixels));
     }
@@ -179,5 +191,5 @@ pub fn render_png(world: &SimWorld, view: &View) -> Result<Vec<u8>, SnapshotErro
             canvas.pixmap.stroke_path(&path, &paint, &Stroke::default(), Transform::identity(), None);
         }
     }
-    pixmap.encode_png().map_err(|e| SnapshotError::Encode(e.to_string()))
+    Ok(pixmap)
 }

@@ -14,8 +14,7 @@ use knotlab_learner::demonstration::{
     Demonstration, FORMAT_VERSION, GraspState, InstrumentRecord, Metadata, Sample, StitchPose,
 };
 use knotlab_sim::backend::SimBackend;
-use knotlab_sim::evaluate::{KnotEvaluation, KnotNow, evaluate_knot_watched, knot_now};
-use knotlab_sim::knot::{FailureMode, Verdict};
+use knotlab_sim::evaluate::{KnotEvaluation, KnotNow, evaluate_knot_watched, fault_evaluation, knot_now};
 use knotlab_sim::shapes::{SceneShapes, scene_shapes};
 use knotlab_sim::snapshot::{View, render_png};
 use knotlab_sim::thread_watch::SelfCrossing;
@@ -331,19 +330,7 @@ pub fn record_demonstration(
     drop(controller);
     let mut world = backend.world();
     let evaluation = if fault.is_some() {
-        KnotEvaluation {
-            verdict: Verdict::Failure(FailureMode::DeviceFault),
-            knot_before: None,
-            knot_after: None,
-            height_m: None,
-            stitch_distance_m: None,
-            loop_outside_m: None,
-            gap_before_m: world.wound_gap_m(),
-            gap_after_m: None,
-            thread_self_crossings: world.suture().self_crossings().len(),
-            thread_most_stretched: world.suture().most_stretched(),
-            slid: None,
-        }
+        fault_evaluation(&world)
     } else {
         let params = world.config().evaluation.clone();
         // Snapshots past the skill's end show the holding test, on the same clock.

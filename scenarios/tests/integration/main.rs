@@ -9,6 +9,7 @@
 //! - The shipped scenes: [`scene_variants_differ_from_the_nominal_only_in_the_suture`],
 //!   [`short_suture_scene_is_the_chain_one_with_less_thread`].
 //! - The lab's workflow: [`lab_session`].
+//! - The step-wise episode of the Gymnasium environment: [`episode_steps`].
 //! - The stress sequence, the same twice: [`scene_determinism`]; the suture's stretch watch against it:
 //!   [`suture_stretch_watch`].
 //! - [`common`]: the expert runs the second-throw tests share.
@@ -16,6 +17,7 @@
 mod common;
 
 mod draw_through_sees_the_first_throw;
+mod episode_steps;
 mod every_expert_file_loads;
 mod expert_looks_where_the_tail_lies;
 mod expert_recording;
