@@ -39,3 +39,12 @@ __all__ = [
     "scene_info",
     "trials_frame",
 ]
+
+import gymnasium as _gym
+
+from .envs import KnotTyingEnv, demonstration_actions
+
+__all__ += ["KnotTyingEnv", "demonstration_actions"]
+
+if "knotlab/KnotTying-v0" not in _gym.registry:
+    _gym.register(id="knotlab/KnotTying-v0", entry_point="knotlab.envs:KnotTyingEnv")

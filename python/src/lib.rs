@@ -6,8 +6,10 @@
 //! - [`skill`]: a learned skill (knowledge base and demonstration): learned, loaded, saved.
 //! - [`scene`]: a scene file's presets and randomization.
 //! - [`trial`]: one trial, reported as `knotlab run --json` reports it.
+//! - [`episode`]: the Gymnasium environment's engine: a drawn scene stepped by tip commands.
 //! - [`mc`]: a Monte Carlo run on the engine of `knotlab mc`, and a run folder read back.
 
+mod episode;
 mod error;
 mod mc;
 mod scene;
@@ -27,6 +29,8 @@ fn _knotlab(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(trial::run_trial, m)?)?;
     m.add_function(wrap_pyfunction!(mc::run_mc, m)?)?;
     m.add_function(wrap_pyfunction!(mc::read_run, m)?)?;
+    m.add_class::<episode::Episode>()?;
+    m.add_function(wrap_pyfunction!(episode::demonstration_steps, m)?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())
 }

@@ -8,9 +8,9 @@ pub struct EpisodeSettings {
     pub control_hz: f64,
     /// The episode is cut off here, s of simulated time (then the knot is judged as it lies).
     pub time_limit_s: f64,
-    /// The fastest a tip may be commanded to move, m/s.
+    /// The fastest a tip may be commanded to move along each world axis, m/s.
     pub max_speed_mps: f64,
-    /// The fastest a tip may be commanded to turn, rad/s.
+    /// The fastest a tip may be commanded to turn about each world axis, rad/s.
     pub max_turn_rad_s: f64,
     /// The widest a jaw may be commanded to open, rad.
     pub max_jaw_rad: f64,
@@ -19,14 +19,15 @@ pub struct EpisodeSettings {
 }
 
 impl Default for EpisodeSettings {
-    /// 20 steps a second, 60 s, 15 cm/s, 4 rad/s, jaws up to 0.8 rad, 32 points of thread.
+    /// 20 steps a second, 60 s, 15 cm/s and 4 rad/s along and about each axis, jaws up to 0.8 rad,
+    /// 32 points of thread.
     ///
     /// 20 Hz: between steps the target moves in a straight line, and the task's finest motions are
     /// resolved at that rate: a jaw closing takes 0.3 s (6 steps) and the winding, the fastest curve,
     /// turns 1 cm circles in about 2 s, whose 50 ms chords lie within 0.03 mm of the arc; the
     /// controller runs its inverse kinematics and limits at every 1 ms cycle in between. Over 50 ms
     /// the shipped demonstration's tips move at most 0.11 m/s and turn at most 2.9 rad/s (the left
-    /// turning its jaws towards the tail), within the bounds.
+    /// turning its jaws towards the tail), within the bounds along any axis.
     fn default() -> Self {
         Self {
             control_hz: 20.0,
