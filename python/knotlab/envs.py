@@ -40,6 +40,7 @@ processes.
 
 from __future__ import annotations
 
+import copy
 import os
 from typing import Any, Dict, List, Optional, Tuple
 
@@ -247,3 +248,112 @@ def demonstration_actions(demo: "Optional[str | os.PathLike[str]]" = None, env: 
             action.append(c[6] / s["max_jaw_rad"] * 2.0 - 1.0)
         actions.append(action)
     return np.asarray(actions, dtype=np.float64)
+
+
+class KnotSkillEnv(gym.Env):
+    """``knotlab/KnotSkill-v0``: one trial an episode, the learned skill's primitives moved by the
+    action, for residual and black-box methods that build on the paper's method.
+
+    ``reset(seed=S)`` draws the scene as trial 0 of a Monte Carlo run seeded ``S`` (``options=
+    {"trial": K}`` for trial K), the same draw as ``knotlab mc --seed S`` and ``KnotTying-v0``'s.
+    The observation is what a surgeon sees of the site: the stitch's shift (x, y, z, m), its turn about
+    the tissue's normal and its tilt about the wound (rad), a (5,) array. The action holds three
+    numbers in [-1, 1] per primitive of the skill (``primitives``, in the order of ``Skill.primitives()``):
+    the primitive's offset along the stitch frame's x (along the wound), y (across it) and z (out of
+    the tissue), times ``max_offset_m`` (5 mm); an instrument's keys within a primitive move by its
+    offset, between two of its primitives the offset blends from the one to the next. The step runs
+    the trial as ``knotlab mc`` runs it (synthesis by ``method``, the previews, the simulated rig, the
+    knot's evaluation) and ends the episode: reward 1 for an accepted knot, else 0;
+    ``info["report"]`` is the trial's report (``knotlab run --json``'s fields but the wall-clock time).
+    An action of zeros is the method's own trial: its verdict is that of ``knotlab mc``'s trial line.
+    """
+
+    metadata = {"render_modes": []}
+
+    def __init__(
+        self,
+        scene: "Optional[str | os.PathLike[str]]" = None,
+        preset: Optional[str] = None,
+        method: str = "fluid",
+        max_offset_m: float = 0.005,
+        skill: Optional[Any] = None,
+        until_s: Optional[float] = None,
+    ) -> None:
+        if not (np.isfinite(max_offset_m) and max_offset_m > 0):
+            raise ValueError(f"max_offset_m {max_offset_m}: a positive length")
+        self._settings = dict(
+            scene=None if scene is None else os.fspath(scene),
+            preset=preset,
+            method=method,
+            max_offset_m=float(max_offset_m),
+            until_s=until_s,
+        )
+        self._skill = skill if skill is not None else _knotlab.learn()
+        self.primitives = [name for _, name in self._skill.primitives()]
+        _knotlab.draw_trial(self._settings["scene"], preset, 0, 0)  # a bad scene or preset fails here
+        self.action_space = spaces.Box(-1.0, 1.0, shape=(3 * len(self.primitives),), dtype=np.float32)
+        self.observation_space = spaces.Box(-np.inf, np.inf, shape=(5,), dtype=np.float64)
+        self._reset_args: Optional[Tuple[int, int]] = None
+        self._done = False
+
+    def reset(self, *, seed: Optional[int] = None, options: Optional[Dict[str, Any]] = None):
+        super().reset(seed=seed)
+        if seed is None:
+            seed = int(self.np_random.integers(0, 2**63 - 1))
+        trial = int((options or {}).get("trial", 0))
+        self._reset_args = (int(seed), trial)
+        self._done = False
+        drawn = _knotlab.draw_trial(self._settings["scene"], self._settings["preset"], int(seed), trial)
+        self._drawn = drawn
+        return self._observation(drawn), {"drawn": copy.deepcopy(drawn)}
+
+    @staticmethod
+    def _observation(drawn: Dict[str, Any]) -> np.ndarray:
+        return np.array(
+            [*drawn["stitch_offset_m"], drawn["stitch_rotate_rad"], drawn["stitch_tilt_rad"]], dtype=np.float64
+        )
+
+    def step(self, action):
+        if self._reset_args is None:
+            raise RuntimeError("reset the environment before stepping it")
+        if self._done:
+            raise RuntimeError("the episode (one trial) has ended; reset the environment")
+        action = np.asarray(action, dtype=np.float64).reshape(-1)
+        if action.shape != self.action_space.shape:
+            raise ValueError(f"an action has {self.action_space.shape[0]} numbers (3 per primitive), not {action.size}")
+        if not np.all(np.isfinite(action)) or np.any(np.abs(action) > 1.0 + 1e-6):
+            raise ValueError(f"an action's numbers lie in [-1, 1]: {action.tolist()}")
+        offsets = {
+            name: tuple(float(x) for x in np.clip(action[3 * k : 3 * k + 3], -1.0, 1.0) * self._settings["max_offset_m"])
+            for k, name in enumerate(self.primitives)
+        }
+        seed, trial = self._reset_args
+        report = _knotlab.run_drawn_trial(
+            self._skill, self._settings["scene"], self._settings["preset"], seed, trial,
+            self._settings["method"], offsets, self._settings["until_s"],
+        )
+        self._done = True
+        # The same seed and action give the same info: the wall-clock time is left out.
+        report.pop("wall_seconds", None)
+        reward = 1.0 if report["success"] else 0.0
+        info = {"drawn": copy.deepcopy(self._drawn), "verdict": report["verdict"], "report": report}
+        return self._observation(self._drawn), reward, True, False, info
+
+    def __getstate__(self):
+        return {
+            "settings": self._settings,
+            "skill": self._skill,
+            "reset_args": self._reset_args,
+            "done": self._done,
+            "np_random": None if self._np_random is None else self._np_random.bit_generator.state,
+        }
+
+    def __setstate__(self, state):
+        self.__init__(**state["settings"], skill=state["skill"])
+        if state["np_random"] is not None:
+            self._np_random = np.random.Generator(np.random.PCG64())
+            self._np_random.bit_generator.state = state["np_random"]
+        if state["reset_args"] is not None:
+            seed, trial = state["reset_args"]
+            self.reset(seed=seed, options={"trial": trial})
+            self._done = state["done"]

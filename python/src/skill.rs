@@ -6,16 +6,25 @@ use std::path::PathBuf;
 
 use pyo3::prelude::*;
 
-use knotlab_learner::primitive::{learn as learn_kb, load_knowledge_base, write_knowledge_base};
+use knotlab_learner::primitive::{
+    learn as learn_kb, load_knowledge_base, parse_knowledge_base, write_knowledge_base,
+};
 use knotlab_scenarios::shipped;
 use knotlab_scenarios::trial::Learned;
 
 use crate::error::{knotlab_error, to_python};
 
+/// How a skill pickles: the function that rebuilds it, and its arguments.
+type Reduced = (Py<PyAny>, (String, Option<PathBuf>));
+
 /// A learned skill (`knotlab.learn()`, `knotlab.load_skill(path)`).
+///
+/// It pickles as its knowledge base and the directory its demonstration was read from (None: the
+/// shipped one), which unpickling reads again.
 #[pyclass(module = "knotlab._knotlab", frozen)]
 pub struct Skill {
     learned: Learned,
+    demo: Option<PathBuf>,
 }
 
 impl Skill {
@@ -71,6 +80,16 @@ impl Skill {
             .collect()
     }
 
+    /// The knowledge base as the JSON text `knotlab learn --out` writes.
+    fn to_json(&self) -> PyResult<String> {
+        serde_json::to_string_pretty(&self.learned.knowledge).map_err(knotlab_error)
+    }
+
+    fn __reduce__(&self, py: Python<'_>) -> PyResult<Reduced> {
+        let rebuild = py.import("knotlab._knotlab")?.getattr("skill_from_json")?.unbind();
+        Ok((rebuild, (self.to_json()?, self.demo.clone())))
+    }
+
     /// Writes the knowledge base to `path` (JSON, as `knotlab learn --out` does).
     fn save(&self, path: PathBuf) -> PyResult<()> {
         write_knowledge_base(&path, &self.learned.knowledge).map_err(knotlab_error)
@@ -86,8 +105,8 @@ impl Skill {
 #[pyfunction]
 #[pyo3(signature = (demo=None, pattern=None))]
 pub fn learn(py: Python<'_>, demo: Option<PathBuf>, pattern: Option<PathBuf>) -> PyResult<Skill> {
-    let learned = py.detach(|| learn_from(demo, pattern)).map_err(knotlab_error)?;
-    Ok(Skill { learned })
+    let learned = py.detach(|| learn_from(demo.clone(), pattern)).map_err(knotlab_error)?;
+    Ok(Skill { learned, demo })
 }
 
 /// Loads a knowledge base (`knotlab learn --out FILE`) with the demonstration it came from (the
@@ -97,5 +116,15 @@ pub fn learn(py: Python<'_>, demo: Option<PathBuf>, pattern: Option<PathBuf>) ->
 pub fn load_skill(path: PathBuf, demo: Option<PathBuf>) -> PyResult<Skill> {
     let knowledge = load_knowledge_base(&path).map_err(knotlab_error)?;
     let demonstration = shipped::demonstration(demo.as_deref()).map_err(knotlab_error)?;
-    Ok(Skill { learned: Learned { knowledge, demonstration } })
+    Ok(Skill { learned: Learned { knowledge, demonstration }, demo })
+}
+
+/// A skill from a knowledge base's JSON text (`Skill.to_json()`) and the directory of its
+/// demonstration (the shipped one when None).
+#[pyfunction]
+#[pyo3(signature = (text, demo=None))]
+pub fn skill_from_json(text: &str, demo: Option<PathBuf>) -> PyResult<Skill> {
+    let knowledge = parse_knowledge_base(text, "a pickled skill").map_err(knotlab_error)?;
+    let demonstration = shipped::demonstration(demo.as_deref()).map_err(knotlab_error)?;
+    Ok(Skill { learned: Learned { knowledge, demonstration }, demo })
 }

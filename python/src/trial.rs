@@ -7,7 +7,7 @@ use nalgebra::Vector3;
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 
-use knotlab_learner::synthesis::Method;
+use knotlab_learner::synthesis::{Method, PrimitiveOffset};
 use knotlab_scenarios::expert::RecordOptions;
 use knotlab_scenarios::trial::report::{Execution, TrialReport};
 use knotlab_scenarios::trial::{StitchMove, TrialSetup, run_trial as run_one};
@@ -77,6 +77,7 @@ pub fn run_trial(
             tilt_rad: stitch_tilt_deg.to_radians(),
         },
         method,
+        offsets: Vec::new(),
     };
     let options = RecordOptions { cycles_per_sample: 10, stop_after_s: until_s, ..RecordOptions::default() };
     let report = py
@@ -86,5 +87,68 @@ pub fn run_trial(
             Ok(TrialReport::new(&setup, &trial, Execution::simulated()))
         })
         .map_err(knotlab_error)?;
+    Ok(to_python(py, &report)?.unbind())
+}
+
+/// What trial `trial` of a Monte Carlo run seeded `seed` draws on the scene at `scene` (the shipped
+/// one when None) with `preset` applied: the fields of a run line's `draw`.
+#[pyfunction]
+#[pyo3(signature = (scene=None, preset=None, seed=0, trial=0))]
+pub fn draw_trial(
+    py: Python<'_>,
+    scene: Option<PathBuf>,
+    preset: Option<String>,
+    seed: u64,
+    trial: u64,
+) -> PyResult<Py<PyAny>> {
+    let (scene, _) = crate::scene::load(scene.as_deref(), preset.as_deref()).map_err(knotlab_error)?;
+    let (_, _, drawn) = knotlab_bench::mc::draw(&scene, seed, trial);
+    Ok(to_python(py, &drawn)?.unbind())
+}
+
+/// Runs trial `trial` of a Monte Carlo run seeded `seed` (the scene it draws, as `knotlab mc` runs it)
+/// by `method`, each primitive named in `offsets` moved by its offset (`{name: (x, y, z)}`, stitch
+/// frame, m), and returns its report as `run_trial` does.
+#[pyfunction]
+#[pyo3(signature = (skill=None, scene=None, preset=None, seed=0, trial=0, method="fluid", offsets=None, until_s=None))]
+#[allow(clippy::too_many_arguments)]
+pub fn run_drawn_trial(
+    py: Python<'_>,
+    skill: Option<&Skill>,
+    scene: Option<PathBuf>,
+    preset: Option<String>,
+    seed: u64,
+    trial: u64,
+    method: &str,
+    offsets: Option<std::collections::BTreeMap<String, (f64, f64, f64)>>,
+    until_s: Option<f64>,
+) -> PyResult<Py<PyAny>> {
+    let method = self::method(method)?;
+    if let Some(t) = until_s
+        && !(t.is_finite() && t > 0.0)
+    {
+        return Err(PyValueError::new_err(format!("until_s {t}: must be a positive number of seconds")));
+    }
+    let (scene, name) = crate::scene::load(scene.as_deref(), preset.as_deref()).map_err(knotlab_error)?;
+    let (mut setup, _) = knotlab_bench::mc::drawn_trial(&scene, &name, seed, trial, method);
+    setup.offsets = offsets
+        .unwrap_or_default()
+        .into_iter()
+        .map(|(name, (x, y, z))| PrimitiveOffset { name, stitch_offset_m: Vector3::new(x, y, z) })
+        .collect();
+    let options = RecordOptions { cycles_per_sample: 10, stop_after_s: until_s, ..RecordOptions::default() };
+    let report = py
+        .detach(|| -> Result<TrialReport, String> {
+            let learned = or_shipped(skill)?;
+            let trial = run_one(&learned, &setup, &options, None).map_err(|e| e.to_string())?;
+            Ok(TrialReport::new(&setup, &trial, Execution::simulated()))
+        })
+        .map_err(|e| {
+            if e.contains("no such primitive") || e.contains("not finite") {
+                PyValueError::new_err(e)
+            } else {
+                knotlab_error(e)
+            }
+        })?;
     Ok(to_python(py, &report)?.unbind())
 }

@@ -143,6 +143,7 @@ pub fn run(args: RunArgs, out: &mut Output) -> anyhow::Result<ExitCode> {
             tilt_rad: args.stitch_tilt.to_radians(),
         },
         method: args.method,
+        offsets: Vec::new(),
     };
     if let Some(t) = args.until
         && !(t.is_finite() && t > 0.0)

@@ -252,10 +252,29 @@ pub fn check_lines_alone(lines: &[TrialLine], file: &str) -> Result<(), McError>
 pub type TrialRunner<'a> =
     dyn Fn(&TrialSetup, &RecordOptions, u64) -> Result<TrialRun, TrialError> + Sync + 'a;
 
+/// Trial `trial` of a run seeded `seed` on `scene` (named `scene_name`) by `method`: its setup and what
+/// it drew.
+pub fn drawn_trial(
+    scene: &SceneConfig,
+    scene_name: &str,
+    seed: u64,
+    trial: u64,
+    method: Method,
+) -> (TrialSetup, Draw) {
+    let (scene, stitch, drawn) = draw(scene, seed, trial);
+    let setup = TrialSetup {
+        scene,
+        scene_name: scene_name.to_owned(),
+        seed: drawn.sim_seed,
+        stitch,
+        method,
+        offsets: Vec::new(),
+    };
+    (setup, drawn)
+}
+
 fn run_one(options: &McOptions, trial: u64, method: Method, runner: &TrialRunner<'_>) -> TrialLine {
-    let (scene, stitch, drawn) = draw(&options.scene, options.seed, trial);
-    let setup =
-        TrialSetup { scene, scene_name: options.scene_name.clone(), seed: drawn.sim_seed, stitch, method };
+    let (setup, drawn) = drawn_trial(&options.scene, &options.scene_name, options.seed, trial, method);
     let record =
         RecordOptions { cycles_per_sample: 10, stop_after_s: options.until_s, ..RecordOptions::default() };
     let draw_json = serde_json::to_value(drawn).unwrap_or(serde_json::Value::Null);

@@ -7,12 +7,14 @@
 //! - [`dmp`]: dynamic movement primitives.
 //! - [`replay`](mod@replay): the baseline that replays the demonstration, rigidly moved.
 //! - [`method`]: the methods by name (`fluid`, `dmp`, `replay`).
+//! - [`offsets`]: a skill with each primitive moved by an offset of its own.
 //! - [`orientation`]: how keys orient the tip (the jaws' direction, not the roll).
 //! - [`approach`]: the way in from where the instruments are to the skill's first poses.
 
 pub mod approach;
 pub mod dmp;
 pub mod method;
+pub mod offsets;
 pub mod orientation;
 pub mod replay;
 pub mod schedule;
@@ -22,6 +24,7 @@ pub mod track;
 
 pub use approach::{ApproachSettings, StartPose, prepend_approach};
 pub use method::Method;
+pub use offsets::{PrimitiveOffset, PrimitiveSpan, offset_primitives};
 pub use replay::{ReplaySettings, replay};
 pub use schedule::{Schedule, Slot};
 pub use site::relocation;

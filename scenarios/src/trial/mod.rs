@@ -20,8 +20,8 @@ use knotlab_learner::obstacles::{LinkCollision, first_link_collision};
 use knotlab_learner::primitive::{KnowledgeBase, Primitive};
 use knotlab_learner::synthesis::site::pose_isometry;
 use knotlab_learner::synthesis::{
-    ApproachSettings, Method, PrimitiveSettings, Reach, ReplaySettings, Site, StartPose, SynthesisError,
-    Trocars, prepend_approach, relocation, replay, synthesize,
+    ApproachSettings, Method, PrimitiveOffset, PrimitiveSettings, PrimitiveSpan, Reach, ReplaySettings, Site,
+    StartPose, SynthesisError, Trocars, offset_primitives, prepend_approach, relocation, replay, synthesize,
 };
 use knotlab_sim::knot::{FailureMode, Verdict};
 use knotlab_sim::scene::SceneConfig;
@@ -57,6 +57,8 @@ pub struct TrialSetup {
     pub stitch: StitchMove,
     /// How the skill is carried there.
     pub method: Method,
+    /// Each primitive's own offset from where the method puts it (none: as the method puts it).
+    pub offsets: Vec<PrimitiveOffset>,
 }
 
 /// Why a trial could not run (a knot not tied is a verdict, not an error).
@@ -180,6 +182,8 @@ pub struct Synthesized {
     pub obstacles: ObstacleLog,
     /// The fluid's regenerations of the 2D primitives, each with when it starts in the skill, s.
     pub fluid: Vec<(String, Instantiation, f64)>,
+    /// Where each primitive runs in the skill.
+    pub spans: Vec<PrimitiveSpan>,
 }
 
 /// Synthesizes the skill for `world` (whose tissue frame is the new stitch frame) by `method`.
@@ -203,8 +207,18 @@ pub fn synthesize_for(
         .collect();
     let mut log = ObstacleLog::default();
     let mut fluid = Vec::new();
+    let mut spans = Vec::new();
     let mut skill = match method {
-        Method::Replay => replay(&learned.demonstration, &moved, &trocars, &ReplaySettings::default())?,
+        Method::Replay => {
+            // The demonstration on its own clock: each primitive where it was demonstrated.
+            for instrument in &learned.knowledge.instruments {
+                let Ok(arm) = instrument.instrument.parse::<ArmName>() else { continue };
+                for p in &instrument.primitives {
+                    spans.push(PrimitiveSpan { name: p.name().to_owned(), arm, skill_s: p.span_s() });
+                }
+            }
+            replay(&learned.demonstration, &moved, &trocars, &ReplaySettings::default())?
+        }
         Method::Fluid | Method::Dmp => {
             let collision = collision_world(world)?;
             let mut source = |name: &str, arm: ArmName, plane: &PlaneFrame, region: &GridRegion| {
@@ -234,6 +248,13 @@ pub fn synthesize_for(
             };
             let made =
                 synthesize(&learned.knowledge, method, &site, &PrimitiveSettings::default(), &mut source)?;
+            for slot in &made.schedule.slots {
+                spans.push(PrimitiveSpan {
+                    name: slot.name.clone(),
+                    arm: slot.instrument,
+                    skill_s: slot.new_s,
+                });
+            }
             for (name, inst) in made.fluid {
                 let start_s = made.schedule.slot(&name).map_or(0.0, |s| s.new_s.0);
                 fluid.push((name, inst, start_s));
@@ -245,7 +266,10 @@ pub fn synthesize_for(
     for entry in &mut fluid {
         entry.2 += approach_s;
     }
-    Ok(Synthesized { skill, approach_s, obstacles: log, fluid })
+    for span in &mut spans {
+        span.skill_s = (span.skill_s.0 + approach_s, span.skill_s.1 + approach_s);
+    }
+    Ok(Synthesized { skill, approach_s, obstacles: log, fluid, spans })
 }
 
 /// Runs one trial; `observer`, if any, sees every control cycle.
@@ -268,9 +292,14 @@ pub fn run_trial(
         reason: Box::new(reason),
     })?;
     world.reseed(setup.seed);
-    let Synthesized { skill, approach_s, obstacles, fluid } =
+    let Synthesized { mut skill, approach_s, obstacles, fluid, spans } =
         synthesize_for(&world, learned, setup.method)
             .map_err(|reason| TrialError::Synthesis { method: setup.method, reason })?;
+    if !setup.offsets.is_empty() {
+        let world_from_stitch = world.tissue().world_from_tissue.rotation;
+        offset_primitives(&mut skill, &spans, &setup.offsets, &world_from_stitch)
+            .map_err(|reason| TrialError::Synthesis { method: setup.method, reason })?;
+    }
     let kinematics = kinematic_check(&world, &skill);
     let collision = match kinematics {
         Ok(()) => collision_check(&world, &skill)

@@ -46,6 +46,7 @@ fn a_skill_whose_preview_hits_an_obstacle_is_judged_collision() {
             seed: 0,
             stitch: StitchMove::default(),
             method: Method::Replay,
+            offsets: Vec::new(),
         };
         run_trial(&learned, &setup, &options, None).expect("the trial runs")
     };
@@ -102,6 +103,7 @@ fn a_pull_that_would_leave_the_reach_stops_within_it() {
             tilt_rad: -0.0245,
         },
         method: Method::Fluid,
+        offsets: Vec::new(),
     };
     let trial = run_trial(&learned, &setup, &options, None).expect("the trial runs");
     assert_eq!(trial.kinematics, Ok(()), "the kinematic preview");
