@@ -14,6 +14,7 @@
 //! - [`controller`]: the skill executor.
 //! - [`gate`]: the gate between a preview and real hardware.
 //! - [`melfa`]: Mitsubishi MELFA real-time external control over UDP, and a controller emulator.
+//! - [`netft`]: ATI Net F/T force sensors over RDT (UDP), and an emulator of the box.
 
 pub mod arm_setup;
 pub mod controller;
@@ -22,6 +23,7 @@ pub mod gate;
 pub mod geometry;
 pub mod kinematics;
 pub mod melfa;
+pub mod netft;
 pub mod rig;
 pub mod rig_config;
 pub mod skill;

@@ -282,7 +282,7 @@ impl Controller {
         }
     }
 
-    /// Ends every device's session (a MELFA driver sends END). The first error is returned after every
+    /// Ends every device's session (a MELFA driver sends END, a Net F/T driver stops its stream). The first error is returned after every
     /// device has been asked.
     pub fn shutdown(&mut self) -> Result<(), DeviceError> {
         let mut first = None;
@@ -292,6 +292,11 @@ impl Controller {
             }
             if let Some(drive) = &mut arm.devices.instrument
                 && let Err(e) = drive.shutdown()
+            {
+                first.get_or_insert(e);
+            }
+            if let Some(force) = &mut arm.devices.force
+                && let Err(e) = force.shutdown()
             {
                 first.get_or_insert(e);
             }

@@ -39,6 +39,11 @@ pub trait ForceSensor: Send {
     fn zero(&mut self) -> Result<(), DeviceError> {
         Ok(())
     }
+
+    /// Ends the device's session (a streaming sensor stops its stream).
+    fn shutdown(&mut self) -> Result<(), DeviceError> {
+        Ok(())
+    }
 }
 
 impl<T: ForceSensor + ?Sized> ForceSensor for Box<T> {
@@ -48,5 +53,9 @@ impl<T: ForceSensor + ?Sized> ForceSensor for Box<T> {
 
     fn zero(&mut self) -> Result<(), DeviceError> {
         (**self).zero()
+    }
+
+    fn shutdown(&mut self) -> Result<(), DeviceError> {
+        (**self).shutdown()
     }
 }

@@ -12,6 +12,7 @@ mod ik_roundtrip;
 mod limit_decorators;
 mod melfa_packet_bytes;
 mod melfa_session;
+mod netft_sensor;
 mod preview_gate;
 mod rig_config_errors;
 mod teleoperation;
