@@ -16,9 +16,10 @@ use crate::device::{
 };
 use crate::kinematics::{ArmJoints, Tool};
 use crate::melfa::{CR750_CYCLE_S, Layout, MelfaArm, MelfaConfig};
+use crate::netft::{NetFtConfig, NetFtSensor};
 use crate::rig::{ArmName, Rig};
 
-use super::schema::{Backend, RigConfig};
+use super::schema::{Backend, ForceConfig, RigConfig};
 
 /// The simulated scene as a source of devices; the `sim` crate implements it, so `hw` needs no
 /// simulator. Every device it hands out acts on the same scene, and its clock steps that scene.
@@ -165,6 +166,27 @@ fn need_sim<'a>(
     }
 }
 
+/// Connects the Net F/T box a `netft` force sensor names.
+fn netft_sensor(arm: ArmName, at: &str, device: &ForceConfig) -> Result<NetFtSensor, RigBuildError> {
+    let missing = |field: &str| RigBuildError::Invalid {
+        problems: vec![(format!("{at}.force.{field}"), "missing".into())],
+    };
+    let address = device.address.ok_or_else(|| missing("address"))?;
+    let counts = device.counts_per_force.ok_or_else(|| missing("counts_per_force"))?;
+    let mut config = NetFtConfig::new(arm, address, counts);
+    if let Some(bind) = device.bind {
+        config.bind = bind;
+    }
+    if let Some([roll, pitch, yaw]) = device.shaft_from_sensor_rpy_rad {
+        config.shaft_from_sensor = nalgebra::Rotation3::from_euler_angles(roll, pitch, yaw);
+    }
+    if let Some(t) = device.stall_timeout_s {
+        config.stall_timeout_s = t;
+    }
+    NetFtSensor::connect(config)
+        .map_err(|source| RigBuildError::Device { key: format!("{at}.force"), source })
+}
+
 /// Builds the devices of `config` for `rig`; `sim` supplies the `sim` devices.
 pub fn build_rig(
     config: &RigConfig,
@@ -209,11 +231,11 @@ pub fn build_rig(
         let mut servo: Box<dyn ArmServo> = match arm.servo.backend {
             Backend::Sim => need_sim(&mut sim, format!("{at}.servo"))?.arm_servo(name),
             Backend::Dummy => Box::new(DummyArmServo::new(start.arm_rad)),
-            Backend::Gamepad => {
+            backend @ (Backend::Gamepad | Backend::NetFt) => {
                 return Err(RigBuildError::Invalid {
                     problems: vec![(
                         format!("{at}.servo.backend"),
-                        "an arm servo cannot use backend \"gamepad\"".into(),
+                        format!("an arm servo cannot use backend \"{}\"", backend.as_str()),
                     )],
                 });
             }
@@ -260,6 +282,9 @@ pub fn build_rig(
         let force: Option<Box<dyn ForceSensor>> = match &arm.force {
             Some(device) if device.backend == Backend::Sim => {
                 Some(need_sim(&mut sim, format!("{at}.force"))?.force_sensor(name))
+            }
+            Some(device) if device.backend == Backend::NetFt => {
+                Some(Box::new(netft_sensor(name, &at, device)?))
             }
             Some(_) => {
                 let sensor = DummyForceSensor::new();

@@ -15,4 +15,6 @@ pub mod schema;
 
 pub use build::{BuiltRig, DummyHandles, RigBuildError, SimulatedScene, build_rig};
 pub use load::{RigConfigError, load_rig_config, parse_rig_config};
-pub use schema::{ArmConfig, Backend, ControllerSection, DeviceConfig, LayoutName, RigConfig, ServoConfig};
+pub use schema::{
+    ArmConfig, Backend, ControllerSection, DeviceConfig, ForceConfig, LayoutName, RigConfig, ServoConfig,
+};

@@ -114,6 +114,9 @@ pub enum Backend {
     Dummy,
     /// A gamepad (masters and pedals only; the `gamepad` feature).
     Gamepad,
+    /// An ATI Net F/T box over RDT (force sensors only).
+    #[serde(rename = "netft")]
+    NetFt,
 }
 
 impl Backend {
@@ -124,6 +127,7 @@ impl Backend {
             Backend::Melfa => "melfa",
             Backend::Dummy => "dummy",
             Backend::Gamepad => "gamepad",
+            Backend::NetFt => "netft",
         }
     }
 }
@@ -195,7 +199,40 @@ pub struct ArmConfig {
     /// The instrument's motors (not for the camera arm).
     pub instrument: Option<DeviceConfig>,
     /// The instrument's strain gauges (not for the camera arm).
-    pub force: Option<DeviceConfig>,
+    pub force: Option<ForceConfig>,
+}
+
+/// An instrument's force sensor: its backend and, for `netft`, how to reach and read the box.
+#[derive(Clone, Copy, Debug, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct ForceConfig {
+    /// Its backend.
+    pub backend: Backend,
+    /// netft: the box's address, "ip:port" (port 49152 on a real box).
+    pub address: Option<SocketAddr>,
+    /// netft: the local address to receive on (default: any, or loopback for a loopback box).
+    pub bind: Option<SocketAddr>,
+    /// netft: the calibration's counts per newton (the box's configuration page lists it).
+    pub counts_per_force: Option<f64>,
+    /// netft: the sensor's frame in the shaft frame, as roll, pitch and yaw about the shaft frame's
+    /// fixed x, y and z, rad (default 0, 0, 0: the same frame).
+    pub shaft_from_sensor_rpy_rad: Option<[f64; 3]>,
+    /// netft: no record for this long and the stream has stalled, s (default 0.1).
+    pub stall_timeout_s: Option<f64>,
+}
+
+impl ForceConfig {
+    /// A force sensor of `backend` with nothing else to configure.
+    pub fn of(backend: Backend) -> Self {
+        Self {
+            backend,
+            address: None,
+            bind: None,
+            counts_per_force: None,
+            shaft_from_sensor_rpy_rad: None,
+            stall_timeout_s: None,
+        }
+    }
 }
 
 struct Problems(Vec<(String, String)>);
@@ -221,6 +258,41 @@ impl Problems {
         {
             self.add(key, format!("{v} must be a positive number"));
         }
+    }
+}
+
+/// The problems of a force sensor's netft settings.
+fn force_problems(p: &mut Problems, at: &str, force: &ForceConfig) {
+    let netft_fields = [
+        ("address", force.address.is_some()),
+        ("bind", force.bind.is_some()),
+        ("counts_per_force", force.counts_per_force.is_some()),
+        ("shaft_from_sensor_rpy_rad", force.shaft_from_sensor_rpy_rad.is_some()),
+        ("stall_timeout_s", force.stall_timeout_s.is_some()),
+    ];
+    if force.backend != Backend::NetFt {
+        for (field, given) in netft_fields {
+            if given {
+                p.add(format!("{at}.{field}"), "only for backend \"netft\"");
+            }
+        }
+        return;
+    }
+    if force.address.is_none() {
+        p.add(format!("{at}.address"), "backend \"netft\" needs the box's address, \"ip:port\" (port 49152)");
+    }
+    match force.counts_per_force {
+        None => p.add(
+            format!("{at}.counts_per_force"),
+            "backend \"netft\" needs the calibration's counts per newton (the box's configuration page lists it)",
+        ),
+        value => p.positive(format!("{at}.counts_per_force"), value),
+    }
+    p.positive(format!("{at}.stall_timeout_s"), force.stall_timeout_s);
+    if let Some(rpy) = force.shaft_from_sensor_rpy_rad
+        && rpy.iter().any(|x| !x.is_finite())
+    {
+        p.add(format!("{at}.shaft_from_sensor_rpy_rad"), "not finite");
     }
 }
 
@@ -282,20 +354,23 @@ impl RigConfig {
                 p.add(format!("{at}.trocar_m"), "needed: only a sim servo takes the trocar from the scene");
             }
             p.positive(format!("{at}.max_step_rad"), arm.max_step_rad);
-            for (field, device) in [("instrument", &arm.instrument), ("force", &arm.force)] {
-                let Some(device) = device else { continue };
+            let devices = [
+                ("instrument", arm.instrument.map(|d| d.backend), &[Backend::Sim, Backend::Dummy][..]),
+                ("force", arm.force.map(|d| d.backend), &[Backend::Sim, Backend::Dummy, Backend::NetFt][..]),
+            ];
+            for (field, backend, allowed) in devices {
+                let Some(backend) = backend else { continue };
                 if !name.carries_instrument() {
                     p.add(
                         format!("{at}.{field}"),
                         "the camera arm carries the endoscope: it has no instrument motors or strain gauges",
                     );
                 }
-                p.backend(
-                    format!("{at}.{field}.backend"),
-                    device.backend,
-                    &[Backend::Sim, Backend::Dummy],
-                    "an instrument device",
-                );
+                let what = if field == "force" { "a force sensor" } else { "an instrument drive" };
+                p.backend(format!("{at}.{field}.backend"), backend, allowed, what);
+            }
+            if let Some(force) = &arm.force {
+                force_problems(&mut p, &format!("{at}.force"), force);
             }
         }
         p.backend(

@@ -154,3 +154,57 @@ fn shutdown_stops_the_stream() {
     let report = box_.stop().expect("the report");
     assert_eq!(report.requests, 4, "{report:?}");
 }
+
+/// Guards the rig config: a force sensor of backend `netft` is checked key by key (its address and
+/// calibration needed, its fields only for it), and a rig with one reads the box through the
+/// controller: the emulator's force, turned from the sensor's frame into the shaft's and by the arm
+/// into the world.
+#[test]
+fn a_rig_reads_a_netft_box_through_the_controller() {
+    use knotlab_hw::rig::Rig;
+    use knotlab_hw::rig_config::{RigConfigError, build_rig, parse_rig_config};
+    let bad = "description = \"x\"\n[arms.right]\ntrocar_m = [-0.08, -0.12, 1.02]\nservo = { backend = \"dummy\" }\n\
+               force = { backend = \"netft\", stall_timeout_s = -1.0 }\n[arms.left]\ntrocar_m = [0.0, 0.1, 1.0]\n\
+               servo = { backend = \"dummy\" }\nforce = { backend = \"dummy\", counts_per_force = 1.0 }\n";
+    let Err(RigConfigError::Invalid { problems, .. }) = parse_rig_config(bad, "rig.toml") else {
+        panic!("problems expected")
+    };
+    let has = |key: &str, words: &str| problems.iter().any(|(k, r)| k == key && r.contains(words));
+    assert!(has("arms.right.force.address", "49152"), "{problems:?}");
+    assert!(has("arms.right.force.counts_per_force", "counts per newton"), "{problems:?}");
+    assert!(has("arms.right.force.stall_timeout_s", "positive"), "{problems:?}");
+    assert!(has("arms.left.force.counts_per_force", "only for backend \"netft\""), "{problems:?}");
+    let box_ = emulator([0.0, 0.0, 1.5, 0.0, 0.0, 0.0], 0.0);
+    let world_force = |rpy: &str| {
+        let text = format!(
+            "description = \"a dummy arm with a Net F/T box\"\n[controller]\nperiod_s = 0.002\nreal_time = true\n\
+             [arms.right]\ntrocar_m = [-0.08, -0.12, 1.02]\nservo = {{ backend = \"dummy\" }}\n\
+             instrument = {{ backend = \"dummy\" }}\n\
+             force = {{ backend = \"netft\", address = \"{}\", counts_per_force = 1000000.0, shaft_from_sensor_rpy_rad = {rpy} }}\n\
+             [pedals]\nbackend = \"dummy\"\n",
+            box_.local_addr()
+        );
+        let config = parse_rig_config(&text, "netft.toml").expect("a rig with a Net F/T box");
+        let rig = Rig::shipped().expect("the shipped rig");
+        let (mut controller, _handles) =
+            build_rig(&config, &rig, None).expect("built").into_controller().expect("a controller");
+        let mut force = None;
+        for _ in 0..200 {
+            let record = controller.step().expect("a cycle");
+            let f = record.arm(ArmName::Right).expect("the right arm").world_force_n;
+            if f.norm() > 0.0 {
+                force = Some(f);
+                break;
+            }
+        }
+        controller.shutdown().expect("the devices' sessions ended");
+        force.expect("the box's force reached the controller")
+    };
+    let along = world_force("[0.0, 0.0, 0.0]");
+    // A roll of pi about x turns the sensor's z against the shaft's: the same force, reversed.
+    let reversed = world_force("[3.141592653589793, 0.0, 0.0]");
+    assert!((along.norm() - 1.5).abs() < 1e-6, "{along:?}");
+    assert!((along + reversed).norm() < 1e-6, "{along:?} {reversed:?}");
+    let report = box_.stop().expect("the emulator's report");
+    assert_eq!(report.requests, 4, "start and stop twice: {report:?}");
+}
