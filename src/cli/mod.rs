@@ -7,6 +7,7 @@ mod knot;
 mod learn;
 mod mc;
 mod melfa;
+mod netft;
 mod numbers;
 mod obstacles;
 mod output;
@@ -44,6 +45,9 @@ enum Command {
     Fluid(fluid::FluidCommand),
     /// A MELFA controller emulator: MXT real-time external control over UDP, moving a simulated arm.
     MelfaEmulator(melfa::EmulatorArgs),
+    /// An ATI Net F/T box emulator: RDT over UDP, streaming a force you choose (dropping records on
+    /// request).
+    NetftEmulator(netft::NetFtEmulatorArgs),
     /// The simulated scene: run its scripted stress sequence and report what the thread did.
     Sim(sim::SimArgs),
     /// Virtual obstacles: the grid cells where an arm's tip would make the arm collide (CPU or GPU).
@@ -78,6 +82,7 @@ pub fn run(cli: Cli) -> anyhow::Result<ExitCode> {
         Command::Knot(command) => knot::run(command, &mut out),
         Command::Fluid(command) => fluid::run(command, &mut out),
         Command::MelfaEmulator(args) => melfa::run(args, &mut out),
+        Command::NetftEmulator(args) => netft::run(args, &mut out),
         Command::Sim(args) => sim::run(args, &mut out),
         Command::Obstacles(args) => obstacles::run(args, &mut out),
         Command::Learn(args) => learn::run(args, &mut out),

@@ -11,6 +11,7 @@ mod cli_knot;
 mod cli_learn;
 mod cli_mc;
 mod cli_melfa;
+mod cli_netft;
 mod cli_obstacles;
 mod cli_report;
 mod cli_rig;
