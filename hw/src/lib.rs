@@ -13,10 +13,12 @@
 //! - [`arm_setup`]: one arm as the controller and the preview need it: its kinematics and its trocar.
 //! - [`controller`]: the skill executor.
 //! - [`gate`]: the gate between a preview and real hardware.
+//! - [`canopen`]: CANopen frames, expedited SDO and the CiA 402 drive state machine.
 //! - [`melfa`]: Mitsubishi MELFA real-time external control over UDP, and a controller emulator.
 //! - [`netft`]: ATI Net F/T force sensors over RDT (UDP), and an emulator of the box.
 
 pub mod arm_setup;
+pub mod canopen;
 pub mod controller;
 pub mod device;
 pub mod gate;

@@ -40,14 +40,18 @@ fn the_emulator_streams_a_force_to_the_driver() {
         .strip_prefix("listening on ")
         .and_then(|rest| rest.split_whitespace().next())
         .unwrap_or_else(|| panic!("no address in {first:?}"));
-    let mut sensor = NetFtSensor::connect(NetFtConfig::new(ArmName::Left, addr.parse().expect("an address"), 2000.0))
-        .expect("connected to the emulator");
+    let mut sensor =
+        NetFtSensor::connect(NetFtConfig::new(ArmName::Left, addr.parse().expect("an address"), 2000.0))
+            .expect("connected to the emulator");
     let start = Instant::now();
     while sensor.stats().records < 100 {
         let reading = sensor.read().expect("a reading");
         if reading.fresh {
             let f = reading.shaft_force_n;
-            assert!((f.x - 0.2).abs() < 1e-3 && (f.y + 0.1).abs() < 1e-3 && (f.z - 1.5).abs() < 1e-3, "{f:?}");
+            assert!(
+                (f.x - 0.2).abs() < 1e-3 && (f.y + 0.1).abs() < 1e-3 && (f.z - 1.5).abs() < 1e-3,
+                "{f:?}"
+            );
         }
         assert!(start.elapsed() < Duration::from_secs(1), "{:?}", sensor.stats());
         std::thread::sleep(Duration::from_millis(2));
