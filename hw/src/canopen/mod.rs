@@ -5,8 +5,16 @@
 //!   abort codes.
 //! - [`cia402`]: the drive's state machine: states read from the statusword, the controlword commands
 //!   that move between them.
+//! - [`dictionary`]: the drive's objects this driver uses and the PDO mapping it needs.
+//! - [`bus`]: the transport interface, and an in-process bus.
+//! - [`drive`]: the instrument's four drives as one [`crate::device::InstrumentDrive`].
+//! - [`emulator`]: emulated drives (state machine, first-order motors, EMCY, drop-outs).
 
+pub mod bus;
 pub mod cia402;
+pub mod dictionary;
+pub mod drive;
+pub mod emulator;
 pub mod frame;
 pub mod sdo;
 

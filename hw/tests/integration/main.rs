@@ -4,6 +4,7 @@
 mod common;
 mod rigs;
 
+mod canopen_drive;
 mod controller_dummy;
 mod fk_agreement;
 mod ik_errors;
