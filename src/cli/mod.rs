@@ -1,5 +1,6 @@
 //! Command-line parsing and dispatch; each command group lives in its own file.
 
+mod canopen;
 mod csv_file;
 mod demo;
 mod fluid;
@@ -45,6 +46,9 @@ enum Command {
     Fluid(fluid::FluidCommand),
     /// A MELFA controller emulator: MXT real-time external control over UDP, moving a simulated arm.
     MelfaEmulator(melfa::EmulatorArgs),
+    /// The instrument's CiA 402 drives emulated on CAN over UDP (state machine, motors, EMCY,
+    /// heartbeat).
+    CanopenEmulator(canopen::CanopenEmulatorArgs),
     /// An ATI Net F/T box emulator: RDT over UDP, streaming a force you choose (dropping records on
     /// request).
     NetftEmulator(netft::NetFtEmulatorArgs),
@@ -82,6 +86,7 @@ pub fn run(cli: Cli) -> anyhow::Result<ExitCode> {
         Command::Knot(command) => knot::run(command, &mut out),
         Command::Fluid(command) => fluid::run(command, &mut out),
         Command::MelfaEmulator(args) => melfa::run(args, &mut out),
+        Command::CanopenEmulator(args) => canopen::run(args, &mut out),
         Command::NetftEmulator(args) => netft::run(args, &mut out),
         Command::Sim(args) => sim::run(args, &mut out),
         Command::Obstacles(args) => obstacles::run(args, &mut out),

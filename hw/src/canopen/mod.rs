@@ -6,7 +6,7 @@
 //! - [`cia402`]: the drive's state machine: states read from the statusword, the controlword commands
 //!   that move between them.
 //! - [`dictionary`]: the drive's objects this driver uses and the PDO mapping it needs.
-//! - [`bus`]: the transport interface, and an in-process bus.
+//! - [`bus`]: the transport interface, and an in-process bus; [`udp`]: frames over UDP.
 //! - [`drive`]: the instrument's four drives as one [`crate::device::InstrumentDrive`].
 //! - [`emulator`]: emulated drives (state machine, first-order motors, EMCY, drop-outs).
 
@@ -17,5 +17,6 @@ pub mod drive;
 pub mod emulator;
 pub mod frame;
 pub mod sdo;
+pub mod udp;
 
 pub use frame::{CanFrame, CobId, FrameError};

@@ -120,3 +120,23 @@ fn a_refused_or_missing_sdo_answer_is_named() {
         "{error}"
     );
 }
+
+/// Guards the CAN-over-UDP transport: the same drives, their emulator listening on loopback UDP (as
+/// `knotlab canopen-emulator` runs them), are enabled and follow.
+#[test]
+fn the_drives_answer_over_loopback_udp() {
+    use knotlab_hw::canopen::udp::UdpCan;
+    let any: std::net::SocketAddr = "127.0.0.1:0".parse().expect("an address");
+    let listener = UdpCan::listen(any).expect("bound");
+    let addr = listener.local_addr().expect("its address");
+    let nodes = NODES.iter().map(|n| NodeConfig::new(*n)).collect();
+    let emulator =
+        CanopenEmulator::start(Box::new(listener), CanopenEmulatorConfig { nodes, sync_period_s: 0.002 });
+    let transport = UdpCan::connect(any, addr).expect("bound");
+    let mut drive = CanopenDrive::connect(Box::new(transport), config()).expect("connected over UDP");
+    let target = ToolJoints { roll_rad: -0.2, pitch_rad: 0.1, yaw_rad: 0.0, jaw_rad: 0.5 };
+    let read = run(&mut drive, &target, 300).expect("the drives follow");
+    assert!((read.roll_rad + 0.2).abs() < 2e-4 && (read.jaw_rad - 0.5).abs() < 2e-4, "{read:?}");
+    drive.shutdown().expect("taken down");
+    assert!(emulator.nodes().iter().all(|(_, state, _)| *state == DriveState::SwitchOnDisabled));
+}
