@@ -19,7 +19,9 @@ use crate::melfa::{CR750_CYCLE_S, Layout, MelfaArm, MelfaConfig};
 use crate::netft::{NetFtConfig, NetFtSensor};
 use crate::rig::{ArmName, Rig};
 
-use super::schema::{Backend, ForceConfig, RigConfig};
+use super::schema::{Backend, ForceConfig, InstrumentConfig, RigConfig};
+use crate::canopen::drive::{CanopenConfig, CanopenDrive};
+use crate::canopen::udp::UdpCan;
 
 /// The simulated scene as a source of devices; the `sim` crate implements it, so `hw` needs no
 /// simulator. Every device it hands out acts on the same scene, and its clock steps that scene.
@@ -166,6 +168,39 @@ fn need_sim<'a>(
     }
 }
 
+/// Connects the CiA 402 drives a `canopen` instrument names.
+fn canopen_drive(arm: ArmName, at: &str, device: &InstrumentConfig) -> Result<CanopenDrive, RigBuildError> {
+    let missing = |field: &str| RigBuildError::Invalid {
+        problems: vec![(format!("{at}.instrument.{field}"), "missing".into())],
+    };
+    let udp = device.udp.ok_or_else(|| missing("udp"))?;
+    let nodes = device.nodes.ok_or_else(|| missing("nodes"))?;
+    let counts = device.counts_per_rad.ok_or_else(|| missing("counts_per_rad"))?;
+    let mut config = CanopenConfig::new(arm, nodes, 1.0);
+    config.counts_per_rad = counts;
+    if let Some(rows) = device.coupling {
+        config.coupling = nalgebra::Matrix4::from_fn(|r, c| rows[r][c]);
+    }
+    if let Some(t) = device.heartbeat_timeout_s {
+        config.heartbeat_timeout_s = t;
+    }
+    if let Some(w) = device.following_error_counts {
+        config.following_error_counts = w;
+    }
+    let device_error = |reason: String| RigBuildError::Device {
+        key: format!("{at}.instrument"),
+        source: DeviceError::Fault { device: DeviceId::of_arm(DeviceKind::InstrumentDrive, arm), reason },
+    };
+    let local = if udp.ip().is_loopback() {
+        std::net::SocketAddr::new(udp.ip(), 0)
+    } else {
+        std::net::SocketAddr::new(std::net::Ipv4Addr::UNSPECIFIED.into(), 0)
+    };
+    let transport = UdpCan::connect(local, udp).map_err(|e| device_error(e.to_string()))?;
+    CanopenDrive::connect(Box::new(transport), config)
+        .map_err(|source| RigBuildError::Device { key: format!("{at}.instrument"), source })
+}
+
 /// Connects the Net F/T box a `netft` force sensor names.
 fn netft_sensor(arm: ArmName, at: &str, device: &ForceConfig) -> Result<NetFtSensor, RigBuildError> {
     let missing = |field: &str| RigBuildError::Invalid {
@@ -231,7 +266,7 @@ pub fn build_rig(
         let mut servo: Box<dyn ArmServo> = match arm.servo.backend {
             Backend::Sim => need_sim(&mut sim, format!("{at}.servo"))?.arm_servo(name),
             Backend::Dummy => Box::new(DummyArmServo::new(start.arm_rad)),
-            backend @ (Backend::Gamepad | Backend::NetFt) => {
+            backend @ (Backend::Gamepad | Backend::NetFt | Backend::Canopen) => {
                 return Err(RigBuildError::Invalid {
                     problems: vec![(
                         format!("{at}.servo.backend"),
@@ -272,6 +307,7 @@ pub fn build_rig(
                 let id = DeviceId::of_arm(DeviceKind::InstrumentDrive, name);
                 let mut drive: Box<dyn InstrumentDrive> = match device.backend {
                     Backend::Sim => need_sim(&mut sim, format!("{at}.instrument"))?.instrument_drive(name),
+                    Backend::Canopen => Box::new(canopen_drive(name, &at, device)?),
                     _ => Box::new(DummyInstrumentDrive::new(start.tool)),
                 };
                 drive = Box::new(VelocityLimit::instrument(drive, id, limits, period_s));

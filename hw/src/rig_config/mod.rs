@@ -16,5 +16,6 @@ pub mod schema;
 pub use build::{BuiltRig, DummyHandles, RigBuildError, SimulatedScene, build_rig};
 pub use load::{RigConfigError, load_rig_config, parse_rig_config};
 pub use schema::{
-    ArmConfig, Backend, ControllerSection, DeviceConfig, ForceConfig, LayoutName, RigConfig, ServoConfig,
+    ArmConfig, Backend, ControllerSection, DeviceConfig, ForceConfig, InstrumentConfig, LayoutName,
+    RigConfig, ServoConfig,
 };

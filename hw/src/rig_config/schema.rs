@@ -117,6 +117,8 @@ pub enum Backend {
     /// An ATI Net F/T box over RDT (force sensors only).
     #[serde(rename = "netft")]
     NetFt,
+    /// CiA 402 drives on CAN (instrument drives only).
+    Canopen,
 }
 
 impl Backend {
@@ -128,6 +130,7 @@ impl Backend {
             Backend::Dummy => "dummy",
             Backend::Gamepad => "gamepad",
             Backend::NetFt => "netft",
+            Backend::Canopen => "canopen",
         }
     }
 }
@@ -197,9 +200,45 @@ pub struct ArmConfig {
     /// The six axes.
     pub servo: ServoConfig,
     /// The instrument's motors (not for the camera arm).
-    pub instrument: Option<DeviceConfig>,
+    pub instrument: Option<InstrumentConfig>,
     /// The instrument's strain gauges (not for the camera arm).
     pub force: Option<ForceConfig>,
+}
+
+/// An instrument's motors: their backend and, for `canopen`, the bus and the drives.
+#[derive(Clone, Copy, Debug, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct InstrumentConfig {
+    /// Its backend.
+    pub backend: Backend,
+    /// canopen: CAN frames over UDP to this address, "ip:port" (`knotlab canopen-emulator`).
+    pub udp: Option<SocketAddr>,
+    /// canopen: the node ids of the roll, pitch, yaw and jaw drives (1 to 127, distinct).
+    pub nodes: Option<[u8; 4]>,
+    /// canopen: each motor's encoder counts per radian of the motor, the gear's ratio included.
+    pub counts_per_rad: Option<[f64; 4]>,
+    /// canopen: motor angles from joint angles, row by row: motor = coupling x (roll, pitch, yaw,
+    /// jaw) (default: the identity, no cable coupling).
+    pub coupling: Option<[[f64; 4]; 4]>,
+    /// canopen: a node unheard of for this long has dropped out, s (default 0.05).
+    pub heartbeat_timeout_s: Option<f64>,
+    /// canopen: the following error window each drive is given, counts (default 0: not watched).
+    pub following_error_counts: Option<u32>,
+}
+
+impl InstrumentConfig {
+    /// Motors of `backend` with nothing else to configure.
+    pub fn of(backend: Backend) -> Self {
+        Self {
+            backend,
+            udp: None,
+            nodes: None,
+            counts_per_rad: None,
+            coupling: None,
+            heartbeat_timeout_s: None,
+            following_error_counts: None,
+        }
+    }
 }
 
 /// An instrument's force sensor: its backend and, for `netft`, how to reach and read the box.
@@ -259,6 +298,64 @@ impl Problems {
             self.add(key, format!("{v} must be a positive number"));
         }
     }
+}
+
+/// The problems of an instrument's canopen settings.
+fn instrument_problems(p: &mut Problems, at: &str, d: &InstrumentConfig) {
+    let fields = [
+        ("udp", d.udp.is_some()),
+        ("nodes", d.nodes.is_some()),
+        ("counts_per_rad", d.counts_per_rad.is_some()),
+        ("coupling", d.coupling.is_some()),
+        ("heartbeat_timeout_s", d.heartbeat_timeout_s.is_some()),
+        ("following_error_counts", d.following_error_counts.is_some()),
+    ];
+    if d.backend != Backend::Canopen {
+        for (field, given) in fields {
+            if given {
+                p.add(format!("{at}.{field}"), "only for backend \"canopen\"");
+            }
+        }
+        return;
+    }
+    if d.udp.is_none() {
+        p.add(format!("{at}.udp"), "backend \"canopen\" needs the CAN-over-UDP address, \"ip:port\"");
+    }
+    match d.nodes {
+        None => p.add(
+            format!("{at}.nodes"),
+            "backend \"canopen\" needs the roll, pitch, yaw and jaw drives' node ids",
+        ),
+        Some(nodes) => {
+            if let Some(bad) = nodes.iter().find(|n| !(1..=127).contains(*n)) {
+                p.add(format!("{at}.nodes"), format!("node {bad}: CANopen nodes are 1 to 127"));
+            }
+            let mut sorted = nodes;
+            sorted.sort_unstable();
+            if sorted.windows(2).any(|w| w[0] == w[1]) {
+                p.add(format!("{at}.nodes"), format!("{nodes:?}: each drive its own node"));
+            }
+        }
+    }
+    match d.counts_per_rad {
+        None => {
+            p.add(format!("{at}.counts_per_rad"), "backend \"canopen\" needs each motor's counts per radian")
+        }
+        Some(c) if c.iter().any(|x| !(x.is_finite() && *x != 0.0)) => {
+            p.add(format!("{at}.counts_per_rad"), format!("{c:?}: each finite and not 0"));
+        }
+        Some(_) => {}
+    }
+    if let Some(rows) = d.coupling {
+        let m = nalgebra::Matrix4::from_fn(|r, c| rows[r][c]);
+        if m.iter().any(|x| !x.is_finite()) || m.try_inverse().is_none() {
+            p.add(
+                format!("{at}.coupling"),
+                "must be finite and invertible (each joint reachable from the motors)",
+            );
+        }
+    }
+    p.positive(format!("{at}.heartbeat_timeout_s"), d.heartbeat_timeout_s);
 }
 
 /// The problems of a force sensor's netft settings.
@@ -355,7 +452,11 @@ impl RigConfig {
             }
             p.positive(format!("{at}.max_step_rad"), arm.max_step_rad);
             let devices = [
-                ("instrument", arm.instrument.map(|d| d.backend), &[Backend::Sim, Backend::Dummy][..]),
+                (
+                    "instrument",
+                    arm.instrument.map(|d| d.backend),
+                    &[Backend::Sim, Backend::Dummy, Backend::Canopen][..],
+                ),
                 ("force", arm.force.map(|d| d.backend), &[Backend::Sim, Backend::Dummy, Backend::NetFt][..]),
             ];
             for (field, backend, allowed) in devices {
@@ -371,6 +472,9 @@ impl RigConfig {
             }
             if let Some(force) = &arm.force {
                 force_problems(&mut p, &format!("{at}.force"), force);
+            }
+            if let Some(instrument) = &arm.instrument {
+                instrument_problems(&mut p, &format!("{at}.instrument"), instrument);
             }
         }
         p.backend(

@@ -140,3 +140,77 @@ fn the_drives_answer_over_loopback_udp() {
     drive.shutdown().expect("taken down");
     assert!(emulator.nodes().iter().all(|(_, state, _)| *state == DriveState::SwitchOnDisabled));
 }
+
+/// Guards the rig config: an instrument of backend `canopen` is checked key by key, and a rig with one
+/// drives the emulated drives through the controller: a skill that opens the jaw turns the jaw's
+/// motor (and, by the coupling, nothing else of it), and shutdown takes the drives down.
+#[test]
+fn a_rig_drives_canopen_instruments_through_the_controller() {
+    use knotlab_hw::canopen::udp::UdpCan;
+    use knotlab_hw::rig::Rig;
+    use knotlab_hw::rig_config::{RigConfigError, build_rig, parse_rig_config};
+    use knotlab_hw::skill::{JawKey, PoseKey, Skill, Track};
+    let bad = "description = \"x\"\n[arms.left]\ntrocar_m = [0.0, 0.1, 1.0]\nservo = { backend = \"dummy\" }\n\
+               instrument = { backend = \"canopen\", nodes = [11, 11, 12, 0], counts_per_rad = [1.0, 0.0, 1.0, 1.0], \
+               coupling = [[1.0, 0.0, 0.0, 0.0], [1.0, 0.0, 0.0, 0.0], [0.0, 0.0, 1.0, 0.0], [0.0, 0.0, 0.0, 1.0]] }\n\
+               [arms.right]\ntrocar_m = [0.0, -0.1, 1.0]\nservo = { backend = \"dummy\" }\n\
+               instrument = { backend = \"dummy\", nodes = [1, 2, 3, 4] }\n";
+    let Err(RigConfigError::Invalid { problems, .. }) = parse_rig_config(bad, "rig.toml") else {
+        panic!("problems expected")
+    };
+    let has = |key: &str, words: &str| problems.iter().any(|(k, r)| k == key && r.contains(words));
+    assert!(has("arms.left.instrument.udp", "ip:port"), "{problems:?}");
+    assert!(has("arms.left.instrument.nodes", "node 0"), "{problems:?}");
+    assert!(has("arms.left.instrument.nodes", "each drive its own node"), "{problems:?}");
+    assert!(has("arms.left.instrument.counts_per_rad", "not 0"), "{problems:?}");
+    assert!(has("arms.left.instrument.coupling", "invertible"), "{problems:?}");
+    assert!(has("arms.right.instrument.nodes", "only for backend \"canopen\""), "{problems:?}");
+
+    let any: std::net::SocketAddr = "127.0.0.1:0".parse().expect("an address");
+    let listener = UdpCan::listen(any).expect("bound");
+    let addr = listener.local_addr().expect("its address");
+    let nodes = NODES.iter().map(|n| NodeConfig::new(*n)).collect();
+    let emulator =
+        CanopenEmulator::start(Box::new(listener), CanopenEmulatorConfig { nodes, sync_period_s: 0.002 });
+    let text = format!(
+        "description = \"a dummy arm with CANopen drives\"\n[controller]\nperiod_s = 0.002\nreal_time = true\n\
+         [arms.left]\ntrocar_m = [-0.08, 0.12, 1.02]\nservo = {{ backend = \"dummy\" }}\n\
+         instrument = {{ backend = \"canopen\", udp = \"{addr}\", nodes = [11, 12, 13, 14], counts_per_rad = [10000.0, 10000.0, 10000.0, 10000.0], \
+         coupling = [[1.0, 0.0, 0.0, 0.0], [0.0, 1.0, 0.0, 0.0], [0.0, 0.0, 1.0, 0.0], [0.0, 0.0, 0.5, 1.0]] }}\n\
+         [pedals]\nbackend = \"dummy\"\n"
+    );
+    let config = parse_rig_config(&text, "canopen.toml").expect("a rig with CANopen drives");
+    let rig = Rig::shipped().expect("the shipped rig");
+    let (mut controller, _handles) =
+        build_rig(&config, &rig, None).expect("built").into_controller().expect("a controller");
+    let start = controller.record().arm(ArmName::Left).expect("the left arm").measured;
+    let tip = rig.arm(ArmName::Left).model.world_from_tip(&start);
+    let pose = |t: f64| PoseKey {
+        time_s: t,
+        world_position_m: tip.translation.vector.into(),
+        orientation: knotlab_hw::skill::Orientation::AlongShaft,
+    };
+    let skill = Skill {
+        name: "open the jaw".into(),
+        tracks: vec![Track {
+            arm: ArmName::Left,
+            poses: vec![pose(0.0), pose(0.4)],
+            jaw: vec![
+                JawKey { time_s: 0.0, jaw_rad: start.tool.jaw_rad },
+                JawKey { time_s: 0.2, jaw_rad: 0.4 },
+            ],
+            events: Vec::new(),
+        }],
+    };
+    controller.load_skill(skill).expect("loaded");
+    let summary = controller.run_to_end(|_| {}).expect("run");
+    assert_eq!(summary.outcome, knotlab_hw::controller::RunOutcome::Completed);
+    std::thread::sleep(Duration::from_millis(20));
+    let measured = controller.record().arm(ArmName::Left).expect("the left arm").measured;
+    assert!((measured.tool.jaw_rad - 0.4).abs() < 0.01, "{:?}", measured.tool);
+    let jaw_motor = emulator.nodes()[3].2;
+    let expected = ((0.4 + 0.5 * measured.tool.yaw_rad) * 10_000.0).round() as i32;
+    assert!((jaw_motor - expected).abs() <= 60, "the jaw's motor at {jaw_motor} counts, {expected} expected");
+    controller.shutdown().expect("the devices' sessions ended");
+    assert!(emulator.nodes().iter().all(|(_, state, _)| *state == DriveState::SwitchOnDisabled));
+}
