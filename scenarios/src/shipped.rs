@@ -58,6 +58,11 @@ pub const SIM_RIG: ShippedFile =
 /// The rig of the MELFA arms.
 pub const MELFA_RIG: ShippedFile =
     shipped!("rigs/melfa.toml", "the MELFA arms' rig (run --rig, session --rig)");
+/// The lab's rig: every device real.
+pub const LAB_RIG: ShippedFile = shipped!(
+    "rigs/lab.toml",
+    "the lab's rig, every device real: MELFA arms, CANopen instrument drives, Net F/T sensors (run --rig)"
+);
 /// Ghia, Ghia and Shin's lid-driven cavity table.
 pub const GHIA: ShippedFile =
     shipped!("reference/ghia1982-cavity.csv", "the lid-driven cavity's reference (fluid cavity --reference)");
@@ -76,7 +81,7 @@ pub const DEMO: [ShippedFile; 4] = [
 pub fn all() -> Vec<ShippedFile> {
     let mut files = vec![SCENE, CHAIN_SCENE, PATTERN, EXPERT, EXPERT_BASE];
     files.extend(DEMO);
-    files.extend([GAMEPAD_RIG, SIM_RIG, MELFA_RIG, GHIA]);
+    files.extend([GAMEPAD_RIG, SIM_RIG, MELFA_RIG, LAB_RIG, GHIA]);
     files
 }
 

@@ -215,6 +215,7 @@ fn shipped_dump_writes_the_repository_files_and_does_not_overwrite() {
         "scenarios/rigs/sim-gamepad.toml",
         "scenarios/rigs/sim.toml",
         "scenarios/rigs/melfa.toml",
+        "scenarios/rigs/lab.toml",
     ] {
         assert!(paths.iter().any(|p| p == default), "{default} is not shipped: {paths:?}");
     }

@@ -10,6 +10,7 @@ use knotlab_hw::rig_config::{
 
 const SIM: &str = include_str!("../../../scenarios/rigs/sim.toml");
 const MELFA: &str = include_str!("../../../scenarios/rigs/melfa.toml");
+const LAB: &str = include_str!("../../../scenarios/rigs/lab.toml");
 
 fn schema(text: &str) -> (usize, String, String) {
     match parse_rig_config(text, "rig.toml") {
@@ -44,6 +45,15 @@ fn the_shipped_rig_configs_parse() {
     assert_eq!(left.servo.layout, Some(LayoutName::H7));
     assert_eq!(left.servo.controller.unwrap().to_string(), "192.168.0.21:10000");
     assert!(melfa.arms.camera.is_none());
+    // The lab's: every device real.
+    let lab = parse_rig_config(LAB, "scenarios/rigs/lab.toml").unwrap();
+    assert_eq!(lab.pedals.backend, Backend::Gamepad);
+    for (name, arm) in lab.arms.iter() {
+        assert_eq!(arm.servo.backend, Backend::Melfa, "{name}");
+        assert_eq!(arm.instrument.map(|d| d.backend), Some(Backend::Canopen), "{name}");
+        assert_eq!(arm.force.map(|d| d.backend), Some(Backend::NetFt), "{name}");
+    }
+    assert_eq!(knotlab_hw::gate::real_devices(&lab).len(), 9);
 }
 
 /// An unknown key or a misspelt arm is refused naming its line and the unknown field; a misspelt arm's
