@@ -19,5 +19,6 @@ mod cli_run;
 mod cli_session;
 mod cli_sim;
 mod fuzz;
+mod lab_rig_emulators;
 mod readme_commands;
 mod rerun_recording;

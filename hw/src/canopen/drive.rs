@@ -8,7 +8,8 @@
 //!   stands so that nothing jumps. A node that aborts a transfer, or does not answer, is named with the
 //!   object and CiA 301's reason.
 //! - Each `write` sends every node's RPDO1 (enable operation, the target in counts) and then SYNC;
-//!   each `read` takes the TPDO1s that answered it. Joints become motor angles through the coupling
+//!   each `read` takes the TPDO1s that answered it (the first read gives the positions read at start,
+//!   fresh: the controller takes its first set-point from them). Joints become motor angles through the coupling
 //!   matrix (the cables couple the wrist's and the jaw's motors) and counts through each motor's counts
 //!   per radian.
 //! - An EMCY from a node, or a statusword showing Fault, faults the device naming the node and the
@@ -80,6 +81,8 @@ pub struct CanopenDrive {
     heard: [Instant; 4],
     limits_counts: [[i32; 2]; 4],
     down: bool,
+    /// The positions read at start have not been given yet (the first read's are new).
+    unread: bool,
 }
 
 impl CanopenDrive {
@@ -104,6 +107,7 @@ impl CanopenDrive {
             heard: [Instant::now(); 4],
             limits_counts: [[0; 2]; 4],
             down: false,
+            unread: true,
             config,
         };
         for k in 0..4 {
@@ -324,9 +328,10 @@ impl InstrumentDrive for CanopenDrive {
         let motors =
             Vector4::from_fn(|k, _| f64::from(self.positions_counts[k]) / self.config.counts_per_rad[k]);
         let j = self.joints_from_motors * motors;
+        let first = std::mem::take(&mut self.unread);
         Ok(InstrumentState {
             joints: ToolJoints { roll_rad: j[0], pitch_rad: j[1], yaw_rad: j[2], jaw_rad: j[3] },
-            fresh: fresh >= 4,
+            fresh: first || fresh >= 4,
         })
     }
 

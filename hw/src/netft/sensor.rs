@@ -85,6 +85,8 @@ pub struct NetFtSensor {
     force_n: Vector3<f64>,
     stats: NetFtStats,
     stopped: bool,
+    /// The first record, taken at start, has not been given yet.
+    unread: bool,
 }
 
 impl NetFtSensor {
@@ -114,6 +116,7 @@ impl NetFtSensor {
             force_n: Vector3::zeros(),
             stats: NetFtStats::default(),
             stopped: false,
+            unread: true,
             config,
         };
         sensor.request(RdtCommand::StartRealTime)?;
@@ -221,7 +224,7 @@ impl ForceSensor for NetFtSensor {
                 }
             }
         }
-        let fresh = self.stats.records > before;
+        let fresh = std::mem::take(&mut self.unread) || self.stats.records > before;
         if !fresh {
             self.stats.stale_reads += 1;
             let waited_s = self.last_record_at.elapsed().as_secs_f64();
