@@ -67,11 +67,7 @@ pub fn run_mc(
     {
         return Err(PyValueError::new_err(format!("jobs {j}: 1 to {MAX_JOBS} threads (None: one per core)")));
     }
-    if let Some(t) = until_s
-        && !(t.is_finite() && t > 0.0)
-    {
-        return Err(PyValueError::new_err(format!("until_s {t}: must be a positive number of seconds")));
-    }
+    crate::trial::check_until(until_s)?;
     let shard = shard.map(|s| s.parse::<Shard>()).transpose().map_err(PyValueError::new_err)?;
     let (scene, scene_name) =
         crate::scene::load(scene.as_deref(), preset.as_deref()).map_err(knotlab_error)?;

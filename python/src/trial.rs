@@ -16,6 +16,16 @@ use knotlab_sim::scene::MAX_TILT_RAD;
 use crate::error::{knotlab_error, to_python};
 use crate::skill::{Skill, or_shipped};
 
+/// `until_s`, if given, as a trial's stop: a positive number of seconds, else a `ValueError`.
+pub fn check_until(until_s: Option<f64>) -> PyResult<()> {
+    match until_s {
+        Some(t) if !(t.is_finite() && t > 0.0) => {
+            Err(PyValueError::new_err(format!("until_s {t}: must be a positive number of seconds")))
+        }
+        _ => Ok(()),
+    }
+}
+
 /// `name` as a method, or a `ValueError` naming the ones there are.
 pub fn method(name: &str) -> PyResult<Method> {
     name.parse().map_err(|e| PyValueError::new_err(format!("method {name:?}: {e}")))
@@ -52,11 +62,7 @@ pub fn run_trial(
     if !stitch_rotate_deg.is_finite() {
         return Err(PyValueError::new_err(format!("stitch_rotate_deg {stitch_rotate_deg}: not a number")));
     }
-    if let Some(t) = until_s
-        && !(t.is_finite() && t > 0.0)
-    {
-        return Err(PyValueError::new_err(format!("until_s {t}: must be a positive number of seconds")));
-    }
+    check_until(until_s)?;
     let (scene, scene_name) = crate::scene::load(scene.as_deref(), None).map_err(knotlab_error)?;
     let tilt_deg = scene.tissue.tilt_rad.to_degrees() + stitch_tilt_deg;
     let most_deg = MAX_TILT_RAD.to_degrees();
@@ -124,11 +130,7 @@ pub fn run_drawn_trial(
     until_s: Option<f64>,
 ) -> PyResult<Py<PyAny>> {
     let method = self::method(method)?;
-    if let Some(t) = until_s
-        && !(t.is_finite() && t > 0.0)
-    {
-        return Err(PyValueError::new_err(format!("until_s {t}: must be a positive number of seconds")));
-    }
+    check_until(until_s)?;
     let (scene, name) = crate::scene::load(scene.as_deref(), preset.as_deref()).map_err(knotlab_error)?;
     let (mut setup, _) = knotlab_bench::mc::drawn_trial(&scene, &name, seed, trial, method);
     setup.offsets = offsets
