@@ -31,7 +31,7 @@ pub fn real_devices(config: &RigConfig) -> Vec<String> {
     for (arm, a) in config.arms.iter() {
         let devices = [
             ("servo", Some(a.servo.backend)),
-            ("instrument", a.instrument.map(|d| d.backend)),
+            ("instrument", a.instrument.as_ref().map(|d| d.backend)),
             ("force", a.force.map(|d| d.backend)),
         ];
         for (name, backend) in devices {

@@ -20,6 +20,7 @@ use crate::netft::{NetFtConfig, NetFtSensor};
 use crate::rig::{ArmName, Rig};
 
 use super::schema::{Backend, ForceConfig, InstrumentConfig, RigConfig};
+use crate::canopen::bus::CanTransport;
 use crate::canopen::drive::{CanopenConfig, CanopenDrive};
 use crate::canopen::udp::UdpCan;
 
@@ -173,7 +174,6 @@ fn canopen_drive(arm: ArmName, at: &str, device: &InstrumentConfig) -> Result<Ca
     let missing = |field: &str| RigBuildError::Invalid {
         problems: vec![(format!("{at}.instrument.{field}"), "missing".into())],
     };
-    let udp = device.udp.ok_or_else(|| missing("udp"))?;
     let nodes = device.nodes.ok_or_else(|| missing("nodes"))?;
     let counts = device.counts_per_rad.ok_or_else(|| missing("counts_per_rad"))?;
     let mut config = CanopenConfig::new(arm, nodes, 1.0);
@@ -191,13 +191,26 @@ fn canopen_drive(arm: ArmName, at: &str, device: &InstrumentConfig) -> Result<Ca
         key: format!("{at}.instrument"),
         source: DeviceError::Fault { device: DeviceId::of_arm(DeviceKind::InstrumentDrive, arm), reason },
     };
-    let local = if udp.ip().is_loopback() {
-        std::net::SocketAddr::new(udp.ip(), 0)
-    } else {
-        std::net::SocketAddr::new(std::net::Ipv4Addr::UNSPECIFIED.into(), 0)
+    let transport: Box<dyn CanTransport> = match (&device.interface, device.udp) {
+        #[cfg(target_os = "linux")]
+        (Some(interface), _) => Box::new(
+            crate::canopen::socketcan::SocketCan::open(interface).map_err(|e| device_error(e.to_string()))?,
+        ),
+        #[cfg(not(target_os = "linux"))]
+        (Some(interface), _) => {
+            return Err(device_error(format!("SocketCAN interface \"{interface}\": SocketCAN is Linux's")));
+        }
+        (None, Some(udp)) => {
+            let local = if udp.ip().is_loopback() {
+                std::net::SocketAddr::new(udp.ip(), 0)
+            } else {
+                std::net::SocketAddr::new(std::net::Ipv4Addr::UNSPECIFIED.into(), 0)
+            };
+            Box::new(UdpCan::connect(local, udp).map_err(|e| device_error(e.to_string()))?)
+        }
+        (None, None) => return Err(missing("interface")),
     };
-    let transport = UdpCan::connect(local, udp).map_err(|e| device_error(e.to_string()))?;
-    CanopenDrive::connect(Box::new(transport), config)
+    CanopenDrive::connect(transport, config)
         .map_err(|source| RigBuildError::Device { key: format!("{at}.instrument"), source })
 }
 
@@ -234,7 +247,7 @@ pub fn build_rig(
     }
     let uses_sim = config.arms.iter().any(|(_, a)| {
         a.servo.backend == Backend::Sim
-            || a.instrument.is_some_and(|d| d.backend == Backend::Sim)
+            || a.instrument.as_ref().is_some_and(|d| d.backend == Backend::Sim)
             || a.force.is_some_and(|d| d.backend == Backend::Sim)
     });
     let melfa_cycle = config

@@ -206,12 +206,16 @@ pub struct ArmConfig {
 }
 
 /// An instrument's motors: their backend and, for `canopen`, the bus and the drives.
-#[derive(Clone, Copy, Debug, PartialEq, Deserialize, Serialize)]
+#[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct InstrumentConfig {
     /// Its backend.
     pub backend: Backend,
-    /// canopen: CAN frames over UDP to this address, "ip:port" (`knotlab canopen-emulator`).
+    /// canopen: the SocketCAN interface the drives are on, for example "can0" (Linux; one of
+    /// `interface` and `udp`).
+    pub interface: Option<String>,
+    /// canopen: CAN frames over UDP to this address, "ip:port" (`knotlab canopen-emulator`; one of
+    /// `interface` and `udp`).
     pub udp: Option<SocketAddr>,
     /// canopen: the node ids of the roll, pitch, yaw and jaw drives (1 to 127, distinct).
     pub nodes: Option<[u8; 4]>,
@@ -231,6 +235,7 @@ impl InstrumentConfig {
     pub fn of(backend: Backend) -> Self {
         Self {
             backend,
+            interface: None,
             udp: None,
             nodes: None,
             counts_per_rad: None,
@@ -291,6 +296,18 @@ impl Problems {
         }
     }
 
+    /// Each of `fields` (name, given) that is given although `backend` is not `wanted`.
+    fn only_for(&mut self, at: &str, backend: Backend, wanted: Backend, fields: &[(&str, bool)]) {
+        if backend == wanted {
+            return;
+        }
+        for (field, given) in fields {
+            if *given {
+                self.add(format!("{at}.{field}"), format!("only for backend \"{}\"", wanted.as_str()));
+            }
+        }
+    }
+
     fn positive(&mut self, key: String, value: Option<f64>) {
         if let Some(v) = value
             && !(v.is_finite() && v > 0.0)
@@ -303,6 +320,7 @@ impl Problems {
 /// The problems of an instrument's canopen settings.
 fn instrument_problems(p: &mut Problems, at: &str, d: &InstrumentConfig) {
     let fields = [
+        ("interface", d.interface.is_some()),
         ("udp", d.udp.is_some()),
         ("nodes", d.nodes.is_some()),
         ("counts_per_rad", d.counts_per_rad.is_some()),
@@ -310,16 +328,23 @@ fn instrument_problems(p: &mut Problems, at: &str, d: &InstrumentConfig) {
         ("heartbeat_timeout_s", d.heartbeat_timeout_s.is_some()),
         ("following_error_counts", d.following_error_counts.is_some()),
     ];
+    p.only_for(at, d.backend, Backend::Canopen, &fields);
     if d.backend != Backend::Canopen {
-        for (field, given) in fields {
-            if given {
-                p.add(format!("{at}.{field}"), "only for backend \"canopen\"");
-            }
-        }
         return;
     }
-    if d.udp.is_none() {
-        p.add(format!("{at}.udp"), "backend \"canopen\" needs the CAN-over-UDP address, \"ip:port\"");
+    match (&d.interface, d.udp) {
+        (None, None) => p.add(
+            format!("{at}.interface"),
+            "backend \"canopen\" needs the bus: a SocketCAN interface (interface = \"can0\") or a CAN-over-UDP \
+             address (udp = \"ip:port\")",
+        ),
+        (Some(_), Some(_)) => p.add(format!("{at}.udp"), "one bus: either interface or udp, not both"),
+        _ => {}
+    }
+    if let Some(name) = &d.interface
+        && let Err(reason) = interface_name_problem(name)
+    {
+        p.add(format!("{at}.interface"), reason);
     }
     match d.nodes {
         None => p.add(
@@ -358,6 +383,22 @@ fn instrument_problems(p: &mut Problems, at: &str, d: &InstrumentConfig) {
     p.positive(format!("{at}.heartbeat_timeout_s"), d.heartbeat_timeout_s);
 }
 
+/// Why `name` cannot be a network interface's name (Linux's rule: 1 to 15 bytes, no '/', no
+/// white space); on other systems, that SocketCAN is Linux's.
+fn interface_name_problem(name: &str) -> Result<(), String> {
+    if !cfg!(target_os = "linux") {
+        return Err(format!(
+            "\"{name}\": SocketCAN is Linux's; on this system use udp (a CAN-over-UDP gateway)"
+        ));
+    }
+    if name.is_empty() || name.len() > 15 || name.contains('/') || name.chars().any(char::is_whitespace) {
+        return Err(format!(
+            "\"{name}\": an interface's name is 1 to 15 bytes without '/' or white space, like \"can0\""
+        ));
+    }
+    Ok(())
+}
+
 /// The problems of a force sensor's netft settings.
 fn force_problems(p: &mut Problems, at: &str, force: &ForceConfig) {
     let netft_fields = [
@@ -367,12 +408,8 @@ fn force_problems(p: &mut Problems, at: &str, force: &ForceConfig) {
         ("shaft_from_sensor_rpy_rad", force.shaft_from_sensor_rpy_rad.is_some()),
         ("stall_timeout_s", force.stall_timeout_s.is_some()),
     ];
+    p.only_for(at, force.backend, Backend::NetFt, &netft_fields);
     if force.backend != Backend::NetFt {
-        for (field, given) in netft_fields {
-            if given {
-                p.add(format!("{at}.{field}"), "only for backend \"netft\"");
-            }
-        }
         return;
     }
     if force.address.is_none() {
@@ -436,11 +473,7 @@ impl RigConfig {
                 }
                 melfa_cycles.push((name, servo.cycle_s.unwrap_or(crate::melfa::CR750_CYCLE_S)));
             } else {
-                for (field, given) in melfa_fields {
-                    if given {
-                        p.add(format!("{at}.servo.{field}"), "only for backend \"melfa\"");
-                    }
-                }
+                p.only_for(&format!("{at}.servo"), servo.backend, Backend::Melfa, &melfa_fields);
             }
             if let Some(t) = arm.trocar_m
                 && t.iter().any(|x| !x.is_finite())
@@ -454,7 +487,7 @@ impl RigConfig {
             let devices = [
                 (
                     "instrument",
-                    arm.instrument.map(|d| d.backend),
+                    arm.instrument.as_ref().map(|d| d.backend),
                     &[Backend::Sim, Backend::Dummy, Backend::Canopen][..],
                 ),
                 ("force", arm.force.map(|d| d.backend), &[Backend::Sim, Backend::Dummy, Backend::NetFt][..]),
@@ -496,7 +529,7 @@ impl RigConfig {
         let uses = |b: Backend| {
             self.arms.iter().any(|(_, a)| {
                 a.servo.backend == b
-                    || a.instrument.is_some_and(|d| d.backend == b)
+                    || a.instrument.as_ref().is_some_and(|d| d.backend == b)
                     || a.force.is_some_and(|d| d.backend == b)
             })
         };

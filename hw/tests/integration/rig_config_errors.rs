@@ -50,7 +50,7 @@ fn the_shipped_rig_configs_parse() {
     assert_eq!(lab.pedals.backend, Backend::Gamepad);
     for (name, arm) in lab.arms.iter() {
         assert_eq!(arm.servo.backend, Backend::Melfa, "{name}");
-        assert_eq!(arm.instrument.map(|d| d.backend), Some(Backend::Canopen), "{name}");
+        assert_eq!(arm.instrument.as_ref().map(|d| d.backend), Some(Backend::Canopen), "{name}");
         assert_eq!(arm.force.map(|d| d.backend), Some(Backend::NetFt), "{name}");
     }
     assert_eq!(knotlab_hw::gate::real_devices(&lab).len(), 9);
