@@ -12,13 +12,13 @@ use pyo3::prelude::*;
 use knotlab_bench::mc::draw;
 use knotlab_hw::rig::Rig;
 use knotlab_scenarios::episode::{
-    ARMS, Episode as StepWise, EpisodeSettings, TipCommand, demonstration_commands,
+    ARMS, Episode as StepWise, EpisodeError, EpisodeSettings, TipCommand, demonstration_commands,
 };
 use knotlab_scenarios::shipped;
 use knotlab_sim::snapshot::{View, render_rgb};
 use knotlab_sim::world::SimWorld;
 
-use crate::error::{knotlab_error, to_python};
+use crate::error::{Failure, knotlab_error, to_python};
 
 /// Values per instrument in a command: velocity (3, m/s), turn rate (3, rad/s), jaw opening (rad).
 const PER_ARM: usize = 7;
@@ -77,30 +77,26 @@ impl Episode {
         let (scene, name) = crate::scene::load(scene.as_deref(), preset.as_deref()).map_err(knotlab_error)?;
         let settings =
             settings(control_hz, time_limit_s, max_speed_mps, max_turn_rad_s, max_jaw_rad, thread_points);
-        let made = py.detach(|| -> Result<(StepWise, serde_json::Value), String> {
+        let made = py.detach(|| -> Result<(StepWise, serde_json::Value), Failure> {
+            let knotlab = |e: &dyn std::fmt::Display| Failure::Knotlab(e.to_string());
             let (scene, sim_seed, drawn) = if randomize {
                 let (mut drawn_scene, stitch, drawn) = draw(&scene, seed, trial);
                 stitch.apply(&mut drawn_scene);
-                let value = serde_json::to_value(&drawn).map_err(|e| e.to_string())?;
+                let value = serde_json::to_value(&drawn).map_err(|e| knotlab(&e))?;
                 (drawn_scene, drawn.sim_seed, value)
             } else {
                 (scene, seed, serde_json::Value::Null)
             };
-            let rig = Rig::shipped().map_err(|e| e.to_string())?;
-            let mut world = SimWorld::new(scene, rig).map_err(|e| format!("{name}: {e}"))?;
+            let rig = Rig::shipped().map_err(|e| knotlab(&e))?;
+            let mut world = SimWorld::new(scene, rig).map_err(|e| knotlab(&format!("{name}: {e}")))?;
             world.reseed(sim_seed);
-            Ok((StepWise::new(world, settings).map_err(|e| e.to_string())?, drawn))
+            let episode = StepWise::new(world, settings).map_err(|e| match e {
+                EpisodeError::Settings { .. } => Failure::Value(e.to_string()),
+                other => knotlab(&other),
+            })?;
+            Ok((episode, drawn))
         });
-        let (episode, drawn) = made.map_err(|e| {
-            if e.starts_with("control_hz")
-                || e.contains("must be a positive")
-                || e.starts_with("thread_points")
-            {
-                PyValueError::new_err(e)
-            } else {
-                knotlab_error(e)
-            }
-        })?;
+        let (episode, drawn) = made.map_err(Failure::into_py)?;
         Ok(Self { inner: Mutex::new(episode), drawn })
     }
 
@@ -128,7 +124,7 @@ impl Episode {
         let mut guard = self.lock()?;
         let episode: &mut StepWise = &mut guard;
         let report = py.detach(|| episode.step(&commands)).map_err(|e| match e {
-            knotlab_scenarios::episode::EpisodeError::Command { .. } => PyValueError::new_err(e.to_string()),
+            EpisodeError::Command { .. } => PyValueError::new_err(e.to_string()),
             other => knotlab_error(other),
         })?;
         let ending = report.ended.map(|e| match e {

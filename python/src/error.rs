@@ -18,6 +18,25 @@ pub fn knotlab_error(error: impl std::fmt::Display) -> PyErr {
     KnotlabError::new_err(error.to_string())
 }
 
+/// Why work done without the GIL failed, sorted as Python will see it: the caller's argument
+/// (`ValueError`) or knotlab's own failure (`KnotlabError`).
+pub enum Failure {
+    /// An argument out of what is allowed.
+    Value(String),
+    /// Anything else.
+    Knotlab(String),
+}
+
+impl Failure {
+    /// The Python exception.
+    pub fn into_py(self) -> PyErr {
+        match self {
+            Self::Value(text) => pyo3::exceptions::PyValueError::new_err(text),
+            Self::Knotlab(text) => knotlab_error(text),
+        }
+    }
+}
+
 /// A Rust value serialized to JSON and read back by Python's `json` module as a dict or list.
 pub fn to_python<'py, T: serde::Serialize>(py: Python<'py>, value: &T) -> PyResult<Bound<'py, PyAny>> {
     let text = serde_json::to_string(value).map_err(knotlab_error)?;

@@ -10,10 +10,10 @@ use pyo3::prelude::*;
 use knotlab_learner::synthesis::{Method, PrimitiveOffset};
 use knotlab_scenarios::expert::RecordOptions;
 use knotlab_scenarios::trial::report::{Execution, TrialReport};
-use knotlab_scenarios::trial::{StitchMove, TrialSetup, run_trial as run_one};
+use knotlab_scenarios::trial::{StitchMove, TrialError, TrialSetup, run_trial as run_one};
 use knotlab_sim::scene::MAX_TILT_RAD;
 
-use crate::error::{knotlab_error, to_python};
+use crate::error::{Failure, knotlab_error, to_python};
 use crate::skill::{Skill, or_shipped};
 
 /// `until_s`, if given, as a trial's stop: a positive number of seconds, else a `ValueError`.
@@ -140,17 +140,14 @@ pub fn run_drawn_trial(
         .collect();
     let options = RecordOptions { cycles_per_sample: 10, stop_after_s: until_s, ..RecordOptions::default() };
     let report = py
-        .detach(|| -> Result<TrialReport, String> {
-            let learned = or_shipped(skill)?;
-            let trial = run_one(&learned, &setup, &options, None).map_err(|e| e.to_string())?;
+        .detach(|| -> Result<TrialReport, Failure> {
+            let learned = or_shipped(skill).map_err(Failure::Knotlab)?;
+            let trial = run_one(&learned, &setup, &options, None).map_err(|e| match e {
+                TrialError::Offsets(_) => Failure::Value(e.to_string()),
+                other => Failure::Knotlab(other.to_string()),
+            })?;
             Ok(TrialReport::new(&setup, &trial, Execution::simulated()))
         })
-        .map_err(|e| {
-            if e.contains("no such primitive") || e.contains("not finite") {
-                PyValueError::new_err(e)
-            } else {
-                knotlab_error(e)
-            }
-        })?;
+        .map_err(Failure::into_py)?;
     Ok(to_python(py, &report)?.unbind())
 }

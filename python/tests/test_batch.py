@@ -78,7 +78,9 @@ def test_a_resumed_run_adds_only_the_trials_it_lacks(skill, tmp_path):
         knotlab.run_mc(out, trials=3, seed=9, skill=skill, until_s=0.3, jobs=1)
 
 
-def test_bad_arguments_are_named(tmp_path):
+def test_bad_arguments_are_named(skill, tmp_path):
+    with pytest.raises(ValueError, match="no such primitive"):
+        knotlab.run_drawn_trial(skill=skill, method="replay", offsets={"nope": (0.0, 0.0, 0.0)}, until_s=0.1)
     with pytest.raises(ValueError, match="method \"nope\""):
         knotlab.run_trial(method="nope", until_s=0.1)
     with pytest.raises(ValueError, match="until_s"):

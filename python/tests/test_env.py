@@ -62,6 +62,8 @@ def test_the_environment_pickles_mid_episode():
 
 
 def test_an_action_outside_the_space_is_refused():
+    with pytest.raises(ValueError, match="control_hz"):
+        knotlab.KnotTyingEnv(control_hz=0.0).reset(seed=0)
     env = knotlab.KnotTyingEnv()
     env.reset(seed=0)
     with pytest.raises(ValueError, match=r"\[-1, 1\]"):

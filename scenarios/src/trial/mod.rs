@@ -75,6 +75,9 @@ pub enum TrialError {
         /// Why.
         reason: SynthesisError,
     },
+    /// The primitives' offsets name no primitive of the skill, or are not finite.
+    #[error("the primitives' offsets: {0}")]
+    Offsets(SynthesisError),
     /// The scene cannot be built with its stitch moved there.
     #[error(
         "{scene} with the stitch moved by {offset_m:?} m, turned {rotate_deg} deg and tilted {tilt_deg} deg: {reason}"
@@ -298,7 +301,7 @@ pub fn run_trial(
     if !setup.offsets.is_empty() {
         let world_from_stitch = world.tissue().world_from_tissue.rotation;
         offset_primitives(&mut skill, &spans, &setup.offsets, &world_from_stitch)
-            .map_err(|reason| TrialError::Synthesis { method: setup.method, reason })?;
+            .map_err(TrialError::Offsets)?;
     }
     let kinematics = kinematic_check(&world, &skill);
     let collision = match kinematics {
