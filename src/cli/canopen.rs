@@ -3,9 +3,6 @@
 
 use std::net::SocketAddr;
 use std::process::ExitCode;
-use std::sync::Arc;
-use std::sync::atomic::{AtomicBool, Ordering};
-use std::time::{Duration, Instant};
 
 use anyhow::Context;
 use clap::Args;
@@ -58,11 +55,7 @@ pub fn run(args: CanopenEmulatorArgs, out: &mut Output) -> anyhow::Result<ExitCo
             anyhow::bail!("{name}: {ms} is not a time of more than 0 and at most 10000 ms");
         }
     }
-    if let Some(t) = args.duration_s
-        && !(t.is_finite() && t > 0.0)
-    {
-        anyhow::bail!("--duration-s: {t} is not a positive, finite number of seconds");
-    }
+    super::serve::check_duration(args.duration_s)?;
     let transport = UdpCan::listen(args.bind).context("canopen-emulator")?;
     let addr = transport.local_addr().context("canopen-emulator")?;
     let nodes = args
@@ -75,16 +68,7 @@ pub fn run(args: CanopenEmulatorArgs, out: &mut Output) -> anyhow::Result<ExitCo
         CanopenEmulatorConfig { nodes, sync_period_s: args.sync_period_ms * 1e-3 },
     );
     outln!(out, "listening on {addr} (CiA 402 drives, nodes {:?})", args.nodes);
-    let stop = Arc::new(AtomicBool::new(false));
-    {
-        let stop = Arc::clone(&stop);
-        ctrlc::set_handler(move || stop.store(true, Ordering::SeqCst))?;
-    }
-    let started = Instant::now();
-    while !stop.load(Ordering::SeqCst) && args.duration_s.is_none_or(|t| started.elapsed().as_secs_f64() < t)
-    {
-        std::thread::sleep(Duration::from_millis(10));
-    }
+    super::serve::until_stopped(args.duration_s)?;
     for (node, state, position) in emulator.nodes() {
         outln!(out, "node {node}: {state:?}, at {position} counts");
     }

@@ -15,6 +15,7 @@ mod output;
 mod report;
 mod rig;
 mod run;
+mod serve;
 mod session;
 mod shipped;
 mod sim;

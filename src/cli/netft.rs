@@ -3,9 +3,6 @@
 
 use std::net::SocketAddr;
 use std::process::ExitCode;
-use std::sync::Arc;
-use std::sync::atomic::{AtomicBool, Ordering};
-use std::time::{Duration, Instant};
 
 use anyhow::Context;
 use clap::Args;
@@ -55,11 +52,7 @@ pub struct NetFtEmulatorArgs {
 }
 
 pub fn run(args: NetFtEmulatorArgs, out: &mut Output) -> anyhow::Result<ExitCode> {
-    if let Some(t) = args.duration_s
-        && !(t.is_finite() && t > 0.0)
-    {
-        anyhow::bail!("--duration-s: {t} is not a positive, finite number of seconds");
-    }
+    super::serve::check_duration(args.duration_s)?;
     let wrench = [args.force.x, args.force.y, args.force.z, args.torque.x, args.torque.y, args.torque.z];
     if wrench.iter().any(|x| !x.is_finite()) {
         anyhow::bail!("--force, --torque: {wrench:?} is not finite");
@@ -84,16 +77,7 @@ pub fn run(args: NetFtEmulatorArgs, out: &mut Output) -> anyhow::Result<ExitCode
         args.torque.as_slice(),
         if args.drop > 0.0 { format!(", dropping {} of them", args.drop) } else { String::new() }
     );
-    let stop = Arc::new(AtomicBool::new(false));
-    {
-        let stop = Arc::clone(&stop);
-        ctrlc::set_handler(move || stop.store(true, Ordering::SeqCst))?;
-    }
-    let started = Instant::now();
-    while !stop.load(Ordering::SeqCst) && args.duration_s.is_none_or(|t| started.elapsed().as_secs_f64() < t)
-    {
-        std::thread::sleep(Duration::from_millis(10));
-    }
+    super::serve::until_stopped(args.duration_s)?;
     let report = emulator.stop().context("netft-emulator")?;
     if args.json {
         outln!(

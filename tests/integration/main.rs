@@ -5,6 +5,7 @@ mod common;
 
 mod backend_melfa_agreement;
 mod cli_anywhere;
+mod cli_canopen;
 mod cli_demo;
 mod cli_fluid;
 mod cli_knot;

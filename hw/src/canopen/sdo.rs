@@ -103,8 +103,18 @@ pub fn abort_reason(code: u32) -> &'static str {
     }
 }
 
-fn header(bytes: &[u8]) -> Object {
-    Object { index: u16::from_le_bytes([bytes[1], bytes[2]]), subindex: bytes[3] }
+/// A transfer's eight bytes as its command byte, its object and its data (little-endian).
+fn split(bytes: &[u8]) -> Result<(u8, Object, u32), SdoError> {
+    let &[command, index_lo, index_hi, subindex, d0, d1, d2, d3] = bytes else {
+        return Err(SdoError::Length(bytes.len()));
+    };
+    let object = Object { index: u16::from_le_bytes([index_lo, index_hi]), subindex };
+    Ok((command, object, u32::from_le_bytes([d0, d1, d2, d3])))
+}
+
+/// The data length an expedited transfer's command byte gives (its bits 2 and 3: the bytes unused).
+fn expedited_len(command: u8) -> u8 {
+    4 - ((command >> 2) & 0x3)
 }
 
 fn with_header(command: u8, object: Object, value: u32) -> [u8; 8] {
@@ -141,15 +151,11 @@ impl SdoRequest {
 
     /// A request from its bytes.
     pub fn decode(bytes: &[u8]) -> Result<Self, SdoError> {
-        if bytes.len() != 8 {
-            return Err(SdoError::Length(bytes.len()));
-        }
-        let object = header(bytes);
-        let value = u32::from_le_bytes([bytes[4], bytes[5], bytes[6], bytes[7]]);
-        match bytes[0] {
+        let (command, object, value) = split(bytes)?;
+        match command {
             0x40 => Ok(SdoRequest::Read { object }),
             c @ (0x23 | 0x27 | 0x2B | 0x2F) => {
-                let len = 4 - ((c >> 2) & 0x3);
+                let len = expedited_len(c);
                 Ok(SdoRequest::Write { object, value: mask(value, len), len })
             }
             c => Err(SdoError::Command(c)),
@@ -159,34 +165,32 @@ impl SdoRequest {
 
 impl SdoResponse {
     /// Its eight bytes.
-    pub fn encode(&self) -> [u8; 8] {
-        match *self {
+    pub fn encode(&self) -> Result<[u8; 8], SdoError> {
+        Ok(match *self {
             SdoResponse::Written { object } => with_header(0x60, object, 0),
             SdoResponse::Value { object, value, len } => {
-                let len = len.clamp(1, 4);
+                if !(1..=4).contains(&len) {
+                    return Err(SdoError::Size(len));
+                }
                 with_header(0x43 | ((4 - len) << 2), object, mask(value, len))
             }
             SdoResponse::Abort { object, code } => with_header(0x80, object, code),
-        }
+        })
     }
 
     /// The frame from node `node`'s server.
     pub fn frame(&self, node: u8) -> Result<CanFrame, SdoError> {
-        Ok(CobId::SdoResponse(node).frame(&self.encode())?)
+        Ok(CobId::SdoResponse(node).frame(&self.encode()?)?)
     }
 
     /// A response from its bytes.
     pub fn decode(bytes: &[u8]) -> Result<Self, SdoError> {
-        if bytes.len() != 8 {
-            return Err(SdoError::Length(bytes.len()));
-        }
-        let object = header(bytes);
-        let value = u32::from_le_bytes([bytes[4], bytes[5], bytes[6], bytes[7]]);
-        match bytes[0] {
+        let (command, object, value) = split(bytes)?;
+        match command {
             0x60 => Ok(SdoResponse::Written { object }),
             0x80 => Ok(SdoResponse::Abort { object, code: value }),
             c @ (0x43 | 0x47 | 0x4B | 0x4F) => {
-                let len = 4 - ((c >> 2) & 0x3);
+                let len = expedited_len(c);
                 Ok(SdoResponse::Value { object, value: mask(value, len), len })
             }
             c => Err(SdoError::Command(c)),
@@ -213,11 +217,13 @@ mod tests {
         let read = SdoRequest::Read { object: status };
         assert_eq!(read.encode(), Ok([0x40, 0x41, 0x60, 0x00, 0, 0, 0, 0]));
         let value = SdoResponse::Value { object: status, value: 0x0237, len: 2 };
-        assert_eq!(value.encode(), [0x4B, 0x41, 0x60, 0x00, 0x37, 0x02, 0, 0]);
-        assert_eq!(SdoResponse::decode(&value.encode()), Ok(value));
+        assert_eq!(value.encode(), Ok([0x4B, 0x41, 0x60, 0x00, 0x37, 0x02, 0, 0]));
+        assert_eq!(SdoResponse::decode(&value.encode().unwrap()), Ok(value));
         let abort = SdoResponse::Abort { object: mode, code: 0x0609_0030 };
-        assert_eq!(abort.encode(), [0x80, 0x60, 0x60, 0x00, 0x30, 0x00, 0x09, 0x06]);
-        assert_eq!(SdoResponse::decode(&abort.encode()), Ok(abort));
+        assert_eq!(abort.encode(), Ok([0x80, 0x60, 0x60, 0x00, 0x30, 0x00, 0x09, 0x06]));
+        assert_eq!(SdoResponse::decode(&abort.encode().unwrap()), Ok(abort));
+        assert_eq!(SdoResponse::Value { object: status, value: 1, len: 0 }.encode(), Err(SdoError::Size(0)));
+        assert_eq!(SdoResponse::decode(&[0x4B, 0x41, 0x60]), Err(SdoError::Length(3)));
         assert_eq!(abort_reason(0x0609_0030), "invalid value for parameter");
         assert_eq!(SdoRequest::Write { object: mode, value: 1, len: 5 }.encode(), Err(SdoError::Size(5)));
         assert_eq!(SdoRequest::decode(&[0x21, 0, 0, 0, 0, 0, 0, 0]), Err(SdoError::Command(0x21)));

@@ -17,6 +17,7 @@
 //! ```
 
 mod demonstration;
+mod field_buses;
 mod fluid_path;
 mod knot_csv;
 mod knowledge_base;

@@ -36,14 +36,19 @@ fn scene_parser_survives_mutated_and_random_input() {
     });
 }
 
-/// The rig config parser never panics on a mutated shipped rig (simulated, gamepad, MELFA) or on raw
-/// text, and names what it refuses.
+/// The rig config parser never panics on a mutated shipped rig (simulated, gamepad, MELFA, the lab's
+/// with CANopen drives and Net F/T sensors) or on raw text, and names what it refuses.
 #[test]
 fn rig_config_parser_survives_mutated_and_random_input() {
     isolated(|| {
         fuzz_toml(
             "rig-config",
-            &["scenarios/rigs/sim.toml", "scenarios/rigs/sim-gamepad.toml", "scenarios/rigs/melfa.toml"],
+            &[
+                "scenarios/rigs/sim.toml",
+                "scenarios/rigs/sim-gamepad.toml",
+                "scenarios/rigs/melfa.toml",
+                "scenarios/rigs/lab.toml",
+            ],
             |text| outcome(parse_rig_config(text, "rig.toml")),
         );
     });
