@@ -9,8 +9,10 @@
 //! carried there by METHOD (fluid, dmp or replay; default fluid), seed 0. Whenever the most stretched
 //! segment is stretched beyond RATIO (default 0.08) of its rest length it prints (at most every 0.25
 //! s): the time, the segment, its neighbours' stretch, the links the particles near it touch, the
-//! instruments' force gauges, the grips and the run inside the stitch. At the end: the verdict, and
-//! the moments at which a particle touched two instruments at once (the thread pinched between them).
+//! instruments' force gauges, the grips and the run inside the stitch. At the end: the verdict with
+//! the coils at the left's take, the long end's turns round the left's and the right's jaws every 0.5
+//! s, and the moments at which a particle touched two instruments at once (the thread pinched between
+//! them).
 //! A single segment stretched with its neighbours compressed is a particle pushed along the rope by a
 //! contact, not tension; tension stretches a run of segments alike.
 
@@ -59,6 +61,7 @@ fn main() {
     };
     let mut last_print = -1.0;
     let mut pinched: Vec<(f64, usize)> = Vec::new();
+    let mut coils: Vec<(f64, Option<f64>, Option<f64>)> = Vec::new();
     let mut observer = |record: &knotlab_hw::controller::CycleRecord,
                         world: &knotlab_sim::world::SimWorld| {
         let t = record.skill_time_s;
@@ -66,6 +69,10 @@ fn main() {
         let Some(rope) = suture.as_rope() else { return };
         let x = &rope.ropes.x;
         let sp = rope.spacing_m;
+        if record.cycle.is_multiple_of(500) {
+            let turns = |arm| knotlab_scenarios::expert::diagnose::long_end_turns_around_jaws(world, arm);
+            coils.push((t, turns(knotlab_hw::rig::ArmName::Left), turns(knotlab_hw::rig::ArmName::Right)));
+        }
         if record.cycle.is_multiple_of(10) {
             let contacts = world.thread_contacts();
             let mut by: std::collections::BTreeMap<usize, (bool, bool, bool)> = Default::default();
@@ -135,7 +142,11 @@ fn main() {
     };
     let options = RecordOptions { cycles_per_sample: 10, ..RecordOptions::default() };
     let run = run_trial(&learned, &setup, &options, Some(&mut observer)).expect("ran");
-    println!("{:?}", run.run.evaluation.verdict);
+    println!("{:?} coils at the take {:?}", run.run.evaluation.verdict, run.run.coils_at_take);
+    let show = |x: Option<f64>| x.map_or("-".to_owned(), |v| format!("{v:.2}"));
+    let line: Vec<String> =
+        coils.iter().map(|(t, l, r)| format!("{t:.1}: {}/{}", show(*l), show(*r))).collect();
+    println!("the long end's turns round the left's / the right's jaws: {}", line.join(", "));
     let mut spans: Vec<(f64, f64)> = Vec::new();
     for (t, _) in &pinched {
         match spans.last_mut() {
