@@ -2,8 +2,8 @@
 //! UDP (enabled, following, taken down), and it stops after its duration listing each node; bad
 //! arguments are refused by name.
 
-use std::io::{BufRead, BufReader, Read};
-use std::process::{Command, Stdio};
+use std::io::Read;
+use std::process::Command;
 use std::time::{Duration, Instant};
 
 use knotlab_hw::canopen::drive::{CanopenConfig, CanopenDrive};
@@ -16,21 +16,15 @@ use knotlab_hw::rig::ArmName;
 /// and takes them down; the emulator's closing lines show each node disabled where it was sent.
 #[test]
 fn the_emulator_s_drives_follow_the_driver() {
-    let mut child = Command::new(env!("CARGO_BIN_EXE_knotlab"))
-        .args(["canopen-emulator", "--bind", "127.0.0.1:0", "--nodes", "21,22,23,24", "--duration-s", "2"])
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()
-        .expect("the binary starts");
-    let mut stdout = BufReader::new(child.stdout.take().expect("stdout"));
-    let mut first = String::new();
-    stdout.read_line(&mut first).expect("the listening line");
-    let addr = first
-        .strip_prefix("listening on ")
-        .and_then(|rest| rest.split_whitespace().next())
-        .unwrap_or_else(|| panic!("no address in {first:?}"))
-        .parse()
-        .expect("an address");
+    let (mut child, mut stdout, _, addr) = crate::common::emulator(&[
+        "canopen-emulator",
+        "--bind",
+        "127.0.0.1:0",
+        "--nodes",
+        "21,22,23,24",
+        "--duration-s",
+        "2",
+    ]);
     let transport = UdpCan::connect("127.0.0.1:0".parse().expect("an address"), addr).expect("bound");
     let config = CanopenConfig::new(ArmName::Right, [21, 22, 23, 24], 10_000.0);
     let mut drive = CanopenDrive::connect(Box::new(transport), config).expect("the drives enabled");

@@ -4,8 +4,7 @@
 
 use super::common;
 
-use std::io::{BufRead, BufReader, Read};
-use std::process::{Command, Stdio};
+use std::io::Read;
 
 use knotlab_hw::device::ArmServo;
 use knotlab_hw::melfa::{Layout, MelfaArm, MelfaConfig};
@@ -15,36 +14,24 @@ use knotlab_hw::rig::{ArmName, Rig};
 /// END exits cleanly with a summary matching the moves, the drops and the final joints.
 #[test]
 fn the_emulator_serves_a_session_and_exits_on_end() {
-    let mut child = Command::new(env!("CARGO_BIN_EXE_knotlab"))
-        .args([
-            "melfa-emulator",
-            "--bind",
-            "127.0.0.1:0",
-            "--layout",
-            "pre-h7",
-            "--drop-every",
-            "3",
-            "--no-pace",
-            "--idle-timeout-s",
-            "30",
-            "--json",
-        ])
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()
-        .expect("the binary starts");
-    let mut stdout = BufReader::new(child.stdout.take().expect("stdout"));
-    let mut first = String::new();
-    stdout.read_line(&mut first).expect("the listening line");
-    let addr = first
-        .strip_prefix("listening on ")
-        .and_then(|rest| rest.split_whitespace().next())
-        .unwrap_or_else(|| panic!("no address in {first:?}"));
+    let (mut child, mut stdout, first, addr) = common::emulator(&[
+        "melfa-emulator",
+        "--bind",
+        "127.0.0.1:0",
+        "--layout",
+        "pre-h7",
+        "--drop-every",
+        "3",
+        "--no-pace",
+        "--idle-timeout-s",
+        "30",
+        "--json",
+    ]);
     assert!(first.contains("layout pre-h7") && first.contains("dropping one reply in 3"), "{first}");
 
     let rig = Rig::shipped().unwrap();
     let limits = rig.arm(ArmName::Left).model.limits;
-    let mut config = MelfaConfig::new(ArmName::Left, addr.parse().unwrap(), &limits);
+    let mut config = MelfaConfig::new(ArmName::Left, addr, &limits);
     config.layout = Layout::PreH7;
     let mut melfa = MelfaArm::connect(config).unwrap();
     let ready = ArmName::Left.ready_joints().arm_rad;

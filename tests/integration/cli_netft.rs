@@ -2,8 +2,8 @@
 //! over loopback, dropping a fifth of the records as asked, and stops after its duration with a
 //! summary; a remote address is refused unless allowed.
 
-use std::io::{BufRead, BufReader, Read};
-use std::process::{Command, Stdio};
+use std::io::Read;
+use std::process::Command;
 use std::time::{Duration, Instant};
 
 use knotlab_hw::device::ForceSensor;
@@ -14,35 +14,22 @@ use knotlab_hw::rig::ArmName;
 /// counts the dropped records, and the summary agrees.
 #[test]
 fn the_emulator_streams_a_force_to_the_driver() {
-    let mut child = Command::new(env!("CARGO_BIN_EXE_knotlab"))
-        .args([
-            "netft-emulator",
-            "--bind",
-            "127.0.0.1:0",
-            "--force",
-            "0.2,-0.1,1.5",
-            "--counts-per-force",
-            "2000",
-            "--drop",
-            "0.2",
-            "--duration-s",
-            "1.5",
-            "--json",
-        ])
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()
-        .expect("the binary starts");
-    let mut stdout = BufReader::new(child.stdout.take().expect("stdout"));
-    let mut first = String::new();
-    stdout.read_line(&mut first).expect("the listening line");
-    let addr = first
-        .strip_prefix("listening on ")
-        .and_then(|rest| rest.split_whitespace().next())
-        .unwrap_or_else(|| panic!("no address in {first:?}"));
-    let mut sensor =
-        NetFtSensor::connect(NetFtConfig::new(ArmName::Left, addr.parse().expect("an address"), 2000.0))
-            .expect("connected to the emulator");
+    let (mut child, mut stdout, _, addr) = crate::common::emulator(&[
+        "netft-emulator",
+        "--bind",
+        "127.0.0.1:0",
+        "--force",
+        "0.2,-0.1,1.5",
+        "--counts-per-force",
+        "2000",
+        "--drop",
+        "0.2",
+        "--duration-s",
+        "1.5",
+        "--json",
+    ]);
+    let mut sensor = NetFtSensor::connect(NetFtConfig::new(ArmName::Left, addr, 2000.0))
+        .expect("connected to the emulator");
     let start = Instant::now();
     while sensor.stats().records < 100 {
         let reading = sensor.read().expect("a reading");
