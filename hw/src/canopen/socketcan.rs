@@ -12,6 +12,9 @@ use socketcan::{CanSocket, EmbeddedFrame, Id, Socket, StandardId};
 use super::bus::{CanTransport, TransportError};
 use super::frame::CanFrame;
 
+/// Linux's ENOBUFS: a CAN interface's transmit queue is full.
+const ENOBUFS: i32 = 105;
+
 /// A raw CAN socket bound to one interface, reading without waiting.
 pub struct SocketCan {
     socket: CanSocket,
@@ -56,8 +59,8 @@ impl CanTransport for SocketCan {
     fn send(&mut self, frame: &CanFrame) -> Result<(), TransportError> {
         let frame = to_socketcan(frame)?;
         self.socket.write_frame(&frame).map_err(|e| {
-            let why = if e.raw_os_error() == Some(105) || e.kind() == ErrorKind::WouldBlock {
-                // ENOBUFS: the transmit queue is full, nobody acknowledges (no node, no terminator).
+            let why = if e.raw_os_error() == Some(ENOBUFS) || e.kind() == ErrorKind::WouldBlock {
+                // Nobody acknowledges the frames (no node, no terminator).
                 format!("{e} (the transmit queue is full: is any node on the bus, and the bus terminated?)")
             } else {
                 e.to_string()

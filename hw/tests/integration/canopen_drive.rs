@@ -56,6 +56,24 @@ fn canopen_line(bus: &str, nodes: [u8; 4]) -> String {
     )
 }
 
+/// A controller over one dummy arm (the left) whose instrument is CiA 402 drives `NODES` on `bus`
+/// ([`canopen_line`]), at a 2 ms cycle in real time; and the shipped rig.
+fn left_arm_on(bus: &str) -> (knotlab_hw::controller::Controller, knotlab_hw::rig::Rig) {
+    use knotlab_hw::rig::Rig;
+    use knotlab_hw::rig_config::{build_rig, parse_rig_config};
+    let text = format!(
+        "description = \"a dummy arm with CANopen drives\"\n[controller]\nperiod_s = 0.002\nreal_time = true\n\
+         [arms.left]\ntrocar_m = [-0.08, 0.12, 1.02]\nservo = {{ backend = \"dummy\" }}\n{}\
+         [pedals]\nbackend = \"dummy\"\n",
+        canopen_line(bus, NODES)
+    );
+    let config = parse_rig_config(&text, "canopen.toml").expect("a rig with CANopen drives");
+    let rig = Rig::shipped().expect("the shipped rig");
+    let (controller, _handles) =
+        build_rig(&config, &rig, None).expect("built").into_controller().expect("a controller");
+    (controller, rig)
+}
+
 /// A skill that opens `arm`'s jaw to `jaw_rad` over `open_s` while its tip stays where the controller's
 /// record has it, ending at `end_s`.
 fn open_jaw(
@@ -190,8 +208,7 @@ fn the_drives_answer_over_loopback_udp() {
 /// motor (and, by the coupling, nothing else of it), and shutdown takes the drives down.
 #[test]
 fn a_rig_drives_canopen_instruments_through_the_controller() {
-    use knotlab_hw::rig::Rig;
-    use knotlab_hw::rig_config::{RigConfigError, build_rig, parse_rig_config};
+    use knotlab_hw::rig_config::{RigConfigError, parse_rig_config};
     use knotlab_hw::skill::Skill;
     let bad = "description = \"x\"\n[arms.left]\ntrocar_m = [0.0, 0.1, 1.0]\nservo = { backend = \"dummy\" }\n\
                instrument = { backend = \"canopen\", nodes = [11, 11, 12, 0], counts_per_rad = [1.0, 0.0, 1.0, 1.0], \
@@ -214,16 +231,7 @@ fn a_rig_drives_canopen_instruments_through_the_controller() {
     assert!(has("arms.assist.instrument.interface", "\"can 0\""), "{problems:?}");
 
     let (emulator, addr) = udp_drives(&NODES);
-    let text = format!(
-        "description = \"a dummy arm with CANopen drives\"\n[controller]\nperiod_s = 0.002\nreal_time = true\n\
-         [arms.left]\ntrocar_m = [-0.08, 0.12, 1.02]\nservo = {{ backend = \"dummy\" }}\n{}\
-         [pedals]\nbackend = \"dummy\"\n",
-        canopen_line(&format!("udp = \"{addr}\""), NODES)
-    );
-    let config = parse_rig_config(&text, "canopen.toml").expect("a rig with CANopen drives");
-    let rig = Rig::shipped().expect("the shipped rig");
-    let (mut controller, _handles) =
-        build_rig(&config, &rig, None).expect("built").into_controller().expect("a controller");
+    let (mut controller, rig) = left_arm_on(&format!("udp = \"{addr}\""));
     let track = open_jaw(&controller, &rig, ArmName::Left, 0.4, 0.2, 0.4);
     let skill = Skill { name: "open the jaw".into(), tracks: vec![track] };
     controller.load_skill(skill).expect("loaded");
@@ -327,8 +335,6 @@ fn a_node_dropping_out_mid_run_faults_the_run_and_every_other_device_holds() {
 #[ignore = "needs a vcan0 interface; scripts/test runs it where there is one"]
 fn the_drives_answer_over_socketcan_on_vcan() {
     use knotlab_hw::canopen::socketcan::SocketCan;
-    use knotlab_hw::rig::Rig;
-    use knotlab_hw::rig_config::{build_rig, parse_rig_config};
     use knotlab_hw::skill::Skill;
     let interface = std::env::var("KNOTLAB_VCAN").unwrap_or_else(|_| "vcan0".into());
     let open = |what: &str| {
@@ -354,16 +360,7 @@ fn the_drives_answer_over_socketcan_on_vcan() {
     drive.shutdown().expect("taken down");
     assert!(emulator.nodes().iter().all(|(_, state, _)| *state == DriveState::SwitchOnDisabled));
 
-    let text = format!(
-        "description = \"a dummy arm with CANopen drives on SocketCAN\"\n[controller]\nperiod_s = 0.002\nreal_time = true\n\
-         [arms.left]\ntrocar_m = [-0.08, 0.12, 1.02]\nservo = {{ backend = \"dummy\" }}\n{}\
-         [pedals]\nbackend = \"dummy\"\n",
-        canopen_line(&format!("interface = \"{interface}\""), NODES)
-    );
-    let config = parse_rig_config(&text, "socketcan.toml").expect("a rig on SocketCAN");
-    let rig = Rig::shipped().expect("the shipped rig");
-    let (mut controller, _handles) =
-        build_rig(&config, &rig, None).expect("built").into_controller().expect("a controller");
+    let (mut controller, rig) = left_arm_on(&format!("interface = \"{interface}\""));
     let track = open_jaw(&controller, &rig, ArmName::Left, 0.3, 0.2, 0.4);
     controller.load_skill(Skill { name: "open the jaw".into(), tracks: vec![track] }).expect("loaded");
     controller.run_to_end(|_| {}).expect("run");
