@@ -19,6 +19,10 @@ pub struct Scratch {
 /// as little as their masses allow; with `compliance_per_m` > 0 each segment is a compliant XPBD
 /// constraint of compliance (over the substep) `rest_m * compliance_per_m`, 1/kg, and gives way
 /// to a pull as a spring would.
+/// `multipliers` (one a segment) carries each segment's multiplier over the passes of a substep
+/// (XPBD's accumulated `λ`, zero at the substep's start): each projection moves them on, so that
+/// passes converge on the substep's implicit step instead of stiffening the compliant lengths
+/// pass by pass.
 /// What a pinned particle (`w` 0) would have been moved by, times its mass (kg m: the pull on
 /// what pins it, times the substep squared), is added to its entry of `pinned_pull` (as `x`).
 /// Returns false, moving nothing, where the system is singular (a denominator vanished, a
@@ -34,6 +38,7 @@ pub fn project_strand(
     w: &[f64],
     rest_m: &[f64],
     compliance_per_m: f64,
+    multipliers: &mut [f64],
     scratch: &mut Scratch,
     pinned_pull: &mut [Vector3<f64>],
 ) -> bool {
@@ -48,8 +53,9 @@ pub fn project_strand(
     // Row k's diagonal and right-hand side, a row with both ends pinned (nothing can move, its
     // multiplier zero) made the identity.
     let row = |k: usize, len: f64| {
-        let diag = w[k] + w[k + 1] + rest_m[k] * compliance_per_m;
-        if diag == 0.0 { (1.0, 0.0) } else { (diag, -(len - rest_m[k])) }
+        let compliance = rest_m[k] * compliance_per_m;
+        let diag = w[k] + w[k + 1] + compliance;
+        if diag == 0.0 { (1.0, 0.0) } else { (diag, -(len - rest_m[k]) - compliance * multipliers[k]) }
     };
     // The row waiting for its successor's direction: its diagonal, right-hand side and the
     // off-diagonal to its predecessor (0 for the first).
@@ -93,8 +99,11 @@ pub fn project_strand(
         push
     };
     // Near singular (a straight strand drawn taut between two pinned particles), the multipliers
-    // are finite but would throw a particle ten segments' lengths or more: refused as singular.
-    let most_m = 10.0 * rest_m.iter().copied().fold(0.0, f64::max);
+    // are finite but would throw a particle ten segments' lengths or more beyond what the
+    // strand's lengths are off by in all (a light particle flung metres by a pull is put back by
+    // that much): refused as singular.
+    let off_m: f64 = (0..n).map(|k| ((x[k + 1] - x[k]).norm() - rest_m[k]).abs()).sum();
+    let most_m = 10.0 * rest_m.iter().copied().fold(0.0, f64::max) + 2.0 * off_m;
     if (0..=n).any(|i| (push(i) * w[i]).norm() > most_m) {
         return false;
     }
@@ -104,6 +113,9 @@ pub fn project_strand(
             pinned_pull[i] += push;
         }
         x[i] += push * w[i];
+    }
+    for (total, step) in multipliers.iter_mut().zip(lambda.iter()) {
+        *total += step;
     }
     true
 }
@@ -147,6 +159,7 @@ mod tests {
                 &w,
                 &rest,
                 0.0,
+                &mut [0.0; 8],
                 &mut Scratch::default(),
                 &mut [Vector3::zeros(); 5]
             ));
@@ -169,6 +182,7 @@ mod tests {
             &[1.0, 1.0],
             &[1.0],
             0.0,
+            &mut [0.0; 8],
             &mut Scratch::default(),
             &mut [Vector3::zeros(); 2]
         ));
@@ -183,6 +197,7 @@ mod tests {
                 &[0.0, 0.0, 1.0, 1.0],
                 &[1.0; 3],
                 0.0,
+                &mut [0.0; 8],
                 &mut scratch,
                 &mut [Vector3::zeros(); 4]
             ));
@@ -207,6 +222,7 @@ mod tests {
             &[0.0, 1.0, 0.0],
             &[1.0, 1.0],
             0.0,
+            &mut [0.0; 8],
             &mut Scratch::default(),
             &mut [Vector3::zeros(); 3],
         );
@@ -221,7 +237,15 @@ mod tests {
     fn the_pull_on_a_pinned_particle_is_the_correction_it_was_spared() {
         let mut x = vec![Vector3::zeros(), Vector3::new(1.5, 0.0, 0.0)];
         let mut pull = [Vector3::zeros(); 2];
-        assert!(project_strand(&mut x, &[0.0, 1.0], &[1.0], 0.0, &mut Scratch::default(), &mut pull));
+        assert!(project_strand(
+            &mut x,
+            &[0.0, 1.0],
+            &[1.0],
+            0.0,
+            &mut [0.0; 2],
+            &mut Scratch::default(),
+            &mut pull
+        ));
         assert_eq!(x[0], Vector3::zeros());
         assert!((x[1].x - 1.0).abs() < 1e-12, "{x:?}");
         assert!((pull[0] - Vector3::new(0.5, 0.0, 0.0)).norm() < 1e-12, "{pull:?}");
@@ -235,8 +259,15 @@ mod tests {
         let mut x = vec![Vector3::zeros(), Vector3::new(1.2, 1e-4, 0.0), Vector3::new(2.4, 0.0, 0.0)];
         let before = x.clone();
         let mut pull = [Vector3::zeros(); 3];
-        let ok =
-            project_strand(&mut x, &[0.0, 1.0, 0.0], &[1.0, 1.0], 0.0, &mut Scratch::default(), &mut pull);
+        let ok = project_strand(
+            &mut x,
+            &[0.0, 1.0, 0.0],
+            &[1.0, 1.0],
+            0.0,
+            &mut [0.0; 2],
+            &mut Scratch::default(),
+            &mut pull,
+        );
         assert!(!ok, "a nearly singular system was projected: {x:?}");
         assert_eq!(x, before, "a refused projection moved the strand");
         assert_eq!(pull, [Vector3::zeros(); 3], "a refused projection summed a pull");
