@@ -24,8 +24,9 @@ use std::ops::Range;
 use nalgebra::Vector3;
 
 /// What the rope lies in: before the rope's own constraints in each substep it puts the particles it
-/// holds where it holds them; after them, it resolves the rope against itself (contacts, reactions)
-/// and steps itself.
+/// holds where it holds them; after them and the rope's contacts with itself, it resolves the rope
+/// against its bodies (contacts, reactions) and steps itself; where that pushed the rope, the
+/// rope's contacts with itself are solved once more.
 pub trait Surroundings {
     /// Before the rope's constraints in a substep of `h_s` seconds: puts each particle a body holds where the body
     /// holds it at the substep's end, and marks it in `held` (as `ropes.x`). The rope's lengths,
@@ -39,6 +40,13 @@ pub trait Surroundings {
     /// slip, and says whether it did (the solve is then done again with them free). None by
     /// default.
     fn slipping(&mut self, _ropes: &Ropes, _held: &mut [bool], _h_s: f64) -> bool {
+        false
+    }
+
+    /// Whether the last [`Self::after`] pushed particles of the rope (out of a body, say): the
+    /// rope's contacts with itself are then solved once more, so that a push leaving two strands
+    /// overlapping does not carry one through the other in the next substep. No by default.
+    fn pushed_the_rope(&self) -> bool {
         false
     }
 
@@ -61,6 +69,10 @@ impl<S: Surroundings> Surroundings for Option<S> {
 
     fn slipping(&mut self, ropes: &Ropes, held: &mut [bool], h_s: f64) -> bool {
         self.as_mut().is_some_and(|s| s.slipping(ropes, held, h_s))
+    }
+
+    fn pushed_the_rope(&self) -> bool {
+        self.as_ref().is_some_and(|s| s.pushed_the_rope())
     }
 
     fn after(&mut self, ropes: &mut Ropes, x_prev: &[Vector3<f64>], h_s: f64) {
@@ -391,6 +403,14 @@ impl Ropes {
             }
             std::mem::swap(&mut self.w, &mut self.w_solve);
             surroundings.after(self, &x_prev, h);
+            // The rope's contacts with itself have the last word: a body's push (the jaws', the
+            // tissue's) that left two strands overlapping would carry one through the other in
+            // the next substep.
+            if surroundings.pushed_the_rope() {
+                std::mem::swap(&mut self.w, &mut self.w_solve);
+                contact::solve_contacts(self, &mut watch, &x_prev, true);
+                std::mem::swap(&mut self.w, &mut self.w_solve);
+            }
             let damp = 1.0 / (1.0 + h * self.params.damping_per_s);
             for ((v, x), x_prev) in self.v.iter_mut().zip(&self.x).zip(&x_prev) {
                 *v = (x - x_prev) / h * damp;

@@ -443,6 +443,10 @@ impl Surroundings for Among<'_> {
         any
     }
 
+    fn pushed_the_rope(&self) -> bool {
+        self.contacts.contacts_last > 0 || self.more.pushed_the_rope()
+    }
+
     fn after(&mut self, ropes: &mut Ropes, x_prev: &[Vector3<f64>], h_s: f64) {
         let (f0, f1) =
             (self.substep as f64 / self.substeps as f64, (self.substep + 1) as f64 / self.substeps as f64);
