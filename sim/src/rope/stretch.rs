@@ -19,7 +19,7 @@ pub struct Scratch {
 /// as little as their masses allow; with `compliance_per_m` > 0 each segment is a compliant XPBD
 /// constraint of compliance (over the substep) `rest_m * compliance_per_m`, 1/kg, and gives way
 /// to a pull as a spring would.
-/// `multipliers` (one a segment) carries each segment's multiplier over the passes of a substep
+/// `multipliers` (one a segment, as `rest_m`) carries each segment's multiplier over the passes of a substep
 /// (XPBD's accumulated `λ`, zero at the substep's start): each projection moves them on, so that
 /// passes converge on the substep's implicit step instead of stiffening the compliant lengths
 /// pass by pass.
@@ -159,7 +159,7 @@ mod tests {
                 &w,
                 &rest,
                 0.0,
-                &mut [0.0; 8],
+                &mut [0.0; 4],
                 &mut Scratch::default(),
                 &mut [Vector3::zeros(); 5]
             ));
@@ -182,7 +182,7 @@ mod tests {
             &[1.0, 1.0],
             &[1.0],
             0.0,
-            &mut [0.0; 8],
+            &mut [0.0; 1],
             &mut Scratch::default(),
             &mut [Vector3::zeros(); 2]
         ));
@@ -197,7 +197,7 @@ mod tests {
                 &[0.0, 0.0, 1.0, 1.0],
                 &[1.0; 3],
                 0.0,
-                &mut [0.0; 8],
+                &mut [0.0; 3],
                 &mut scratch,
                 &mut [Vector3::zeros(); 4]
             ));
@@ -222,7 +222,7 @@ mod tests {
             &[0.0, 1.0, 0.0],
             &[1.0, 1.0],
             0.0,
-            &mut [0.0; 8],
+            &mut [0.0; 2],
             &mut Scratch::default(),
             &mut [Vector3::zeros(); 3],
         );
