@@ -96,6 +96,8 @@ struct Flaps {
     /// Where the rope passes each stitch point [exit, exit deep, entry deep, entry]: a particle
     /// index plus the fraction of the way to the next; and where each point sits at rest.
     guides: [(f64, Vector3<f64>); 4],
+    /// Whether the last substep's contacts or stitch points moved particles of the rope.
+    pushed: bool,
 }
 
 /// +1 for flap A (index 1), -1 for B.
@@ -146,6 +148,7 @@ impl Flaps {
             let target = self.guide_m(k);
             let Some((moves, at)) = thread_through(ropes, self.guides[k].0, &target) else { continue };
             for (p, dx) in moves {
+                self.pushed |= dx != Vector3::zeros();
                 if ropes.w[p] > 0.0 {
                     outward_n[flap] -= side(flap) * dx.y / (ropes.w[p] * h_s * h_s);
                 }
@@ -157,7 +160,12 @@ impl Flaps {
 }
 
 impl Surroundings for Flaps {
+    fn pushed_the_rope(&self) -> bool {
+        self.pushed
+    }
+
     fn after(&mut self, ropes: &mut Ropes, x_prev: &[Vector3<f64>], h_s: f64) {
+        self.pushed = false;
         let r = ropes.params.radius_m;
         let [along, _, thickness] = self.tissue.flap_size_m;
         let mut outward_n = self.thread_through(ropes, h_s);
@@ -191,6 +199,7 @@ impl Surroundings for Flaps {
                 dx -= tangential * (self.friction * depth / slip).min(1.0);
             }
             ropes.x[p] += dx;
+            self.pushed = true;
             // The flap takes the opposite of the push, along its slide.
             let mass_kg = 1.0 / ropes.w[p];
             outward_n[flap] -= s * mass_kg * dx.y / (h_s * h_s);
@@ -355,6 +364,7 @@ pub fn laid_surgeons_knot_in_wound(
         v_m_s: [0.0; 2],
         load_n: [0.0; 2],
         guides: [guides[0], guides[1], guides[2], guides[3]],
+        pushed: false,
     };
     let knot_laid = observe(&ropes, flaps.through_m(SPACING_M), &Isometry3::identity()).0;
     let length_laid_m = length_m(&ropes);
