@@ -399,3 +399,43 @@ pub fn laid_surgeons_knot_in_wound(
         Moment::take(&ropes, flaps.through_m(SPACING_M), &identity, flaps.inside_m(&ropes), flaps.gap_m());
     WoundOutcome::from_moments(knot_laid, length_laid_m, snug, after, ropes.x.len())
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The flaps with their four stitch points where the strand's first particle lies (so threading
+    /// it moves nothing), at rest.
+    fn flaps_at(x0: Vector3<f64>) -> Flaps {
+        Flaps {
+            tissue: knotlab_bench::shipped_scene().tissue,
+            friction: 0.3,
+            u_m: [0.0; 2],
+            v_m_s: [0.0; 2],
+            load_n: [0.0; 2],
+            guides: [(0.0, x0); 4],
+            pushed: false,
+        }
+    }
+
+    /// Guards the flaps' report of their pushes, after which the rope solves its contacts with itself
+    /// once more: a strand lying half a radius into flap A's top is pushed out and reported, the same
+    /// strand lifted clear of the flaps is not.
+    #[test]
+    fn the_flaps_report_a_push_and_only_a_push() {
+        for (depth_radii, pushed) in [(0.5, true), (-5.0, false)] {
+            let mut ropes = Ropes::new(RopeParams::default());
+            let r = ropes.params.radius_m;
+            let z = r * (1.0 - depth_radii);
+            ropes.add_strand_along(&[Vector3::new(-0.005, 0.005, z), Vector3::new(0.005, 0.005, z)], 2.0 * r);
+            let mut flaps = flaps_at(ropes.x[0]);
+            let x_prev = ropes.x.clone();
+            flaps.after(&mut ropes, &x_prev, 1e-3);
+            assert_eq!(flaps.pushed_the_rope(), pushed, "{depth_radii} radii into the flap");
+            // Pushed, every particle but the stitch's first stands on the flap's top.
+            let lowest_m = ropes.x.iter().skip(1).map(|x| x.z).fold(f64::INFINITY, f64::min);
+            let expected_m = if pushed { r } else { z };
+            assert!((lowest_m - expected_m).abs() < 1e-9, "lowest at {lowest_m} m, not {expected_m} m");
+        }
+    }
+}
