@@ -302,8 +302,22 @@ fn a_node_dropping_out_mid_run_faults_the_run_and_every_other_device_holds() {
     assert!(text.contains("node 12 (pitch): heartbeat lost"), "{text}");
     assert!(noticed_s < 0.5, "noticed {noticed_s:.3} s after the drop-out (time-out 0.05 s)");
     assert_eq!(controller.record().status, Status::Faulted);
-    // Nothing more is written: every other drive stays enabled where it stood.
-    let (left_then, right_then) = (left.nodes(), right.nodes());
+    // Nothing more is written: every other drive stays enabled where it stood. Frames sent before the
+    // fault may still be on their way to the emulator's thread, so the drives are read once they have
+    // stood still for 50 ms (within 2 s), then again 200 ms later.
+    let settled = |drives: &CanopenEmulator| {
+        let started = Instant::now();
+        let mut last = drives.nodes();
+        loop {
+            std::thread::sleep(Duration::from_millis(50));
+            let now = drives.nodes();
+            if now == last || started.elapsed() > Duration::from_secs(2) {
+                break now;
+            }
+            last = now;
+        }
+    };
+    let (left_then, right_then) = (settled(&left), settled(&right));
     std::thread::sleep(Duration::from_millis(200));
     assert!(matches!(controller.step(), Err(ControllerError::NotRunning { .. })));
     assert_eq!(left.nodes(), left_then);
