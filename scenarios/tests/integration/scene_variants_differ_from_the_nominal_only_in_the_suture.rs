@@ -23,7 +23,7 @@ fn the_chain_scene_differs_from_the_nominal_one_only_in_the_suture() {
     assert_eq!(nominal.thread.model, ThreadModel::Rope);
     assert_eq!(nominal.thread.friction_on_itself, Some(0.5));
     assert_eq!((nominal.thread.length_m, nominal.stitch.slide_friction_n), (0.2, 0.6));
-    assert_eq!(nominal.thread.rope_substeps, Some(3));
+    assert_eq!(nominal.thread.rope_substeps, Some(6));
     assert_eq!(nominal.thread.rope_spacing_radii, Some(3.0));
     assert_eq!((nominal.solver.solver_iterations, nominal.solver.pgs_iterations_per_substep), (2, 1));
     assert_eq!(chain.thread.model, ThreadModel::Chain);

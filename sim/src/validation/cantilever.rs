@@ -202,7 +202,7 @@ mod tests {
 
     /// Guards the bending model and the clamp's place: the rope's rest deflection under a tip load
     /// of alpha = 1 within 2 % of the elastica's, and a clamp put at the second particle (a
-    /// half-spacing too far out) is off by more than that.
+    /// half-spacing too far out) off by more than 1 % and by more than twice the rope's own error.
     #[test]
     fn the_ropes_tip_deflection_follows_the_elastica() {
         let suture = nominal();
@@ -214,7 +214,11 @@ mod tests {
         // Measured from the second particle, the same rope reads the drop of a longer rod.
         let length = FREE_SEGMENTS as f64 + 0.5;
         let from_second = got.v_over_l * length / FREE_SEGMENTS as f64;
-        assert!((from_second - v).abs() > 0.02 * v, "{from_second:.4}: the clamp's place is not seen");
+        let (off, off_second) = ((got.v_over_l - v).abs(), (from_second - v).abs());
+        assert!(
+            off_second > 0.01 * v && off_second > 2.0 * off,
+            "{from_second:.4}: the clamp's place is not seen"
+        );
     }
 
     /// Guards the uniform load's shares: at beta = 3 the drop is the elastica's within 2 %.

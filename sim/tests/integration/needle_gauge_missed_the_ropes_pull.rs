@@ -70,7 +70,8 @@ fn the_right_reads_the_long_ends_pull_on_the_needle_it_holds() {
 }
 
 /// At the shipped scene's rope resolution the right's gauge reads the long end's pull on its needle too, its
-/// median while taut near the assist's.
+/// median while taut at least most of the assist's and at most what the stitch can add to it: the
+/// flaps' friction and the capstan over their two edges (a quarter turn each at most), not twice it.
 #[test]
 fn at_the_shipped_scenes_resolution_the_right_reads_the_pull_too() {
     // At the shipped scene's coarser rope the assist's grip gives way in a jolt (2.7 N at one step,
@@ -90,8 +91,12 @@ fn at_the_shipped_scenes_resolution_the_right_reads_the_pull_too() {
         "taut for {} steps: the right's median {right_n:.2} N, the assist's {assist_n:.2} N",
         taut.len()
     );
+    let scene =
+        parse_scene(include_str!("../../../scenarios/default.toml"), "default.toml").expect("the scene");
+    let capstan = (scene.thread.friction * std::f64::consts::PI).exp();
+    let most_n = assist_n * capstan + 2.0 * scene.stitch.slide_friction_n + 0.5;
     assert!(
-        right_n > 0.8 * assist_n && right_n < assist_n + 1.5,
-        "the right read {right_n:.2} N to the assist's {assist_n:.2} N"
+        right_n > 0.8 * assist_n && right_n < most_n,
+        "the right read {right_n:.2} N to the assist's {assist_n:.2} N (at most {most_n:.2} N)"
     );
 }
