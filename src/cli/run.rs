@@ -11,6 +11,7 @@ use anyhow::Context;
 use clap::Args;
 use nalgebra::Vector3;
 
+use knotlab_bench::mc::{RunInfo, trial_of_run};
 use knotlab_hw::controller::RunOutcome;
 use knotlab_hw::gate::{PreviewOutcome, may_execute, real_devices};
 use knotlab_hw::rig::Rig;
@@ -44,6 +45,14 @@ pub struct RunArgs {
     /// How the skill is carried to the stitch: fluid, dmp or replay.
     #[arg(long, default_value = "fluid")]
     method: Method,
+    /// Runs trial `--trial` of this Monte Carlo run directory (`knotlab mc --out DIR`) alone: its draw,
+    /// its scene and preset (give `--scene` if the run's scene file is not where run.json names it), the
+    /// skill it played (give the same `--skill`/`--demo`), stopped where its trials stopped.
+    #[arg(long, value_name = "DIR", requires = "trial", conflicts_with_all = ["seed", "stitch_offset", "stitch_rotate", "stitch_tilt", "until"])]
+    from_mc: Option<PathBuf>,
+    /// The trial of `--from-mc` to run.
+    #[arg(long, requires = "from_mc")]
+    trial: Option<u64>,
     /// Moves the stitch (the tissue) by this much, world frame, m: `dx,dy,dz`.
     #[arg(long, value_parser = parse_vector3, allow_hyphen_values = true)]
     stitch_offset: Option<Vector3<f64>>,
@@ -115,13 +124,9 @@ fn execute_on_rig(config: &RigConfig, skill: Skill) -> anyhow::Result<&'static s
     })
 }
 
-pub fn run(args: RunArgs, out: &mut Output) -> anyhow::Result<ExitCode> {
-    if !args.stitch_rotate.is_finite() {
-        anyhow::bail!("--stitch-rotate {}: not a number of degrees", args.stitch_rotate);
-    }
-    // The rig config is read before the trial runs: a bad one is reported at once, not after it.
-    let rig_config = args.rig.as_ref().map(|path| load_rig_config(path)).transpose()?;
-    let learned = args.source.learned()?;
+/// The trial the command line asks for: the scene (shipped or `--scene`) with its stitch moved by
+/// `--stitch-*`, seeded by `--seed`.
+fn moved_setup(args: &RunArgs) -> anyhow::Result<TrialSetup> {
     let scene_name = shipped::name(args.scene.as_deref(), &shipped::SCENE);
     let scene = shipped::scene(args.scene.as_deref(), &shipped::SCENE)?;
     let tilt_deg = scene.tissue.tilt_rad.to_degrees() + args.stitch_tilt;
@@ -133,7 +138,7 @@ pub fn run(args: RunArgs, out: &mut Output) -> anyhow::Result<ExitCode> {
             scene.tissue.tilt_rad.to_degrees()
         );
     }
-    let setup = TrialSetup {
+    Ok(TrialSetup {
         scene,
         scene_name: scene_name.clone(),
         seed: args.seed,
@@ -144,14 +149,50 @@ pub fn run(args: RunArgs, out: &mut Output) -> anyhow::Result<ExitCode> {
         },
         method: args.method,
         offsets: Vec::new(),
+    })
+}
+
+/// Trial `trial` of the Monte Carlo run in `dir`, its scene read from `scene` if given, else from where
+/// its run.json names it (the shipped scene by its name).
+fn mc_trial(
+    dir: &std::path::Path,
+    scene: Option<&std::path::Path>,
+    learned: &knotlab_scenarios::trial::Learned,
+    trial: u64,
+    method: Method,
+) -> anyhow::Result<(TrialSetup, knotlab_bench::mc::Draw, Option<f64>)> {
+    let info = RunInfo::read(dir)?
+        .with_context(|| format!("{}: no such file: not a Monte Carlo run", RunInfo::path(dir).display()))?;
+    let named = PathBuf::from(&info.scene);
+    let path = match scene {
+        Some(path) => Some(path),
+        None if info.scene == shipped::SCENE.path => None,
+        None => Some(named.as_path()),
     };
+    let scene = shipped::scene(path, &shipped::SCENE)?;
+    Ok(trial_of_run(dir, &scene, learned, trial, method)?)
+}
+
+pub fn run(args: RunArgs, out: &mut Output) -> anyhow::Result<ExitCode> {
+    if !args.stitch_rotate.is_finite() {
+        anyhow::bail!("--stitch-rotate {}: not a number of degrees", args.stitch_rotate);
+    }
     if let Some(t) = args.until
         && !(t.is_finite() && t > 0.0)
     {
         anyhow::bail!("--until {t}: must be a positive number of seconds");
     }
-    let options =
-        RecordOptions { cycles_per_sample: 10, stop_after_s: args.until, ..RecordOptions::default() };
+    // The rig config is read before the trial runs: a bad one is reported at once, not after it.
+    let rig_config = args.rig.as_ref().map(|path| load_rig_config(path)).transpose()?;
+    let learned = args.source.learned()?;
+    let (setup, until) = match (&args.from_mc, args.trial) {
+        (Some(dir), Some(trial)) => {
+            let (setup, _, until) = mc_trial(dir, args.scene.as_deref(), &learned, trial, args.method)?;
+            (setup, until)
+        }
+        _ => (moved_setup(&args)?, args.until),
+    };
+    let options = RecordOptions { cycles_per_sample: 10, stop_after_s: until, ..RecordOptions::default() };
     let recording = args.rerun.open("run")?;
     let trial = rerun_log::record_trial(
         recording.as_ref(),

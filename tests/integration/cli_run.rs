@@ -126,3 +126,54 @@ fn ties_at_its_own_stitch(method: &str) -> serde_json::Value {
     assert_eq!(r["preview"]["passed"], true, "{r}");
     r
 }
+
+/// `--from-mc DIR --trial N` runs trial N of a Monte Carlo run alone: its draw, stopped where the run's
+/// trials stopped, with the run's verdict, wound gap and simulated time; a trial, a method or a scene the
+/// run does not hold is refused, naming run.json and what it holds.
+#[test]
+fn a_monte_carlo_trial_runs_again_alone_as_the_run_judged_it() {
+    let dir = std::env::temp_dir().join(format!("knotlab-run-from-mc-{}", std::process::id()));
+    std::fs::remove_dir_all(&dir).ok();
+    let out = dir.to_str().expect("a UTF-8 path");
+    let (code, _, stderr) =
+        knotlab(&["mc", "--trials", "2", "--seed", "5", "--until", "0.4", "--method", "dmp", "--out", out]);
+    assert_eq!(code, 0, "{stderr}");
+    let text = std::fs::read_to_string(dir.join("results.jsonl")).expect("results");
+    let line: serde_json::Value = text
+        .lines()
+        .map(|l| serde_json::from_str::<serde_json::Value>(l).expect("a JSON line"))
+        .find(|l| l["trial"] == 1)
+        .expect("trial 1");
+    let (code, r) = json(&["run", "--from-mc", out, "--trial", "1", "--method", "dmp", "--json"]);
+    assert_eq!(code, 0, "{r}");
+    assert_eq!(r["verdict"], line["verdict"], "{r}\n{line}");
+    assert_eq!(r["wound_gap_m"], line["wound_gap_m"], "{r}\n{line}");
+    assert_eq!(r["sim_seconds"], line["sim_seconds"], "{r}\n{line}");
+    assert_eq!(r["stitch_offset_m"], line["draw"]["stitch_offset_m"], "{r}\n{line}");
+    // What the run does not hold.
+    let run_json = dir.join("run.json").display().to_string();
+    let (code, _, stderr) = knotlab(&["run", "--from-mc", out, "--trial", "2", "--method", "dmp"]);
+    assert_eq!(code, 1);
+    assert!(stderr.contains(&run_json) && stderr.contains("trial 2: the run has trials 0 to 1"), "{stderr}");
+    let (code, _, stderr) = knotlab(&["run", "--from-mc", out, "--trial", "0", "--method", "fluid"]);
+    assert_eq!(code, 1);
+    assert!(stderr.contains("method fluid: the run ran dmp"), "{stderr}");
+    let (code, _, stderr) = knotlab(&[
+        "run",
+        "--from-mc",
+        out,
+        "--trial",
+        "0",
+        "--method",
+        "dmp",
+        "--scene",
+        "scenarios/chain.toml",
+    ]);
+    assert_eq!(code, 1);
+    assert!(stderr.contains("scene_fingerprint"), "{stderr}");
+    // A trial's draw is the run's: a stitch of one's own is refused by the command line.
+    let (code, _, stderr) =
+        knotlab(&["run", "--from-mc", out, "--trial", "0", "--stitch-rotate", "10", "--method", "dmp"]);
+    assert_eq!(code, 2, "{stderr}");
+    std::fs::remove_dir_all(&dir).ok();
+}

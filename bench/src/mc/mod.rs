@@ -9,6 +9,7 @@
 
 pub mod draw;
 pub mod merge;
+pub mod one_trial;
 pub mod run_info;
 pub mod summary;
 
@@ -27,6 +28,7 @@ use serde::{Deserialize, Serialize};
 
 pub use draw::{Draw, draw};
 pub use merge::{MergeOutcome, merge};
+pub use one_trial::trial_of_run;
 pub use run_info::{RunInfo, Shard};
 pub use summary::{MethodSummary, Summary, summarize, wilson_interval};
 
