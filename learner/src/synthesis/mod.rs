@@ -10,6 +10,7 @@
 //! - [`offsets`]: a skill with each primitive moved by an offset of its own.
 //! - [`orientation`]: how keys orient the tip (the jaws' direction, not the roll).
 //! - [`approach`]: the way in from where the instruments are to the skill's first poses.
+//! - [`take`]: which primitives bring open jaws round the thread they then close on.
 
 pub mod approach;
 pub mod dmp;
@@ -20,6 +21,7 @@ pub mod replay;
 pub mod schedule;
 pub mod site;
 pub mod skill;
+pub mod take;
 pub mod track;
 
 pub use approach::{ApproachSettings, StartPose, prepend_approach};
@@ -29,6 +31,7 @@ pub use replay::{ReplaySettings, replay};
 pub use schedule::{Schedule, Slot};
 pub use site::relocation;
 pub use skill::{ObstacleSource, PrimitiveSettings, REACH_MARGIN_M, Reach, Site, Synthesis, synthesize};
+pub use take::{Take, takes};
 
 use nalgebra::Vector3;
 use thiserror::Error;

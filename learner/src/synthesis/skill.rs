@@ -12,8 +12,10 @@
 //!   path, at the same progress along it.
 //!
 //! Between primitives the instrument does what it did in the demonstration (the knowledge base's path
-//! of each instrument, moved to the new stitch), on the [`Schedule`]'s clock; a primitive that starts
-//! elsewhere is reached by a straight minimum-jerk move (at [`PrimitiveSettings::gap_speed_mps`]). The
+//! of each instrument, moved to the new stitch), on the [`Schedule`]'s clock, except that an instrument
+//! that waited before its first primitive (within [`WAITED_M`] and [`WAITED_RAD`]) waits where it is;
+//! a primitive that starts elsewhere is reached by a straight minimum-jerk move (at
+//! [`PrimitiveSettings::gap_speed_mps`]). The
 //! jaws move as the demonstration's did. The tip keeps the demonstrated frame ([`Aim::Frame`]): a
 //! moved path key its own, a 2D path's point the frame the demonstration had as far along its path, a
 //! synchronized point its sample's, a straight line turning from the frame it starts with to its end
@@ -289,6 +291,29 @@ fn transfer(
         let p = world_from_stitch.transform_point(&Vector3::from(key.position_m).into()).coords;
         track.key(t, p, key_aim(world_from_stitch, key));
     }
+}
+
+/// Farthest an instrument's tip may have moved before its first primitive for it to have waited, m.
+pub const WAITED_M: f64 = 0.002;
+/// Most an instrument's tip may have turned before its first primitive for it to have waited, rad.
+pub const WAITED_RAD: f64 = 0.05;
+
+/// Whether the demonstrated instrument stayed where it started (within [`WAITED_M`] and
+/// [`WAITED_RAD`]) until `until_s`.
+fn waited(path: &[PathKey], until_s: f64) -> bool {
+    let Some(first) = path.first() else { return true };
+    let frame = |k: &PathKey| {
+        k.quaternion_xyzw
+            .map(|[x, y, z, w]| UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(w, x, y, z)))
+    };
+    let p0 = Vector3::from(first.position_m);
+    path.iter().take_while(|k| k.time_s < until_s).all(|k| {
+        let turned = match (frame(first), frame(k)) {
+            (Some(a), Some(b)) => a.angle_to(&b),
+            _ => Vector3::from(first.jaw_direction).angle(&Vector3::from(k.jaw_direction)),
+        };
+        (Vector3::from(k.position_m) - p0).norm() <= WAITED_M && turned <= WAITED_RAD
+    })
 }
 
 fn force_keys(
@@ -620,13 +645,20 @@ pub fn synthesize(
             .ok_or_else(|| invalid(p.name(), "no track for its instrument"))?;
         let track = &mut tracks[t];
         let path = &kb.instruments[t].path;
-        transfer(
-            track,
-            path,
-            (cursor[t], slot.demo_s.0),
-            |x| schedule.map_time(slot.instrument, x),
-            &world_from_stitch,
-        );
+        // An instrument that waited in the demonstration until its first primitive waits where it is:
+        // the scene put it there (the assist on the tail's end), and the demonstration's pose moved to
+        // the new stitch is another one at a turned or tilted site (the trocar turns the shaft), where
+        // going would drag what it holds.
+        let waits = cursor[t] == f64::NEG_INFINITY && waited(path, slot.demo_s.0);
+        if !waits {
+            transfer(
+                track,
+                path,
+                (cursor[t], slot.demo_s.0),
+                |x| schedule.map_time(slot.instrument, x),
+                &world_from_stitch,
+            );
+        }
         cursor[t] = cursor[t].max(slot.demo_s.1);
         match p {
             Primitive::Linear(l) => linear_keys(track, l, path, slot.new_s, &world_from_stitch),

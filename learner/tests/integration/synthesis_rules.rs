@@ -18,7 +18,7 @@ use knotlab_learner::primitive::{KnowledgeBase, Primitive, learn};
 use knotlab_learner::synthesis::site::pose_isometry;
 use knotlab_learner::synthesis::{
     Method, PrimitiveSettings, REACH_MARGIN_M, Reach, ReplaySettings, Schedule, Site, StartPose, Synthesis,
-    Trocars, relocation, replay, synthesize,
+    Trocars, relocation, replay, synthesize, takes,
 };
 use knotlab_learner::synthetic::{SyntheticSettings, canonical_demonstration};
 
@@ -360,4 +360,83 @@ fn keys_moved_from_the_demonstration_keep_its_frame_where_the_wrist_is_bent() {
         }
     }
     assert!(checked >= 20, "{checked} keys at the demonstration's samples of {frames} frames");
+}
+
+/// An instrument that waited in the demonstration until its first primitive (the assist holding the
+/// tail's end) waits where it is at a turned site, with the frame it has there, until that primitive,
+/// which starts from there: the demonstration's pose moved to the site is another (the trocar turns the
+/// shaft), and going to it dragged the tail off where the left takes it (on the workspace map's trial 1
+/// it lay 6 mm from the left's closing jaws). An instrument that moved before its first primitive (the
+/// right lifting the needle) moves as before.
+#[test]
+fn an_instrument_that_waited_in_the_demonstration_waits_where_it_is() {
+    let (kb, demo) = learned(34);
+    let here = nominal(&kb);
+    let turn = UnitQuaternion::from_axis_angle(&Vector3::z_axis(), 25f64.to_radians());
+    let there = Isometry3::from_parts(Translation3::from(here.translation.vector), turn * here.rotation);
+    let trocars = trocars(&there);
+    let moved_starts = starts(&kb, &demo, &there);
+    // The assist where this site's trocar puts it: 3 mm off the moved pose and its shaft turned 0.2 rad.
+    let mut site_starts = moved_starts.clone();
+    let assist = site_starts.iter_mut().find(|s| s.arm == ArmName::Assist).expect("an assist");
+    let twist = UnitQuaternion::from_axis_angle(&Vector3::x_axis(), 0.2);
+    assist.world_from_tip = Isometry3::from_parts(
+        Translation3::from(assist.world_from_tip.translation.vector + Vector3::new(0.003, 0.0, 0.0)),
+        twist * assist.world_from_tip.rotation,
+    );
+    let held = assist.world_from_tip;
+    let mut free = |_: &str, _: ArmName, _: &_, region: &knotlab_learner::fluid::GridRegion| {
+        Ok(ObstacleMask::free(region.n))
+    };
+    let made = |starts: &[StartPose], free: &mut knotlab_learner::synthesis::ObstacleSource<'_>| {
+        let site = Site { new_world_from_stitch: there, trocars: &trocars, starts, reach: None };
+        synthesize(&kb, Method::Fluid, &site, &PrimitiveSettings::default(), free).expect("synthesis")
+    };
+    let (plain, moved) = (made(&moved_starts, &mut free), made(&site_starts, &mut free));
+    let a1 = moved.schedule.slot("A1").expect("A1").new_s.0;
+    let assist = track(&moved.skill, ArmName::Assist);
+    let before: Vec<_> = assist.poses.iter().filter(|k| k.time_s <= a1).collect();
+    assert!(!before.is_empty());
+    for key in before {
+        let at = (Vector3::from(key.world_position_m) - held.translation.vector).norm();
+        assert!(at < 1e-9, "the assist at {:.2} s is {at:.2e} m from where it holds the tail", key.time_s);
+        let Orientation::Frame { quaternion_xyzw: [x, y, z, w] } = key.orientation else {
+            panic!("a frame: {:?}", key.orientation)
+        };
+        let q = UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(w, x, y, z));
+        assert!(
+            q.angle_to(&held.rotation) < 1e-9,
+            "turned {} rad at {:.2} s",
+            q.angle_to(&held.rotation),
+            key.time_s
+        );
+    }
+    // After A1 starts it goes where A1 ends, as the demonstration moved to the site has it.
+    let a1_end = moved.schedule.slot("A1").expect("A1").new_s.1;
+    let end_there = position(track(&plain.skill, ArmName::Assist), a1_end);
+    assert!((position(assist, a1_end) - end_there).norm() < 1e-9);
+    // The right moved before R2 in the demonstration: it moves as it did.
+    assert_eq!(track(&plain.skill, ArmName::Right), track(&moved.skill, ArmName::Right));
+    let r2 = plain.schedule.slot("R2").expect("R2").new_s.0;
+    let right = track(&plain.skill, ArmName::Right);
+    assert!((position(right, r2) - position(right, 0.0)).norm() > 0.01, "the right lifts the needle");
+}
+
+/// The takes of the knot-tying task are the left's L4 alone (down onto the tail, after which its jaws
+/// hold it; L5 goes on with the tail held): L1 ends with jaws that then close on nothing, and the
+/// assist and the right hold what they hold from the start.
+#[test]
+fn the_only_take_is_the_left_going_down_onto_the_tail() {
+    let (kb, demo) = learned(35);
+    let found = takes(&kb, &demo);
+    assert_eq!(found.len(), 1, "{found:?}");
+    let take = &found[0];
+    assert_eq!(
+        (take.instrument, take.primitive.as_str(), take.next.as_deref()),
+        (ArmName::Left, "L4", Some("L5"))
+    );
+    let Some(Primitive::Linear(l4)) = kb.primitive("L4") else { panic!("L4 is linear") };
+    let centre = take.stitch_jaw_centre_m(0.005);
+    let tip = Vector3::from(l4.end_pose.position_m);
+    assert!(((tip - centre).norm() - 0.005).abs() < 1e-12);
 }

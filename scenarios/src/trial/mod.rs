@@ -5,6 +5,7 @@
 pub mod obstacles;
 pub mod report;
 pub mod stitch;
+pub mod take;
 
 pub use stitch::StitchMove;
 
@@ -265,6 +266,12 @@ pub fn synthesize_for(
             made.skill
         }
     };
+    // Each take aimed at the thread where it lies in this scene (every method: the take's aim is what
+    // the instruments see, not how the method carries the skill).
+    let aimed = take::take_offsets(world, learned, &new_world_from_stitch)?;
+    if !aimed.is_empty() {
+        offset_primitives(&mut skill, &spans, &aimed, &new_world_from_stitch.rotation)?;
+    }
     let approach_s = prepend_approach(&mut skill, &starts, &ApproachSettings::default());
     for entry in &mut fluid {
         entry.2 += approach_s;

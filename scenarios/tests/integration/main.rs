@@ -12,6 +12,8 @@
 //! - The step-wise episode of the Gymnasium environment: [`episode_steps`].
 //! - The stress sequence, the same twice: [`scene_determinism`]; the suture's stretch watch against it:
 //!   [`suture_stretch_watch`].
+//! - A trial's preview verdicts: [`trial_preview_verdicts`]; its take aimed where the thread lies:
+//!   [`trial_take_aims_at_the_thread`].
 //! - [`common`]: the expert runs the second-throw tests share.
 
 mod common;
@@ -34,3 +36,4 @@ mod scene_variants_differ_from_the_nominal_only_in_the_suture;
 mod short_suture_scene_is_the_chain_one_with_less_thread;
 mod suture_stretch_watch;
 mod trial_preview_verdicts;
+mod trial_take_aims_at_the_thread;
