@@ -71,7 +71,7 @@ pub fn long_end_segments_on(world: &SimWorld, link_prefix: &str) -> Option<Vec<u
 /// turns should be round the left's jaws only. Turns about each jaw axis, right-handed about the
 /// jaws' direction; a loop round both instruments counts about both (with opposite signs when the
 /// jaws point towards each other).
-#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct CoilsAtTake {
     /// When the left closed, s from the start of the recording.
     pub time_s: f64,

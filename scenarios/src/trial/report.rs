@@ -70,6 +70,9 @@ pub struct TrialReport {
     pub wall_seconds: f64,
     /// The scene's grasp events, in order.
     pub events: Vec<String>,
+    /// How the long end lay round the instruments' jaws when the left first closed on the thread (its
+    /// take of the tail), if it did: the turns the draw is to pull the tail through.
+    pub coils_at_take: Option<crate::expert::diagnose::CoilsAtTake>,
     /// The preview gate's outcome.
     pub preview: Preview,
     /// Where the skill ran.
@@ -153,6 +156,7 @@ impl TrialReport {
             sim_seconds: trial.run.simulated_s,
             wall_seconds: trial.run.wall_s,
             events: trial.run.events.clone(),
+            coils_at_take: trial.run.coils_at_take.clone(),
             preview,
             execution,
         }
