@@ -113,6 +113,9 @@ fn the_skill_learned_from_the_canonical_demonstration_ties_the_knot_at_its_own_s
     let r = ties_at_its_own_stitch("fluid");
     let events = r["events"].as_array().unwrap();
     assert!(!events.iter().any(|e| e.as_str().unwrap().starts_with("Slipped")), "no grip torn: {r}");
+    // The left took the tail with the double throw's two turns of the long end round its jaws.
+    let turns = r["coils_at_take"]["left_turns"].as_f64().expect("the coils at the take");
+    assert!((1.5..2.5).contains(&turns.abs()), "{turns} turns round the left's jaws: {r}");
 }
 
 /// Seed 0 of `method` at the nominal stitch: the evaluator accepts the knot (a surgeon's knot, the
