@@ -1,6 +1,7 @@
 //! One trial end to end: the scene with its stitch moved, a skill synthesized there from what was
-//! learned (by the method asked for), run by the controller on the simulated rig through the device
-//! traits, and the knot it leaves evaluated.
+//! learned (by the method asked for, its take of the thread aimed where the thread lies: [`take`]),
+//! run by the controller on the simulated rig through the device traits, and the knot it leaves
+//! evaluated.
 
 pub mod obstacles;
 pub mod report;
