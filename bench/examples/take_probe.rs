@@ -23,19 +23,17 @@ use knotlab_scenarios::trial::{Learned, run_trial};
 use knotlab_sim::grasp::{JAW_CENTRE_OFFSET_M, jaw_line_m};
 use nalgebra::{Point3, Vector3};
 
+#[path = "common/args.rs"]
+mod args;
+
+const NAME: &str = "take_probe";
+
 fn fail(message: String) -> ! {
-    eprintln!("take_probe: {message}");
-    std::process::exit(2)
+    args::fail(NAME, message)
 }
 
 fn arg<T: std::str::FromStr>(args: &[String], k: usize, what: &str, default: Option<T>) -> T {
-    match (args.get(k), default) {
-        (Some(text), _) => {
-            text.parse().unwrap_or_else(|_| fail(format!("argument {k} ({what}): {text:?} is not valid")))
-        }
-        (None, Some(d)) => d,
-        (None, None) => fail(format!("argument {k} ({what}) is missing; see the example's comment")),
-    }
+    args::arg(NAME, args, k, what, default)
 }
 
 fn main() {

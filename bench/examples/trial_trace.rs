@@ -24,19 +24,17 @@ use knotlab_scenarios::expert::RecordOptions;
 use knotlab_scenarios::shipped;
 use knotlab_scenarios::trial::{Learned, run_trial};
 
+#[path = "common/args.rs"]
+mod args;
+
+const NAME: &str = "trial_trace";
+
 fn fail(message: String) -> ! {
-    eprintln!("trial_trace: {message}");
-    std::process::exit(2)
+    args::fail(NAME, message)
 }
 
 fn arg<T: std::str::FromStr>(args: &[String], k: usize, what: &str, default: Option<T>) -> T {
-    match (args.get(k), default) {
-        (Some(text), _) => {
-            text.parse().unwrap_or_else(|_| fail(format!("argument {k} ({what}): {text:?} is not valid")))
-        }
-        (None, Some(d)) => d,
-        (None, None) => fail(format!("argument {k} ({what}) is missing; see the example's comment")),
-    }
+    args::arg(NAME, args, k, what, default)
 }
 
 fn main() {
