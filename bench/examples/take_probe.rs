@@ -15,25 +15,23 @@
 
 use knotlab_bench::mc::drawn_trial;
 use knotlab_hw::rig::ArmName;
-use knotlab_learner::primitive::learn;
 use knotlab_learner::synthesis::Method;
 use knotlab_scenarios::expert::RecordOptions;
-use knotlab_scenarios::shipped;
-use knotlab_scenarios::trial::{Learned, run_trial};
+use knotlab_scenarios::trial::run_trial;
 use knotlab_sim::grasp::{JAW_CENTRE_OFFSET_M, jaw_line_m};
 use nalgebra::{Point3, Vector3};
 
-#[path = "common/args.rs"]
-mod args;
+#[path = "common/shared.rs"]
+mod shared;
 
 const NAME: &str = "take_probe";
 
 fn fail(message: String) -> ! {
-    args::fail(NAME, message)
+    shared::fail(NAME, message)
 }
 
 fn arg<T: std::str::FromStr>(args: &[String], k: usize, what: &str, default: Option<T>) -> T {
-    args::arg(NAME, args, k, what, default)
+    shared::arg(NAME, args, k, what, default)
 }
 
 fn main() {
@@ -43,14 +41,7 @@ fn main() {
     let to_s: f64 = arg(&args, 3, "TO_S", Some(16.5));
     let preset: String = arg(&args, 4, "PRESET", Some("workspace".to_owned()));
     let seed: u64 = arg(&args, 5, "SEED", Some(1));
-    let demonstration = shipped::demonstration(None).unwrap_or_else(|e| fail(e.to_string()));
-    let task = shipped::pattern(None).unwrap_or_else(|e| fail(e.to_string()));
-    let knowledge = learn(&demonstration, &task).unwrap_or_else(|e| fail(e.to_string()));
-    let learned = Learned { knowledge, demonstration };
-    let mut scene = shipped::scene(None, &shipped::SCENE).unwrap_or_else(|e| fail(e.to_string()));
-    if preset != "-" {
-        scene = scene.with_preset(&preset).unwrap_or_else(|e| fail(format!("preset {preset}: {e}")));
-    }
+    let (learned, scene) = shared::shipped_trial_inputs(NAME, &preset);
     let (setup, _) = drawn_trial(&scene, "default", seed, trial, Method::Fluid);
     let mut observer = |record: &knotlab_hw::controller::CycleRecord,
                         world: &knotlab_sim::world::SimWorld| {
