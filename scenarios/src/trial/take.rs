@@ -16,8 +16,9 @@ use knotlab_sim::world::SimWorld;
 use super::Learned;
 
 /// How long the copy of the scene settles before the thread is read, s: the tail laid at the start
-/// with a loop of slack has sagged onto its rest by 1 s (on the workspace map's trials 1 and 11 it
-/// moves less than 0.3 mm from 1 s to 15 s, when the left goes down onto it).
+/// with a loop of slack has sagged onto its rest by 1 s (take_probe, particle 150 from 1 s to 15 s, when
+/// the left goes down onto it: 0.15 mm at the workspace map's trial 1 with the assist waiting, 1 mm at
+/// its trial 11, within the jaws' 1.6 mm reach).
 pub const SETTLE_S: f64 = 1.5;
 
 /// Farthest the settled thread may lie from where the demonstration's jaws closed for the take to be
