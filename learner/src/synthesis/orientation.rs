@@ -1,10 +1,11 @@
 //! How a synthesized key orients the tip. A key that knows the demonstrated frame ([`Aim::Frame`])
-//! commands it whole where the wrist is bent within its reach ([`recorded_orientation`]): the roll of
-//! jaws with thread wound round them winds or unwinds it. Elsewhere only the jaws' direction is
-//! commanded, never the roll about it: near the straight-wrist singularity a tenth of a degree of
-//! tremor asks for a half turn of the roll joint, and the arm lags centimetres behind. A nearly
-//! straight wrist is commanded straight, and one bent further than the wrist can bend (a skill turned
-//! with a moved stitch can ask for that) is bent as far as it can.
+//! commands it whole ([`recorded_orientation`]): the roll of jaws with thread wound round them winds
+//! or unwinds it. Bent further than the wrist can bend (a skill turned with a moved stitch can ask for
+//! that), the frame is turned back to the wrist's reach, so that a path crossing the reach goes on
+//! without a jump. A key that knows only the jaws' direction commands that, never the roll about it,
+//! bent as far as the wrist can. Near the straight-wrist singularity a tenth of a degree of tremor
+//! asks for a half turn of the roll joint, and the arm lags centimetres behind: a nearly straight
+//! wrist is commanded straight.
 
 use nalgebra::{UnitQuaternion, Vector3};
 
@@ -81,8 +82,9 @@ pub fn jaw_orientation(
 }
 
 /// The orientation of a key with a demonstrated frame: the tip frame `world_from_tip` whole where the
-/// wrist is bent between straight ([`STRAIGHT_WRIST_RAD`]) and its reach ([`MAX_WRIST_BEND_RAD`]),
-/// otherwise as [`jaw_orientation`] has it. Played back by their direction only, the right's jaws,
+/// wrist is bent between straight ([`STRAIGHT_WRIST_RAD`]) and its reach ([`MAX_WRIST_BEND_RAD`]);
+/// bent further, the frame turned back towards the shaft to the reach (its roll about the jaws kept);
+/// nearly straight, along the shaft. Played back by their direction only, the right's jaws,
 /// which the long end's turns go round, roll otherwise than recorded and the needle is torn out of
 /// them (15.7 N) as the left comes down onto the tail (the canonical demonstration replayed at its own
 /// stitch; the fluid and DMP skills the same, 17.4 and 26.5 N).
@@ -92,10 +94,28 @@ pub fn recorded_orientation(
     trocar_m: &Vector3<f64>,
 ) -> Orientation {
     let jaw = world_from_tip * Vector3::z();
+    let frame = |q: &UnitQuaternion<f64>| {
+        let q = q.quaternion();
+        Orientation::Frame { quaternion_xyzw: [q.i, q.j, q.k, q.w] }
+    };
     match (tip_m - trocar_m).try_normalize(1e-9) {
         Some(shaft) if (STRAIGHT_WRIST_RAD..=MAX_WRIST_BEND_RAD).contains(&jaw.angle(&shaft)) => {
-            let q = world_from_tip.quaternion();
-            Orientation::Frame { quaternion_xyzw: [q.i, q.j, q.k, q.w] }
+            frame(world_from_tip)
+        }
+        Some(shaft) if jaw.angle(&shaft) > MAX_WRIST_BEND_RAD => {
+            // Turned back towards the shaft, roll and all, about the axis across both: at the reach
+            // the frame is the one asked for, so a path that crosses it is commanded without a jump
+            // (as a jaw direction, the whole bend in the yaw, the pitch would jump to zero).
+            match jaw.cross(&shaft).try_normalize(1e-9) {
+                Some(across) => {
+                    let back = UnitQuaternion::from_axis_angle(
+                        &nalgebra::Unit::new_unchecked(across),
+                        jaw.angle(&shaft) - MAX_WRIST_BEND_RAD,
+                    );
+                    frame(&(back * world_from_tip))
+                }
+                None => jaw_orientation(&jaw, tip_m, trocar_m),
+            }
         }
         _ => jaw_orientation(&jaw, tip_m, trocar_m),
     }
@@ -149,11 +169,48 @@ mod tests {
         assert!(q.angle_to(&bent) < 1e-12, "{q:?} against {bent:?}");
         // Nearly straight: along the shaft, the roll left to the solver.
         assert_eq!(recorded_orientation(&frame_turned(0.01), &tip, &trocar), Orientation::AlongShaft);
-        // Bent past its reach: as a jaw direction, bent as far as it can.
+        // Bent past its reach: the frame turned back to the reach, its roll about the jaws kept, in
+        // the plane of the shaft and the jaws.
         let over = frame_turned(1.5);
-        assert_eq!(
-            recorded_orientation(&over, &tip, &trocar),
-            jaw_orientation(&(over * Vector3::z()), &tip, &trocar)
-        );
+        let Orientation::Frame { quaternion_xyzw: [x, y, z, w] } = recorded_orientation(&over, &tip, &trocar)
+        else {
+            panic!("a wrist bent past its reach keeps a frame");
+        };
+        let q = UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(w, x, y, z));
+        assert!(q.angle_to(&frame_turned(MAX_WRIST_BEND_RAD)) < 1e-12, "{q:?}");
+    }
+
+    /// A recorded path whose wrist bend crosses the reach is commanded without a jump: just past the
+    /// reach the commanded frame is as far from the asked one as the asked one is past the reach (as
+    /// a jaw direction, the whole bend put in the yaw, the pitch jumped 37 degrees at a turned stitch
+    /// and the left's tip swung 14 mm off its path, throwing the long end's turns off its jaws).
+    #[test]
+    fn a_frame_crossing_the_wrists_reach_is_commanded_without_a_jump() {
+        let trocar = Vector3::new(0.0, 0.0, 1.0);
+        let tip = Vector3::new(0.0, 0.0, 0.9);
+        // Jaws bent about an oblique axis and rolled: the frame's yaw axis is not across the bend.
+        let frame = |bend_rad: f64| {
+            UnitQuaternion::from_axis_angle(&Vector3::y_axis(), std::f64::consts::PI)
+                * UnitQuaternion::from_axis_angle(
+                    &nalgebra::Unit::new_normalize(Vector3::new(1.0, 1.0, 0.0)),
+                    bend_rad,
+                )
+                * UnitQuaternion::from_axis_angle(&Vector3::z_axis(), 0.9)
+        };
+        let commanded = |bend_rad: f64| match recorded_orientation(&frame(bend_rad), &tip, &trocar) {
+            Orientation::Frame { quaternion_xyzw: [x, y, z, w] } => {
+                UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(w, x, y, z))
+            }
+            other => panic!("a bent wrist keeps a frame: {other:?}"),
+        };
+        for past in [1e-6, 1e-3, 0.05, 0.3] {
+            let asked = frame(MAX_WRIST_BEND_RAD + past);
+            let got = commanded(MAX_WRIST_BEND_RAD + past);
+            assert!((got.angle_to(&asked) - past).abs() < 1e-9, "{past}: {}", got.angle_to(&asked));
+            let shaft = (tip - trocar).normalize();
+            assert!(((got * Vector3::z()).angle(&shaft) - MAX_WRIST_BEND_RAD).abs() < 1e-9);
+        }
+        let at = commanded(MAX_WRIST_BEND_RAD - 1e-9);
+        assert!(at.angle_to(&commanded(MAX_WRIST_BEND_RAD + 1e-9)) < 1e-8);
     }
 }

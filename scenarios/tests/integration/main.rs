@@ -13,7 +13,8 @@
 //! - The stress sequence, the same twice: [`scene_determinism`]; the suture's stretch watch against it:
 //!   [`suture_stretch_watch`].
 //! - A trial's preview verdicts: [`trial_preview_verdicts`]; its take aimed where the thread lies:
-//!   [`trial_take_aims_at_the_thread`].
+//!   [`trial_take_aims_at_the_thread`]; the left's wrist past its reach at a turned site:
+//!   [`trial_wrist_follows_its_reach`].
 //! - [`common`]: the expert runs the second-throw tests share.
 
 mod common;
@@ -37,3 +38,4 @@ mod short_suture_scene_is_the_chain_one_with_less_thread;
 mod suture_stretch_watch;
 mod trial_preview_verdicts;
 mod trial_take_aims_at_the_thread;
+mod trial_wrist_follows_its_reach;
