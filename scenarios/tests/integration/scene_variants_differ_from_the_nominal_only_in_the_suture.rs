@@ -3,19 +3,20 @@
 //!
 //! `scenarios/chain.toml` is the nominal scene with the suture as Rapier's capsule chain: one
 //! friction for all (0.15), 0.25 m long, held in the tissue by 0.05 N a flap, no rope substeps or
-//! spacing (the chain has neither), Rapier's solver at the 8 substeps of 4 sweeps its joints need
+//! spacing, inertial mass or constraint passes (the chain has none of them), Rapier's solver at the 8 substeps of 4 sweeps its joints need
 //! (the rope leaves Rapier only the needle and the flaps: 2 of 1), nothing else changed, so that the
 //! chain's tests run in the nominal operating scene.
 //!
 //! `scenarios/polypropylene-3-0.toml` is the nominal scene with a measured 3-0 polypropylene suture:
-//! its thread's size, stiffness and weight, the rope's substeps, inertial mass and bending solve, and
-//! the randomization's bending stiffness.
+//! its thread's size, stiffness and weight, the rope's substeps, inertial mass, constraint passes and
+//! bending solve (as its own table in docs/validation.md was measured), and the randomization's
+//! bending stiffness.
 
 use knotlab_sim::scene::parse_scene;
 use knotlab_sim::thread::ThreadModel;
 
 /// `chain.toml` differs from `default.toml` only in its suture: the thread model, friction and length,
-/// rope and solver passes, and stitch slide friction.
+/// the rope's keys and solver passes, and stitch slide friction.
 #[test]
 fn the_chain_scene_differs_from_the_nominal_one_only_in_the_suture() {
     let nominal = parse_scene(include_str!("../../default.toml"), "default.toml").expect("the shipped scene");
@@ -25,6 +26,10 @@ fn the_chain_scene_differs_from_the_nominal_one_only_in_the_suture() {
     assert_eq!((nominal.thread.length_m, nominal.stitch.slide_friction_n), (0.2, 0.6));
     assert_eq!(nominal.thread.rope_substeps, Some(6));
     assert_eq!(nominal.thread.rope_spacing_radii, Some(3.0));
+    assert_eq!(
+        (nominal.thread.rope_inertial_mass_kg_per_m, nominal.thread.rope_constraint_passes),
+        (Some(0.15), Some(2))
+    );
     assert_eq!((nominal.solver.solver_iterations, nominal.solver.pgs_iterations_per_substep), (2, 1));
     assert_eq!(chain.thread.model, ThreadModel::Chain);
     assert_eq!(chain.thread.friction_on_itself, None);
@@ -42,6 +47,8 @@ fn the_chain_scene_differs_from_the_nominal_one_only_in_the_suture() {
     chain.thread.length_m = nominal.thread.length_m;
     chain.thread.rope_substeps = nominal.thread.rope_substeps;
     chain.thread.rope_spacing_radii = nominal.thread.rope_spacing_radii;
+    chain.thread.rope_inertial_mass_kg_per_m = nominal.thread.rope_inertial_mass_kg_per_m;
+    chain.thread.rope_constraint_passes = nominal.thread.rope_constraint_passes;
     chain.thread.axial_stiffness_n = nominal.thread.axial_stiffness_n;
     chain.solver.solver_iterations = nominal.solver.solver_iterations;
     chain.solver.pgs_iterations_per_substep = nominal.solver.pgs_iterations_per_substep;
@@ -60,7 +67,10 @@ fn the_polypropylene_scene_differs_from_the_nominal_one_only_in_the_suture() {
     let ei = pp.thread.bend_stiffness_n_m_per_rad * pp.thread.segment_length_m();
     assert!((ei - 5.0e-7).abs() < 1e-15, "EI {ei:e} N m²");
     assert_eq!((pp.thread.rope_substeps, pp.thread.rope_direct_bending), (Some(12), true));
-    assert_eq!(pp.thread.rope_inertial_mass_kg_per_m, Some(0.67));
+    assert_eq!(
+        (pp.thread.rope_inertial_mass_kg_per_m, pp.thread.rope_constraint_passes),
+        (Some(0.67), Some(1))
+    );
     assert_eq!(pp.randomization.thread_bend_stiffness, [1.25e-4, 3.0e-4]);
     pp.thread.radius_m = nominal.thread.radius_m;
     pp.thread.mass_kg = nominal.thread.mass_kg;
@@ -68,6 +78,7 @@ fn the_polypropylene_scene_differs_from_the_nominal_one_only_in_the_suture() {
     pp.thread.rope_substeps = nominal.thread.rope_substeps;
     pp.thread.rope_direct_bending = nominal.thread.rope_direct_bending;
     pp.thread.rope_inertial_mass_kg_per_m = nominal.thread.rope_inertial_mass_kg_per_m;
+    pp.thread.rope_constraint_passes = nominal.thread.rope_constraint_passes;
     pp.randomization.thread_bend_stiffness = nominal.randomization.thread_bend_stiffness;
     pp.description = nominal.description.clone();
     assert_eq!(pp, nominal, "every other setting as in default.toml");

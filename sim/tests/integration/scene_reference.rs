@@ -35,14 +35,10 @@ const CHAIN: &str = include_str!("../../../scenarios/chain.toml");
 /// Tables whose keys are names the file chooses (`[presets.endopar]`): each reads as `NAME`.
 const NAMED_TABLES: [&str; 1] = ["presets"];
 
-/// The shipped rope scene with every key it leaves out set: the rope's optional keys, a random obstacle,
+/// The shipped rope scene with every key it leaves out set: the rope's optional key, a random obstacle,
 /// a preset setting every bound, a fixed obstacle. (The chain's keys come from `scenarios/chain.toml`.)
 fn every_key_scene() -> String {
-    let text = with_lines_after(
-        DEFAULT,
-        "rope_spacing_radii = ",
-        "rope_inertial_mass_kg_per_m = 0.67\nrope_direct_bending = true\nrope_constraint_passes = 2",
-    );
+    let text = with_lines_after(DEFAULT, "rope_spacing_radii = ", "rope_direct_bending = true");
     format!(
         "{text}
 [[randomization.obstacle]]
