@@ -167,7 +167,7 @@ mod tests {
         let slowed = |s: &SutureUnderTest| checks(s)[1].clone();
         let check = slowed(&suture);
         assert!((check.measured - 1.73).abs() < 0.01 && check.passed == Some(true), "{check:?}");
-        suture.params.mass_per_m_kg = crate::rope::RopeParams::default().mass_per_m_kg;
+        suture.params.mass_per_m_kg = RopeParams::default().mass_per_m_kg;
         let check = slowed(&suture);
         assert!((check.measured - 3.66).abs() < 0.01 && check.passed == Some(false), "{check:?}");
         suture.params.mass_per_m_kg = suture.weight_per_m_n / G_MPS2;
