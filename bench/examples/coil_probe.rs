@@ -9,7 +9,10 @@
 //! the shipped scene (PRESET `-` for none; defaults: from 3 s to 16.5 s, `workspace`, seed 1). Every
 //! EVERY_MS (250) ms of the skill it prints the long end's turns round the left's and the right's jaws, the
 //! left's jaws' direction and how far it stands from the skill's target for them (degrees), and the
-//! right's tip relative to the left's, in the stitch's frame (x along the wound, y across it, z up).
+//! right's tip relative to the left's, in the stitch's frame (x along the wound, y across it, z up),
+//! and each arm's tracking lag (its tip against the skill's target for it, mm). With
+//! `COIL_PROBE_JOINTS` set in the environment it also prints the left's measured and commanded joints
+//! (degrees) and whether the controller held a joint to its speed.
 
 use knotlab_bench::mc::drawn_trial;
 use knotlab_hw::kinematics::TipOrientation;
