@@ -2,21 +2,18 @@
 //! through its master (1:3), presses the skill pedal: the skill is instantiated at the stitch, previewed
 //! and executed while the master is ignored; the emergency pedal then stops every arm.
 
-use std::path::Path;
-
 use knotlab_hw::controller::{Status, TeleopSettings};
 use knotlab_hw::rig::{ArmName, Rig};
 use knotlab_hw::rig_config::parse_rig_config;
 use knotlab_learner::demonstration::{load_demonstration, write_demonstration};
-use knotlab_learner::pattern::load_pattern;
-use knotlab_learner::primitive::learn;
 use knotlab_learner::synthesis::Method;
 use knotlab_scenarios::expert::record::SIM_RIG_TOML;
 use knotlab_scenarios::session::{Action, Script, run_session};
-use knotlab_scenarios::trial::Learned;
 use knotlab_sim::scene::parse_scene;
 use knotlab_sim::world::SimWorld;
 use nalgebra::Vector3;
+
+use super::common;
 
 fn tip(report: &knotlab_scenarios::session::SessionReport, arm: ArmName, time_s: f64) -> Vector3<f64> {
     report
@@ -32,12 +29,7 @@ fn tip(report: &knotlab_scenarios::session::SessionReport, arm: ArmName, time_s:
 /// while it runs, the emergency stop halts every arm, and the teleoperated recording reads back whole.
 #[test]
 fn teleoperate_then_the_skill_pedal_then_the_emergency_stop() {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
-    let demonstration =
-        load_demonstration(&root.join("demos/instrument-tie")).expect("the canonical demonstration");
-    let pattern = load_pattern(&root.join("patterns/knot_tying.toml")).expect("the shipped pattern");
-    let knowledge = learn(&demonstration, &pattern).expect("learned");
-    let learned = Learned { knowledge, demonstration };
+    let learned = common::shipped_learned();
     let scene = parse_scene(include_str!("../../chain.toml"), "chain.toml").expect("the chain scene");
     let rig = Rig::shipped().expect("the shipped rig");
     let config = parse_rig_config(SIM_RIG_TOML, "sim.toml").expect("the sim rig");

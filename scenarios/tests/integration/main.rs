@@ -15,7 +15,8 @@
 //! - A trial's preview verdicts: [`trial_preview_verdicts`]; its take aimed where the thread lies:
 //!   [`trial_take_aims_at_the_thread`]; the left's wrist past its reach at a turned site:
 //!   [`trial_wrist_follows_its_reach`].
-//! - [`common`]: the expert runs the second-throw tests share.
+//! - [`common`]: the expert runs the second-throw tests share, and the skill learned from the shipped
+//!   demonstration.
 
 mod common;
 

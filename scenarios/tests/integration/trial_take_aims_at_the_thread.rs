@@ -1,18 +1,15 @@
 //! The take aimed where the thread lies: at a turned and tilted site the left's jaws close on the tail.
 
-use std::path::Path;
-
 use knotlab_hw::rig::Rig;
-use knotlab_learner::demonstration::load_demonstration;
-use knotlab_learner::pattern::load_pattern;
-use knotlab_learner::primitive::learn;
 use knotlab_learner::synthesis::Method;
 use knotlab_scenarios::expert::RecordOptions;
 use knotlab_scenarios::trial::take::take_offsets;
-use knotlab_scenarios::trial::{Learned, StitchMove, TrialSetup, run_trial};
+use knotlab_scenarios::trial::{StitchMove, TrialSetup, run_trial};
 use knotlab_sim::scene::parse_scene;
 use knotlab_sim::world::SimWorld;
 use nalgebra::Vector3;
+
+use super::common;
 
 /// Guards the take at a moved site: the stitch shifted 2-3 cm, turned -24 degrees and tilted 13.9
 /// degrees (the site of trial 1 of `knotlab mc --preset workspace --seed 1`), where the left's jaws
@@ -21,12 +18,7 @@ use nalgebra::Vector3;
 /// than the jaws' 1.6 mm reach), the left takes the tail near its end.
 #[test]
 fn at_a_turned_and_tilted_site_the_left_takes_the_tail_where_it_lies() {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
-    let demonstration =
-        load_demonstration(&root.join("demos/instrument-tie")).expect("the shipped demonstration");
-    let pattern = load_pattern(&root.join("patterns/knot_tying.toml")).expect("the shipped pattern");
-    let knowledge = learn(&demonstration, &pattern).expect("learned");
-    let learned = Learned { knowledge, demonstration };
+    let learned = common::shipped_learned();
     let scene = parse_scene(include_str!("../../default.toml"), "default.toml").expect("the nominal scene");
     let stitch = StitchMove {
         offset_m: Vector3::new(0.0211, -0.0269, 0.0012),

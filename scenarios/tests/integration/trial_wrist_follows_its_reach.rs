@@ -1,21 +1,18 @@
 //! The left's wrist at a turned site: its jaws' demonstrated frame, bent past the wrist's reach as
 //! it turns down towards the tail, is commanded without a jump.
 
-use std::path::Path;
-
 use knotlab_hw::controller::ArmSetup;
 use knotlab_hw::kinematics::{ArmJoints, Tool};
 use knotlab_hw::rig::{ArmName, Rig};
 use knotlab_hw::skill::Orientation;
 use knotlab_hw::skill::preview::kinematic_trajectory;
-use knotlab_learner::demonstration::load_demonstration;
-use knotlab_learner::pattern::load_pattern;
-use knotlab_learner::primitive::learn;
 use knotlab_learner::synthesis::Method;
-use knotlab_scenarios::trial::{Learned, StitchMove, synthesize_for};
+use knotlab_scenarios::trial::{StitchMove, synthesize_for};
 use knotlab_sim::scene::parse_scene;
 use knotlab_sim::world::{SimWorld, trocar_of};
 use nalgebra::Vector3;
+
+use super::common;
 
 /// The kinematic preview's step, s.
 const STEP_S: f64 = 0.01;
@@ -31,12 +28,7 @@ const STEP_S: f64 = 0.01;
 /// pitch needed 10.9 times its limit at 15.26 s).
 #[test]
 fn at_a_turned_site_the_lefts_joints_never_outrun_their_speed() {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
-    let demonstration =
-        load_demonstration(&root.join("demos/instrument-tie")).expect("the shipped demonstration");
-    let pattern = load_pattern(&root.join("patterns/knot_tying.toml")).expect("the shipped pattern");
-    let knowledge = learn(&demonstration, &pattern).expect("learned");
-    let learned = Learned { knowledge, demonstration };
+    let learned = common::shipped_learned();
     let mut scene =
         parse_scene(include_str!("../../default.toml"), "default.toml").expect("the nominal scene");
     StitchMove {

@@ -1,5 +1,5 @@
-//! What the expert's tests share: the expert files, the two-throw scene and runs on it, and reading
-//! grasp events.
+//! What the tests share: the expert files, the two-throw scene and runs on it, reading grasp events,
+//! and the skill learned from the shipped demonstration.
 #![allow(dead_code)]
 
 use knotlab_scenarios::expert::{DemoRun, RecordOptions, TieGeometry, demonstrate_with, load_tie_geometry};
@@ -57,4 +57,16 @@ pub fn two_throw_run(name: &str, seed: u64, snapshot_times_s: Vec<f64>, stop_aft
     .expect("records");
     assert_eq!(run.fault, None, "{name}, seed {seed}");
     run
+}
+
+/// The shipped demonstration and what `knotlab learn` makes of it with the shipped pattern.
+pub fn shipped_learned() -> knotlab_scenarios::trial::Learned {
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    let demonstration =
+        knotlab_learner::demonstration::load_demonstration(&root.join("demos/instrument-tie"))
+            .expect("the shipped demonstration");
+    let pattern = knotlab_learner::pattern::load_pattern(&root.join("patterns/knot_tying.toml"))
+        .expect("the shipped pattern");
+    let knowledge = knotlab_learner::primitive::learn(&demonstration, &pattern).expect("learned");
+    knotlab_scenarios::trial::Learned { knowledge, demonstration }
 }
