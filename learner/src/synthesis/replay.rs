@@ -34,9 +34,9 @@ impl Default for ReplaySettings {
 }
 
 /// The demonstration moved by `new_world_from_demo_world`, as a skill starting at 0 s (the first
-/// sample's time). The tips are commanded by their recorded frame, or their jaws' direction where the
-/// wrist is nearly straight or bent past its reach ([`super::orientation::recorded_orientation`]), the
-/// shafts through `trocars`.
+/// sample's time). The tips are commanded by their recorded frame (turned back to the wrist's reach
+/// where it is bent further), or along the shaft where the wrist is nearly straight
+/// ([`super::orientation::recorded_orientation`]), the shafts through `trocars`.
 pub fn replay(
     demo: &Demonstration,
     new_world_from_demo_world: &Isometry3<f64>,
