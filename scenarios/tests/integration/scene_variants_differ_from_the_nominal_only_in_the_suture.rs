@@ -28,7 +28,7 @@ fn the_chain_scene_differs_from_the_nominal_one_only_in_the_suture() {
     assert_eq!(nominal.thread.rope_spacing_radii, Some(3.0));
     assert_eq!(
         (nominal.thread.rope_inertial_mass_kg_per_m, nominal.thread.rope_constraint_passes),
-        (Some(0.15), Some(2))
+        (Some(0.67), Some(1))
     );
     assert_eq!((nominal.solver.solver_iterations, nominal.solver.pgs_iterations_per_substep), (2, 1));
     assert_eq!(chain.thread.model, ThreadModel::Chain);
