@@ -43,6 +43,12 @@ pub trait Surroundings {
         false
     }
 
+    /// When [`Self::slipping`] let holds go, before the rope's lengths and joints are solved again
+    /// with their particles free: puts those particles where the rope's own motion carries them,
+    /// moved by the hold's friction over the substep (so that the solve answers the friction, as
+    /// it does a force). None by default: they start where they were held.
+    fn start_slipping(&mut self, _ropes: &mut Ropes, _h_s: f64) {}
+
     /// Whether the last [`Self::after`] pushed particles of the rope (out of a body, say): the
     /// rope's contacts with itself are then solved once more, so that a push leaving two strands
     /// overlapping does not carry one through the other in the next substep. No by default.
@@ -69,6 +75,12 @@ impl<S: Surroundings> Surroundings for Option<S> {
 
     fn slipping(&mut self, ropes: &Ropes, held: &mut [bool], h_s: f64) -> bool {
         self.as_mut().is_some_and(|s| s.slipping(ropes, held, h_s))
+    }
+
+    fn start_slipping(&mut self, ropes: &mut Ropes, h_s: f64) {
+        if let Some(s) = self {
+            s.start_slipping(ropes, h_s);
+        }
     }
 
     fn pushed_the_rope(&self) -> bool {
@@ -394,6 +406,7 @@ impl Ropes {
             self.held = held;
             if slipping {
                 self.x.clone_from(&self.x_held);
+                surroundings.start_slipping(self, h);
                 self.solve_held(h);
             }
             // The contacts move the held particles no more than the lengths did.

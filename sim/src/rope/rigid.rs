@@ -211,6 +211,8 @@ impl RigidContacts {
             more,
             candidates,
             poses: Vec::new(),
+            slipping: Vec::new(),
+            slid_by_friction_m: Vec::new(),
         };
         ropes.step_in(dt_s, &mut among);
     }
@@ -277,6 +279,12 @@ struct Among<'a> {
     candidates: Vec<Vec<usize>>,
     /// The poses of the bodies asked for so far this step.
     poses: Vec<BodyPoses>,
+    /// The grips found slipping in this substep ([`Surroundings::slipping`]), each with the
+    /// sign of its pull along the rope (its [`Among::grip_run`]'s direction).
+    slipping: Vec<(usize, f64)>,
+    /// Each attachment of a slipping grip and how far the grip's friction moved its particle
+    /// along the rope in this substep ([`Surroundings::start_slipping`]), m.
+    slid_by_friction_m: Vec<(usize, Vector3<f64>)>,
 }
 
 /// A body's poses through the step: where it starts and ends, and the last two asked for between
@@ -353,16 +361,20 @@ impl Among<'_> {
             let grip = self.contacts.grips[g].clone();
             let Some(pose) = self.body_pose(grip.body, f) else { continue };
             let Some((held, t, mass, along)) = self.grip_run(ropes, &grip, f) else { continue };
-            let most = grip.limit_n * h_s * h_s;
+            // A grip whose friction was solved with the rope ([`Surroundings::start_slipping`])
+            // holds each particle of its run where that left it along the rope; any other gives
+            // way with its run as one, until the rest of the pull is its limit.
+            let slipped = self.slipping.iter().any(|(s, _)| *s == g);
+            let most = if slipped { 0.0 } else { grip.limit_n * h_s * h_s };
             if along.abs() <= most {
                 continue;
             }
-            // The points slide back along the rope, towards the pull, until the rest is the limit.
             let give = t * ((along - along.signum() * most) / mass);
             for &k in &held {
-                let a = &mut self.contacts.attachments[k];
-                let to = to_na(pose.transform_point(to_rapier(&a.local_m))) - give;
-                a.local_m = to_na(pose.inverse_transform_point(to_rapier(&to)));
+                let a = self.contacts.attachments[k];
+                let at = to_na(pose.transform_point(to_rapier(&a.local_m)));
+                let to = if slipped { at - t * t.dot(&(at - ropes.unheld_m(a.particle))) } else { at - give };
+                self.contacts.attachments[k].local_m = to_na(pose.inverse_transform_point(to_rapier(&to)));
             }
             let origin = to_na(pose.inverse_transform_point(to_rapier(&Vector3::zeros())));
             let given = to_na(pose.inverse_transform_point(to_rapier(&-give))) - origin;
@@ -428,19 +440,49 @@ impl Surroundings for Among<'_> {
     fn slipping(&mut self, ropes: &Ropes, held: &mut [bool], h_s: f64) -> bool {
         let f1 = (self.substep + 1) as f64 / self.substeps as f64;
         let mut any = false;
+        self.slipping.clear();
         for g in 0..self.contacts.grips.len() {
             let grip = self.contacts.grips[g].clone();
             let Some(along) = self.pull_along_grip(ropes, &grip, f1) else { continue };
             if along.abs() > grip.limit_n * h_s * h_s {
+                let mut let_go = false;
                 for a in self.contacts.attachments.iter().filter(|a| a.body == grip.body) {
                     if let Some(h) = held.get_mut(a.particle) {
-                        any |= *h;
+                        let_go |= *h;
                         *h = false;
                     }
                 }
+                if let_go {
+                    self.slipping.push((g, along.signum()));
+                }
+                any |= let_go;
             }
         }
         any
+    }
+
+    fn start_slipping(&mut self, ropes: &mut Ropes, h_s: f64) {
+        let f1 = (self.substep + 1) as f64 / self.substeps as f64;
+        self.slid_by_friction_m.clear();
+        for i in 0..self.slipping.len() {
+            let (g, pull_sign) = self.slipping[i];
+            let grip = self.contacts.grips[g].clone();
+            let Some(pose) = self.body_pose(grip.body, f1) else { continue };
+            let Some((held, t, mass, _)) = self.grip_run(ropes, &grip, f1) else { continue };
+            // The grip's friction, at its limit, over the substep moves the run along the rope
+            // by its force times h² over the run's mass, the way the jaws pull it: each particle
+            // from where the rope's motion carries it, by that along the rope, onto the jaws
+            // across it.
+            let slid = t * (pull_sign * grip.limit_n * h_s * h_s / mass);
+            for &k in &held {
+                let a = self.contacts.attachments[k];
+                let target = to_na(pose.transform_point(to_rapier(&a.local_m)));
+                let carried = ropes.x_free[a.particle];
+                let miss = target - carried;
+                ropes.x[a.particle] = carried + (miss - t * miss.dot(&t)) + slid;
+                self.slid_by_friction_m.push((k, slid));
+            }
+        }
     }
 
     fn pushed_the_rope(&self) -> bool {
@@ -521,8 +563,12 @@ impl Surroundings for Among<'_> {
             let a = self.contacts.attachments[k];
             let Some(pose) = self.body_pose(a.body, f1) else { continue };
             let target = to_na(pose.transform_point(to_rapier(&a.local_m)));
-            // The body's pull on its particle: from where the rope would have taken it.
-            let dx = target - ropes.unheld_m(a.particle);
+            // The body's pull on its particle: from where the rope would have taken it (and, in
+            // a slipping grip, its friction's move solved with the rope).
+            let mut dx = target - ropes.unheld_m(a.particle);
+            if let Some((_, slid)) = self.slid_by_friction_m.iter().find(|(j, _)| *j == k) {
+                dx += slid;
+            }
             ropes.x[a.particle] = target;
             if ropes.w[a.particle] > 0.0 {
                 let impulse = -dx / (ropes.w[a.particle] * h_s);

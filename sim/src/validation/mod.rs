@@ -9,6 +9,8 @@
 //! - [`cantilever`]: a clamped length bent by a tip load and by a uniform load, against the elastica.
 //! - [`capstan`]: the suture pulled round a fixed cylinder and round taut suture, against the
 //!   capstan law.
+//! - [`grip`]: the suture drawn through jaws gripping it by friction: their pull against the grip
+//!   force, its strain at the jaws against the pull over EA.
 //! - [`knot`]: an open trefoil pulled tight, against the tightening law of a loose elastic knot.
 //! - [`dynamics`]: a clamped length ringing at the first cantilever mode, and the rope's inertial
 //!   mass against the suture's real one.
@@ -16,6 +18,7 @@
 pub mod cantilever;
 pub mod capstan;
 pub mod dynamics;
+pub mod grip;
 pub mod knot;
 pub mod material;
 pub mod stretch;
@@ -123,6 +126,7 @@ pub fn run_all(suture: &SutureUnderTest) -> Vec<Check> {
     checks.extend(stretch::checks(suture));
     checks.extend(cantilever::checks(suture));
     checks.extend(capstan::checks(suture));
+    checks.extend(grip::checks(suture));
     checks.extend(knot::checks(suture));
     checks.extend(dynamics::checks(suture));
     checks

@@ -18,6 +18,8 @@ pub struct SutureUnderTest {
     pub weight_per_m_n: f64,
     /// The suture's friction on metal (the scene's `thread.friction`).
     pub friction_on_metal: f64,
+    /// The jaws' grip on the suture, N (the scene's `sensor.grip_force_n`).
+    pub grip_force_n: f64,
     /// The scene's step, s.
     pub dt_s: f64,
 }
@@ -37,18 +39,21 @@ impl SutureUnderTest {
     /// The suture of `scene`, if it is the rope the suite validates.
     pub fn from_scene(scene: &crate::scene::SceneConfig) -> Result<Self, NotValidated> {
         match scene.thread.model {
-            crate::thread::ThreadModel::Rope => Ok(Self::from_thread(&scene.thread, scene.solver.dt_s)),
+            crate::thread::ThreadModel::Rope => {
+                Ok(Self::from_thread(&scene.thread, scene.sensor.grip_force_n, scene.solver.dt_s))
+            }
             crate::thread::ThreadModel::Chain => Err(NotValidated::NotTheRope),
         }
     }
 
-    /// The suture of a scene's `thread`, stepped at `dt_s`.
-    pub fn from_thread(thread: &ThreadParams, dt_s: f64) -> Self {
+    /// The suture of a scene's `thread`, gripped by jaws at `grip_force_n`, stepped at `dt_s`.
+    pub fn from_thread(thread: &ThreadParams, grip_force_n: f64, dt_s: f64) -> Self {
         Self {
             params: rope_params(thread),
             spacing_m: thread.rope_spacing_radii.unwrap_or(SPACING_RADII) * thread.radius_m,
             weight_per_m_n: thread.mass_kg / thread.length_m * G_MPS2,
             friction_on_metal: thread.friction,
+            grip_force_n,
             dt_s,
         }
     }
@@ -79,7 +84,7 @@ impl SutureUnderTest {
 pub(crate) fn nominal() -> SutureUnderTest {
     let scene = crate::scene::parse_scene(include_str!("../../../scenarios/default.toml"), "default.toml")
         .expect("the shipped scene");
-    SutureUnderTest::from_thread(&scene.thread, scene.solver.dt_s)
+    SutureUnderTest::from_thread(&scene.thread, scene.sensor.grip_force_n, scene.solver.dt_s)
 }
 
 /// The suture of the 3-0 polypropylene scene (`scenarios/polypropylene-3-0.toml`), for the
@@ -91,5 +96,5 @@ pub(crate) fn polypropylene() -> SutureUnderTest {
         "polypropylene-3-0.toml",
     )
     .expect("the shipped scene");
-    SutureUnderTest::from_thread(&scene.thread, scene.solver.dt_s)
+    SutureUnderTest::from_thread(&scene.thread, scene.sensor.grip_force_n, scene.solver.dt_s)
 }
