@@ -49,7 +49,7 @@ pub fn slide(suture: &SutureUnderTest, grip_n: f64) -> Option<Slide> {
     let across = suture.params.radius_m * 5.0;
     let line = (Vector3::new(0.0, -across, 0.0), Vector3::new(0.0, across, 0.0));
     let mut grasp =
-        RopeGrasp::try_close(&ropes, &mut contacts, jaws, &Pose::IDENTITY, line, suture.spacing_m * 0.5)?;
+        RopeGrasp::try_close(&ropes, &mut contacts, jaws, &Pose::IDENTITY, line, suture.spacing_m)?;
     grasp.grip(&mut contacts, grip_n);
     let rest_m = LENGTH_M / segments as f64;
     let steps = (DRAWN_S / suture.dt_s).round() as usize;
