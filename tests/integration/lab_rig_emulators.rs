@@ -152,6 +152,11 @@ fn the_learned_skill_runs_on_the_lab_rig_of_emulators_as_in_the_simulator() {
     }
     // The pedals: a gamepad on the lab's desk, a dummy here.
     config.pedals = DeviceConfig { backend: Backend::Dummy };
+    // The MELFA emulators answer at once (unpaced), so the controller cycles faster than the force
+    // boxes stream in wall time (1,000 records a second): a box's thread held off the 2 cores for a
+    // few milliseconds leaves 100 cycles without a record. Counted in cycles, staleness cannot tell
+    // that from a stall here; the watchdog has its own tests.
+    config.controller.watchdog_cycles = 100_000;
     may_execute(&config, &preview, false).expect("the gate lets a passed preview through");
     let (mut controller, _handles) = knotlab_hw::rig_config::build_rig(&config, &rig, None)
         .expect("the lab's rig connects to the emulators")
