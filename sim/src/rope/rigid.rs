@@ -441,6 +441,7 @@ impl Surroundings for Among<'_> {
         let f1 = (self.substep + 1) as f64 / self.substeps as f64;
         let mut any = false;
         self.slipping.clear();
+        self.slid_by_friction_m.clear();
         for g in 0..self.contacts.grips.len() {
             let grip = self.contacts.grips[g].clone();
             let Some(along) = self.pull_along_grip(ropes, &grip, f1) else { continue };
