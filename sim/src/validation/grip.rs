@@ -33,9 +33,26 @@ pub struct Slide {
     pub largest_strain: f64,
 }
 
-/// Draws the suture through jaws gripping with `grip_n` newtons; `None` if the jaws found no rope
-/// or it never slid.
-pub fn slide(suture: &SutureUnderTest, grip_n: f64) -> Option<Slide> {
+/// One step of jaws moving along the suture: when, the jaws' pull on the rope, the mean strain of
+/// the rope between the held end and the jaws (its tension over EA), and the largest strain along
+/// the rope.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Drawn {
+    t_s: f64,
+    pull_n: f64,
+    strain_to_jaws: f64,
+    largest_strain: f64,
+}
+
+/// Moves jaws gripping the suture's middle with `grip_n` newtons along it, to `jaws_x_m(t)` for
+/// `duration_s`, one end held; each step's record and whether the rope slid through the jaws by
+/// more than two particles. `None` if the jaws found no rope.
+fn draw(
+    suture: &SutureUnderTest,
+    grip_n: f64,
+    duration_s: f64,
+    jaws_x_m: impl Fn(f64) -> f64,
+) -> Option<(Vec<Drawn>, bool)> {
     let mut bodies = RigidBodySet::new();
     let colliders = ColliderSet::new();
     let mut ropes = Ropes::new(suture.params);
@@ -52,26 +69,37 @@ pub fn slide(suture: &SutureUnderTest, grip_n: f64) -> Option<Slide> {
         RopeGrasp::try_close(&ropes, &mut contacts, jaws, &Pose::IDENTITY, line, suture.spacing_m)?;
     grasp.grip(&mut contacts, grip_n);
     let rest_m = LENGTH_M / segments as f64;
-    let steps = (DRAWN_S / suture.dt_s).round() as usize;
-    let (mut pull_n, mut strain, mut counted) = (0.0, 0.0, 0usize);
+    let steps = (duration_s / suture.dt_s).round() as usize;
+    let mut drawn = Vec::with_capacity(steps);
     for step in 1..=steps {
         let t_s = step as f64 * suture.dt_s;
-        let next = Pose::from_translation(Vector::new(SPEED_MPS * t_s, 0.0, 0.0));
+        let next = Pose::from_translation(Vector::new(jaws_x_m(t_s), 0.0, 0.0));
         bodies[jaws].set_next_kinematic_position(next);
         contacts.step(&mut ropes, suture.dt_s, &bodies, &colliders);
         bodies[jaws].set_position(next, true);
-        if t_s > SETTLED_S {
-            pull_n += grasp.force_n(&contacts, suture.dt_s).norm();
-            let line = ropes.polyline(0);
-            strain += line.windows(2).map(|p| (p[1] - p[0]).norm() / rest_m - 1.0).fold(f64::MIN, f64::max);
-            counted += 1;
-        }
+        let strains: Vec<f64> =
+            ropes.polyline(0).windows(2).map(|p| (p[1] - p[0]).norm() / rest_m - 1.0).collect();
+        let to_jaws = &strains[..grasp.particles.start.clamp(1, strains.len())];
+        drawn.push(Drawn {
+            t_s,
+            pull_n: grasp.force_n(&contacts, suture.dt_s).norm(),
+            strain_to_jaws: to_jaws.iter().sum::<f64>() / to_jaws.len() as f64,
+            largest_strain: strains.iter().copied().fold(f64::MIN, f64::max),
+        });
         while let Some(true) = grasp.follow_slide(&ropes, &mut contacts, &next, suture.spacing_m) {}
     }
-    let slid = grasp.particles.start > segments / 2 + 2;
-    (counted > 0 && slid).then(|| Slide {
-        pull_over_grip: pull_n / counted as f64 / grip_n,
-        largest_strain: strain / counted as f64,
+    Some((drawn, grasp.particles.start > segments / 2 + 2))
+}
+
+/// Draws the suture through jaws gripping with `grip_n` newtons; `None` if the jaws found no rope
+/// or it never slid.
+pub fn slide(suture: &SutureUnderTest, grip_n: f64) -> Option<Slide> {
+    let (drawn, slid) = draw(suture, grip_n, DRAWN_S, |t_s| SPEED_MPS * t_s)?;
+    let measured: Vec<&Drawn> = drawn.iter().filter(|d| d.t_s > SETTLED_S).collect();
+    let counted = measured.len() as f64;
+    (!measured.is_empty() && slid).then(|| Slide {
+        pull_over_grip: measured.iter().map(|d| d.pull_n).sum::<f64>() / counted / grip_n,
+        largest_strain: measured.iter().map(|d| d.largest_strain).sum::<f64>() / counted,
     })
 }
 
@@ -126,6 +154,36 @@ mod tests {
         for (_, slide, strain) in shown {
             assert!((slide.pull_over_grip - 1.0).abs() < 0.05, "{slide:?}");
             assert!((slide.largest_strain - strain).abs() < 0.1 * strain, "{slide:?} against {strain}");
+        }
+    }
+
+    /// Jaws that slide along the suture and then ease back, so that the rope sticks in them, never
+    /// pull harder than their grip (in the step the slide stops, the friction of the substep it
+    /// slid in counted once, not again in those after it), and once still read the rope's tension:
+    /// EA times the strain between them and the held end. At the scene's step and a quarter of it.
+    #[test]
+    fn jaws_that_stop_sliding_pull_no_harder_than_their_grip_and_then_read_the_tension() {
+        for substeps in [1, 4] {
+            let mut suture = nominal();
+            suture.params.substeps *= substeps;
+            let ea = suture.params.axial_stiffness_n;
+            // Out at 20 mm/s for 0.5 s, back 0.6 mm over 0.05 s, then still for 0.25 s.
+            let (drawn, slid) = draw(&suture, 5.0, 0.8, |t_s| {
+                SPEED_MPS * t_s.min(0.5) - 0.012 * (t_s - 0.5).clamp(0.0, 0.05)
+            })
+            .expect("the jaws found the rope");
+            assert!(slid, "the rope slid through the jaws while they were drawn out");
+            let most_n = drawn.iter().map(|d| d.pull_n).fold(0.0, f64::max);
+            let still: Vec<&Drawn> = drawn.iter().filter(|d| d.t_s > 0.65).collect();
+            let tension_n = still.iter().map(|d| ea * d.strain_to_jaws).sum::<f64>() / still.len() as f64;
+            let pull_n = still.iter().map(|d| d.pull_n).sum::<f64>() / still.len() as f64;
+            println!("{substeps}x: most {most_n:.3} N; still: tension {tension_n:.3} N, pull {pull_n:.3} N");
+            assert!(most_n < 5.0 * 1.02, "the jaws pulled {most_n} N gripping at 5 N");
+            assert!(tension_n > 0.5 && tension_n < 4.5, "eased below the grip, still taut: {tension_n} N");
+            assert!(
+                (pull_n - tension_n).abs() < 0.05 * tension_n,
+                "pull {pull_n} N against tension {tension_n} N"
+            );
         }
     }
 }
