@@ -32,3 +32,4 @@ mod thread_laid_along_a_bent_path_starts_untwisted;
 mod thread_physics;
 mod thread_watch;
 mod tissue_stitch;
+mod wound_shut_on_thread_lying_in_it;
