@@ -404,9 +404,7 @@ impl Among<'_> {
         impulses[k].1 += impulse;
         impulses[k].2 += (at - com).cross(&impulse);
     }
-}
 
-impl Among<'_> {
     /// A particle pushed by one body into another that pushes it back (a seam narrower than the
     /// thread: the wound's flaps shut on it) is pinched between them: put on the seam, midway
     /// through the last push, moved across the seam only, along it left where the rope carried it;
