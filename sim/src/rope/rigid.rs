@@ -413,26 +413,33 @@ impl Among<'_> {
     /// long as the wound stayed shut).
     fn pinch(&mut self, ropes: &mut Ropes, h_s: f64, f1: f64) {
         let pushed = std::mem::take(&mut self.pushed);
-        for (i, last) in pushed.iter().enumerate() {
+        // Each particle's pushes in the order made, the particles in the order of their last push.
+        let mut order: Vec<usize> = (0..pushed.len()).collect();
+        order.sort_unstable_by_key(|&i| (pushed[i].particle, i));
+        let mut groups: Vec<&[usize]> = order
+            .chunk_by(|a, b| pushed[*a].particle == pushed[*b].particle)
+            .filter(|g| g.len() > 1)
+            .collect();
+        groups.sort_unstable_by_key(|g| g[g.len() - 1]);
+        for group in groups {
+            let (before, last) = group.split_at(group.len() - 1);
+            let last = pushed[last[0]];
             let p = last.particle;
-            let mine = |q: &&Push| q.particle == p;
-            if pushed[i + 1..].iter().any(|q| q.particle == p) {
-                continue;
-            }
-            let Some(first) = pushed[..i]
+            let Some(first) = before
                 .iter()
-                .filter(mine)
+                .map(|&i| pushed[i])
                 .find(|q| q.body != last.body && q.normal.dot(&last.normal) < -0.5)
             else {
                 continue;
             };
-            let start_m = pushed[..i].iter().find(mine).map_or(last.from_m, |q| q.from_m);
+            let start_m = pushed[group[0]].from_m;
             let middle_m = last.from_m + last.dx_m * 0.5;
             let target_m = start_m + last.normal * (middle_m - start_m).dot(&last.normal);
             ropes.x[p] = target_m;
             if ropes.w[p] > 0.0 {
                 // Each push's impulse taken back, the particle's whole move shared by the two.
-                for q in pushed[..=i].iter().filter(mine) {
+                for &i in group {
+                    let q = pushed[i];
                     self.push(q.body, q.dx_m / (ropes.w[p] * h_s), q.from_m, f1);
                 }
                 let impulse = -(target_m - start_m) / (ropes.w[p] * h_s);
