@@ -1,6 +1,9 @@
 //! Contacts between rope segments: capsules of the rope's radius round each segment, pushed apart
 //! on positions, with Coulomb friction on the substep's relative tangential displacement (Macklin
-//! et al. 2014: below `static_friction` times the push, the slip is undone entirely).
+//! et al. 2014: below `static_friction` times the push, the slip is undone entirely). A pair is
+//! pushed apart to the side it lay on when the substep began: whatever moved one strand past the
+//! other's axis within the substep (a body's push, the lengths' pull), the contact takes it back
+//! rather than on through.
 //!
 //! Of the candidate pairs ([`super::broad_phase`], sought again once a particle has moved half the
 //! contact margin) only a few touch; the rest are passed over without their closest points while it
@@ -164,17 +167,26 @@ pub(super) fn solve_contacts(
         let dist = delta.norm();
         watch.gap_m[k] = dist - two_r;
         watch.credit_m[k] = watch.segment_moved_m[i] + watch.segment_moved_m[j];
-        if dist >= two_r || dist < 1e-12 {
+        // The same two points where the substep started: a pair that lay within a diameter of
+        // touching there and the other way round now was carried through itself within the
+        // substep (a body's push, a length's pull), and is pushed back to the side it came from.
+        let then = (x_prev[a] * (1.0 - s) + x_prev[b] * s) - (x_prev[c] * (1.0 - t) + x_prev[d] * t);
+        let through = then.norm_squared() < 4.0 * two_r * two_r && delta.dot(&then) < 0.0;
+        if (dist >= two_r || dist < 1e-12) && !through {
             continue;
         }
+        let (n, depth) = if through {
+            let n = then.normalize();
+            (n, two_r - delta.dot(&n))
+        } else {
+            (delta / dist, two_r - dist)
+        };
         touching += 1;
-        let n = delta / dist;
         let weights = [(a, 1.0 - s), (b, s), (c, -(1.0 - t)), (d, -t)];
         let wsum: f64 = weights.iter().map(|(p, k)| ropes.w[*p] * k * k).sum();
         if wsum == 0.0 {
             continue;
         }
-        let depth = two_r - dist;
         for (p, k) in weights {
             ropes.x[p] += n * (ropes.w[p] * k * depth / wsum);
             if ropes.w[p] == 0.0 && k != 0.0 {
@@ -206,8 +218,90 @@ pub(super) fn solve_contacts(
 
 #[cfg(test)]
 mod tests {
-    use super::super::RopeParams;
+    use super::super::{RopeParams, Surroundings};
     use super::*;
+
+    /// Surroundings that, after one substep's constraints, push the middle of strand `strand`
+    /// (its particles within `reach_m` of the z axis) up by `lift_m`, as a jaw pushing a strand out
+    /// of itself would.
+    struct Shove {
+        strand: std::ops::Range<usize>,
+        reach_m: f64,
+        lift_m: f64,
+        at_substep: usize,
+        substep: usize,
+    }
+
+    impl Surroundings for Shove {
+        fn pushed_the_rope(&self) -> bool {
+            self.substep == self.at_substep + 1
+        }
+
+        fn after(&mut self, ropes: &mut Ropes, _: &[Vector3<f64>], _: f64) {
+            if self.substep == self.at_substep {
+                for p in self.strand.clone() {
+                    if ropes.x[p].xy().norm() < self.reach_m {
+                        ropes.x[p].z += self.lift_m;
+                    }
+                }
+            }
+            self.substep += 1;
+        }
+    }
+
+    /// A strand along x lying under one along y, touching it, shoved up in one substep by
+    /// `lift_diameters` of the thread at the crossing (past the upper strand's axis, not through
+    /// its far side), then stepped 20 ms: the passes counted, and the lower strand's height over the
+    /// upper's at the crossing at the end, in radii.
+    fn shoved_up(lift_diameters: f64) -> (usize, f64) {
+        let params = RopeParams { substeps: 6, ..RopeParams::default() };
+        let r = params.radius_m;
+        let mut ropes = Ropes::new(params);
+        let lower =
+            ropes.add_strand_along(&[Vector3::new(-0.01, 0.0, 0.0), Vector3::new(0.01, 0.0, 0.0)], 3.0 * r);
+        let upper = ropes.add_strand_along(
+            &[Vector3::new(0.0, -0.01, 2.0 * r), Vector3::new(0.0, 0.01, 2.0 * r)],
+            3.0 * r,
+        );
+        for p in [lower.start, lower.end - 1, upper.start, upper.end - 1] {
+            ropes.w[p] = 0.0;
+        }
+        let mut shove = Shove {
+            strand: lower.clone(),
+            reach_m: 2.0 * r,
+            lift_m: lift_diameters * 2.0 * r,
+            at_substep: 13,
+            substep: 0,
+        };
+        let mut passes = 0;
+        for _ in 0..20 {
+            ropes.step_in(0.001, &mut shove);
+            passes += ropes.crossed_last_step().len();
+        }
+        let nearest = |s: std::ops::Range<usize>| {
+            s.map(|p| ropes.x[p]).min_by(|a, b| a.xy().norm().total_cmp(&b.xy().norm())).expect("a strand")
+        };
+        (passes, (nearest(lower).z - nearest(upper).z) / r)
+    }
+
+    /// A strand shoved by a body past the axis of another it touched, within one substep, is
+    /// pushed back to the side it came from by the rope's contacts, not on through the other
+    /// (pushed apart the way they then lay, it was: a coil caught in the jaws as they shut passed
+    /// through another).
+    #[test]
+    fn a_strand_shoved_past_another_s_axis_in_a_substep_goes_back_the_way_it_came() {
+        for lift in [1.1, 1.4, 1.8, 2.5] {
+            let (passes, height_radii) = shoved_up(lift);
+            println!(
+                "shoved {lift} diameters: {passes} passes, the lower strand at {height_radii:.2} radii over the upper"
+            );
+            assert_eq!(passes, 0, "shoved {lift} diameters, it passed through");
+            assert!(
+                height_radii < -1.9,
+                "shoved {lift} diameters, the lower strand ended {height_radii:.2} radii over the upper"
+            );
+        }
+    }
 
     /// A 60 mm strand laid as a helix whose coils touch, its first particle pinned and its last
     /// pulled sideways, stepped 300 times with the contacts culled or not: its particles' positions
