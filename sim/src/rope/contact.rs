@@ -1,9 +1,9 @@
 //! Contacts between rope segments: capsules of the rope's radius round each segment, pushed apart
 //! on positions, with Coulomb friction on the substep's relative tangential displacement (Macklin
-//! et al. 2014: below `static_friction` times the push, the slip is undone entirely). A pair is
-//! pushed apart to the side it lay on when the substep began: whatever moved one strand past the
-//! other's axis within the substep (a body's push, the lengths' pull), the contact takes it back
-//! rather than on through.
+//! et al. 2014: below `static_friction` times the push, the slip is undone entirely). A pair that
+//! lay within a diameter of touching when the substep began is pushed apart to the side it lay on
+//! then: whatever moved one strand past the other's axis within the substep (a body's push, the
+//! lengths' pull), the contact takes it back rather than on through.
 //!
 //! Of the candidate pairs ([`super::broad_phase`], sought again once a particle has moved half the
 //! contact margin) only a few touch; the rest are passed over without their closest points while it
@@ -250,9 +250,9 @@ mod tests {
     }
 
     /// A strand along x lying under one along y, touching it, shoved up in one substep by
-    /// `lift_diameters` of the thread at the crossing (past the upper strand's axis, not through
-    /// its far side), then stepped 20 ms: the passes counted, and the lower strand's height over the
-    /// upper's at the crossing at the end, in radii.
+    /// `lift_diameters` of the thread at the crossing (past the upper strand's axis from 0.5, past
+    /// its far side from 1.5), then stepped 20 ms: the passes counted, and the lower strand's height
+    /// over the upper's at the crossing at the end, in radii.
     fn shoved_up(lift_diameters: f64) -> (usize, f64) {
         let params = RopeParams { substeps: 6, ..RopeParams::default() };
         let r = params.radius_m;
@@ -284,8 +284,8 @@ mod tests {
         (passes, (nearest(lower).z - nearest(upper).z) / r)
     }
 
-    /// A strand shoved by a body past the axis of another it touched, within one substep, is
-    /// pushed back to the side it came from by the rope's contacts, not on through the other
+    /// A strand shoved by a body past the axis of another it touched, or clean past it, within one
+    /// substep, is pushed back to the side it came from by the rope's contacts, not on through the other
     /// (pushed apart the way they then lay, it was: a coil caught in the jaws as they shut passed
     /// through another).
     #[test]
