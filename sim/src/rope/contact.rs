@@ -250,8 +250,8 @@ mod tests {
     }
 
     /// A strand along x lying under one along y, touching it, shoved up in one substep by
-    /// `lift_diameters` of the thread at the crossing (past the upper strand's axis from 0.5, past
-    /// its far side from 1.5), then stepped 20 ms: the passes counted, and the lower strand's height
+    /// `lift_diameters` of the thread at the crossing (past the upper strand's axis from 1, clear of
+    /// it on the far side from 2), then stepped 20 ms: the passes counted, and the lower strand's height
     /// over the upper's at the crossing at the end, in radii.
     fn shoved_up(lift_diameters: f64) -> (usize, f64) {
         let params = RopeParams { substeps: 6, ..RopeParams::default() };
