@@ -67,7 +67,7 @@ struct Raw {
     source: String,
     #[serde(default)]
     scene: String,
-    seed: Option<Spanned<i64>>,
+    seed: Option<Spanned<toml::Value>>,
     sample_rate_hz: Spanned<f64>,
     #[serde(default)]
     description: String,
@@ -159,10 +159,16 @@ pub fn parse_metadata(text: &str, file: &str) -> Result<MetadataFile, DemoError>
         return Err(err(units_line, &format!("units.{extra}"), "unknown unit key".to_owned()));
     }
     let seed = match raw.seed {
-        Some(s) if *s.get_ref() < 0 => {
-            return Err(err(line(s.span()), "seed", format!("must not be negative, got {}", s.get_ref())));
-        }
-        Some(s) => Some(*s.get_ref() as u64),
+        Some(s) => Some(parse_seed(s.get_ref()).ok_or_else(|| {
+            err(
+                line(s.span()),
+                "seed",
+                format!(
+                    "must be an integer from 0 to 2^64 - 1 (above 2^63 - 1 written as a quoted string of digits), got {}",
+                    s.get_ref()
+                ),
+            )
+        })?),
         None => None,
     };
     let metadata = Metadata {
@@ -250,15 +256,22 @@ fn check_metadata_values(m: &Metadata) -> Result<(), (&'static str, String)> {
     if !(norm.is_finite() && (norm - 1.0).abs() <= 1e-6) {
         return Err(("stitch.quaternion_xyzw", format!("not a unit quaternion (norm {norm})")));
     }
-    if m.seed.is_some_and(|s| s > i64::MAX as u64) {
-        return Err(("seed", "must fit a TOML integer (at most 2^63 - 1)".to_owned()));
-    }
     Ok(())
 }
 
 /// Checks metadata in memory (before writing); `file` names it in errors.
 pub fn validate_metadata(m: &Metadata, file: &str) -> Result<(), DemoError> {
     check_metadata_values(m).map_err(|(key, reason)| DemoError::format(file, 0, key, reason))
+}
+
+/// A seed as `demo.toml` holds it: a non-negative integer, or (above TOML's 2^63 - 1) a string
+/// of decimal digits.
+fn parse_seed(value: &toml::Value) -> Option<u64> {
+    match value {
+        toml::Value::Integer(i) => u64::try_from(*i).ok(),
+        toml::Value::String(s) if !s.is_empty() && s.bytes().all(|b| b.is_ascii_digit()) => s.parse().ok(),
+        _ => None,
+    }
 }
 
 /// A TOML float that reads back to the same bits.
@@ -283,7 +296,11 @@ pub fn render_metadata(demo: &Demonstration) -> String {
     out.push_str(&format!("scene = {}\n", string(&m.scene)));
     if let Some(seed) = m.seed {
         out.push_str("# The seed of the recording's random draws.\n");
-        out.push_str(&format!("seed = {seed}\n"));
+        // TOML's integers stop at 2^63 - 1; a seed above it is written as a string of digits.
+        match i64::try_from(seed) {
+            Ok(_) => out.push_str(&format!("seed = {seed}\n")),
+            Err(_) => out.push_str(&format!("seed = \"{seed}\"\n")),
+        }
     }
     out.push_str(&format!("sample_rate_hz = {}\n", float(m.sample_rate_hz)));
     if !m.description.is_empty() {

@@ -190,6 +190,19 @@ fn other_malformations_are_named_too() {
     assert!(error.to_string().contains("sample_rte_hz"), "{error}");
     assert!(error.line() > 0, "{error}");
 
+    // Seeds that are no seed: negative, a word, past 2^64 - 1, a float.
+    for bad in ["-3", "\"7a\"", "\"18446744073709551616\"", "7.0", "\"\""] {
+        let dir = TempDir::with_demo("seed");
+        dir.edit("demo.toml", |text| {
+            let at = text.find("\nseed = ").expect("the demonstration has a seed") + 1;
+            let end = at + text[at..].find('\n').unwrap();
+            format!("{}seed = {bad}{}", &text[..at], &text[end..])
+        });
+        let error = dir.load_error();
+        assert_eq!(error.field(), "seed", "{bad}: {error}");
+        assert!(error.line() > 0 && error.to_string().contains("0 to 2^64 - 1"), "{bad}: {error}");
+    }
+
     // A grasp state that is none of the three.
     let dir = TempDir::with_demo("grasp");
     dir.edit("left.csv", |text| replace_line(&text, 12, |l| l.replace("closed_empty", "shut")));

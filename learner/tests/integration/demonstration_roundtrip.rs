@@ -79,6 +79,25 @@ fn every_grasp_state_and_extreme_numbers_survive_the_round_trip() {
     assert_eq!(loaded.instruments[0].samples[13].force_n.y.to_bits(), (-0.0f64).to_bits());
 }
 
+/// A seed beyond TOML's integers (a Monte Carlo trial's draw, any `u64`) is written as a string of
+/// digits and reads back to the same seed; one that fits stays an integer.
+#[test]
+fn a_seed_beyond_toml_integers_survives_the_round_trip() {
+    for (seed, written) in [
+        (u64::MAX, "seed = \"18446744073709551615\""),
+        (i64::MAX as u64 + 1, "seed = \"9223372036854775808\""),
+        (7, "seed = 7"),
+    ] {
+        let mut d = demo(5, 100.0);
+        d.metadata.seed = Some(seed);
+        let dir = TempDir::new("big-seed");
+        write_demonstration(&dir.0, &d).unwrap();
+        let text = std::fs::read_to_string(dir.0.join(METADATA_FILE)).unwrap();
+        assert!(text.lines().any(|l| l == written), "{written} in:\n{text}");
+        assert_eq!(load_demonstration(&dir.0).unwrap().metadata.seed, Some(seed));
+    }
+}
+
 /// Writing a demonstration with a NaN, a time that does not increase or a wrong sample rate is refused
 /// naming the file, line and field, before anything is written.
 #[test]
