@@ -190,7 +190,7 @@ fn other_malformations_are_named_too() {
     assert!(error.to_string().contains("sample_rte_hz"), "{error}");
     assert!(error.line() > 0, "{error}");
 
-    // Seeds that are no seed: negative, a word, past 2^64 - 1, a float.
+    // Seeds that are no seed: negative, a word, past 2^64 - 1, a float, an empty string.
     for bad in ["-3", "\"7a\"", "\"18446744073709551616\"", "7.0", "\"\""] {
         let dir = TempDir::with_demo("seed");
         dir.edit("demo.toml", |text| {
