@@ -66,6 +66,13 @@ fn slides_at_n(suture: &SutureUnderTest, substeps: usize, gap_diameters: f64) ->
 }
 
 fn main() {
+    let extra: Vec<String> = std::env::args().skip(1).collect();
+    if !extra.is_empty() {
+        eprintln!(
+            "pinch_probe: takes no arguments, got {extra:?} (usage: cargo run --release -p knotlab-sim --example pinch_probe)"
+        );
+        std::process::exit(2);
+    }
     let scene = match parse_scene(include_str!("../../scenarios/default.toml"), "default.toml") {
         Ok(scene) => scene,
         Err(e) => {

@@ -126,8 +126,8 @@ fn the_learned_skill_runs_on_the_lab_rig_of_emulators_as_in_the_simulator() {
         };
         let arm_config = slot.as_mut().expect("the lab's arm");
         arm_config.servo.controller = Some(melfa_addr);
-        // The lab's time-outs (a node unheard of for 50 ms, a force stream silent for 0.1 s) are
-        // real time; on 2 cores shared with other tests an emulator's thread can be held off that
+        // The lab's time-outs (a MELFA reply 14 ms late, a node unheard of for 50 ms, a force
+        // stream silent for 0.1 s) are real time; on 2 cores shared with other tests an emulator's thread can be held off that
         // long. What is checked here is the path, not the timing (each time-out has its own tests).
         arm_config.servo.receive_timeout_s = Some(0.1);
         let instrument = arm_config.instrument.as_mut().expect("a CANopen instrument");
