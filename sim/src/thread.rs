@@ -81,6 +81,12 @@ pub struct ThreadParams {
     /// rope's default (0.67 kg/m). The chain ignores it.
     #[serde(default)]
     pub rope_inertial_mass_kg_per_m: Option<f64>,
+    /// The radius at which the instruments and the needle push the rope, m
+    /// ([`crate::rope::RopeParams::metal_radius_m`]): the suture's own, where `radius_m` is the
+    /// section its knots (and the tissue) push it at; at most `radius_m`, which it is if left out.
+    /// The chain ignores it.
+    #[serde(default)]
+    pub rope_radius_at_metal_m: Option<f64>,
     /// Whether the rope's bending joints are solved a strand at once
     /// ([`crate::rope::RopeParams::direct_bending`]); left out, one pass a joint. The chain ignores it.
     #[serde(default)]
@@ -123,6 +129,7 @@ impl Default for ThreadParams {
             rope_substeps: None,
             rope_spacing_radii: None,
             rope_inertial_mass_kg_per_m: None,
+            rope_radius_at_metal_m: None,
             rope_direct_bending: false,
             rope_constraint_passes: None,
             linear_damping_per_s: 1.0,

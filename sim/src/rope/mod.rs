@@ -97,8 +97,19 @@ impl<S: Surroundings> Surroundings for Option<S> {
 /// The rope's material and how it is integrated.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct RopeParams {
-    /// Collision radius, m.
+    /// Collision radius, m: the rope's section against itself (its knots' crossings lie two of it
+    /// apart) and against the tissue, and against metal unless [`Self::metal_radius_m`] says
+    /// otherwise.
     pub radius_m: f64,
+    /// The radius at which metal (the instruments, the needle: the colliders of
+    /// [`rigid::RigidContacts`] but its `at_collision_radius`) pushes the rope, m
+    /// ([`Self::radius_at_metal_m`]); `None`: the collision radius. The rope's section does not
+    /// give: drawn into a gap narrower than its diameter, it is pushed back by two bodies' overlap
+    /// every substep, a pull that grows as the square of the substeps
+    /// (`sim/examples/pinch_probe.rs`). The suture's own radius here lets it pass between metal
+    /// parts where a real one passes (a 3-0 suture past jaws shut on a 0.6 mm needle, 0.78 mm
+    /// apart) while its knots keep the coarser section the spacing resolves.
+    pub metal_radius_m: Option<f64>,
     /// Mass per metre, kg/m: far heavier than suture (3-0 polypropylene is about 3e-5 kg/m), so
     /// that a 1 N pull moves a particle by a small part of its spacing in a substep; with
     /// [`Self::damping_per_s`] the rope moves quasi-statically. (At a tenth of it, 0.3 mm spacing,
@@ -155,10 +166,19 @@ pub struct RopeParams {
     pub axial_stiffness_n: f64,
 }
 
+impl RopeParams {
+    /// The radius at which metal pushes the rope, m: [`Self::metal_radius_m`], or the collision
+    /// radius.
+    pub fn radius_at_metal_m(&self) -> f64 {
+        self.metal_radius_m.unwrap_or(self.radius_m)
+    }
+}
+
 impl Default for RopeParams {
     fn default() -> Self {
         Self {
             radius_m: 0.0002,
+            metal_radius_m: None,
             mass_per_m_kg: 0.67,
             static_friction: 1.0,
             kinetic_friction: 0.8,

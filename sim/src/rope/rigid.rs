@@ -1,5 +1,5 @@
 //! The rope among Rapier's rigid bodies: each substep, every particle near a collider is pushed out
-//! of it to the rope's radius, with Coulomb friction against the collider's own motion over the
+//! of it to the rope's radius (at metal [`super::RopeParams::radius_at_metal_m`]), with Coulomb friction against the collider's own motion over the
 //! substep (the rope's contact rule, `super::contact`, against a solid), and particles attached to
 //! a body follow it. On an elastic rope (a finite axial stiffness) they are put where the body
 //! holds them (the jaws' grasp, the needle's swage) before the rope's lengths are solved, which
@@ -96,6 +96,11 @@ pub struct RigidContacts {
     /// The colliders the rope collides with, each with particles it lets through (the thread in
     /// a flap's stitch, say; an empty range for none).
     pub colliders: Vec<(ColliderHandle, Range<usize>)>,
+    /// The colliders that push the rope at its collision radius, not at its radius at metal
+    /// ([`super::RopeParams::radius_at_metal_m`]): the tissue's, rigid boxes standing in for flesh
+    /// a real suture presses into, on which the knot rests at the section its crossings are
+    /// resolved at.
+    pub at_collision_radius: Vec<ColliderHandle>,
     /// The rope's friction coefficient, combined with each collider's as Rapier combines two
     /// colliders' (their average, unless the collider asks otherwise), as the chain's segments are.
     pub friction: f64,
@@ -230,7 +235,8 @@ impl RigidContacts {
         bodies: &RigidBodySet,
         colliders: &ColliderSet,
     ) -> Vec<Vec<usize>> {
-        let reach = ropes.params.radius_m + ropes.params.contact_margin_m;
+        let reach =
+            ropes.params.radius_m.max(ropes.params.radius_at_metal_m()) + ropes.params.contact_margin_m;
         let mut held = vec![false; ropes.x.len()];
         for a in &self.attachments {
             if let Some(h) = held.get_mut(a.particle) {
@@ -543,7 +549,7 @@ impl Surroundings for Among<'_> {
         let (f0, f1) =
             (self.substep as f64 / self.substeps as f64, (self.substep + 1) as f64 / self.substeps as f64);
         self.substep += 1;
-        let r = ropes.params.radius_m;
+        let r_metal = ropes.params.radius_at_metal_m();
         let friction = self.contacts.friction;
         let mut touching = 0;
         let colliders = std::mem::take(&mut self.contacts.colliders);
@@ -553,6 +559,11 @@ impl Surroundings for Among<'_> {
             }
             let Some(collider) = self.colliders.get(*handle) else { continue };
             let Some(body) = collider.parent() else { continue };
+            let r = if self.contacts.at_collision_radius.contains(handle) {
+                ropes.params.radius_m
+            } else {
+                r_metal
+            };
             let local = collider.position_wrt_parent().copied().unwrap_or_default();
             let (Some(body_then), Some(body_now)) = (self.body_pose(body, f0), self.body_pose(body, f1))
             else {

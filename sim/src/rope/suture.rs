@@ -70,6 +70,7 @@ pub fn rope_params(thread: &ThreadParams) -> RopeParams {
     let friction = thread.friction_on_itself.unwrap_or(thread.friction);
     RopeParams {
         radius_m: thread.radius_m,
+        metal_radius_m: thread.rope_radius_at_metal_m,
         static_friction: friction,
         kinetic_friction: 0.8 * friction,
         bending_stiffness_n_m2: thread.bend_stiffness_n_m_per_rad * thread.segment_length_m(),
@@ -119,8 +120,10 @@ impl SceneRope {
         let mut tissue_colliders: Vec<ColliderHandle> = tissue.flap_colliders.to_vec();
         tissue_colliders.extend(physics.bodies[tissue.pad].colliders().iter().copied());
         let colliders = touched.iter().chain(&tissue_colliders).map(|c| (*c, 0..0)).collect();
+        let at_collision_radius = tissue_colliders.clone();
         let contacts = RigidContacts {
             colliders,
+            at_collision_radius,
             friction: thread.friction,
             attachments: vec![Attachment {
                 particle: strand.start,
@@ -246,15 +249,15 @@ impl SceneRope {
         }
     }
 
-    /// The particles touching `body`'s colliders now (the rope's radius and 0.1 mm from them, or in
-    /// them), sorted.
+    /// The particles touching `body`'s colliders now (the rope's radius there and 0.1 mm from
+    /// them, or in them), sorted.
     pub fn particles_touching(&self, physics: &Physics, body: RigidBodyHandle) -> Vec<usize> {
         let mut found = Vec::new();
         let colliders = physics.bodies.get(body).map_or(&[][..], |b| b.colliders());
-        for collider in colliders.iter().filter_map(|c| physics.colliders.get(*c)) {
+        for (handle, collider) in colliders.iter().filter_map(|c| Some((*c, physics.colliders.get(*c)?))) {
             let aabb = collider.compute_aabb().loosened(self.ropes.params.radius_m + TOUCH_SLOP_M);
             found.extend((0..self.ropes.x.len()).filter(|p| {
-                aabb.contains_local_point(to_rapier(&self.ropes.x[*p])) && self.touches(collider, *p)
+                aabb.contains_local_point(to_rapier(&self.ropes.x[*p])) && self.touches(handle, collider, *p)
             }));
         }
         found.sort_unstable();
@@ -262,13 +265,23 @@ impl SceneRope {
         found
     }
 
-    /// Whether particle `p` touches `collider` (is in it, or within the rope's radius and 0.1 mm
-    /// of it).
-    pub fn touches(&self, collider: &Collider, p: usize) -> bool {
+    /// Whether particle `p` touches `collider` (is in it, or within 0.1 mm of where the collider
+    /// pushes it: the rope's radius, at metal [`crate::rope::RopeParams::radius_at_metal_m`]).
+    pub fn touches(&self, handle: ColliderHandle, collider: &Collider, p: usize) -> bool {
         let x = self.ropes.x[p];
         let projection = collider.shape().project_point(collider.position(), to_rapier(&x), true);
         projection.is_inside
-            || (to_na(projection.point) - x).norm() <= self.ropes.params.radius_m + TOUCH_SLOP_M
+            || (to_na(projection.point) - x).norm() <= self.pushed_at_m(handle) + TOUCH_SLOP_M
+    }
+
+    /// How far from collider `handle` the rope's axis is pushed: its collision radius at the
+    /// tissue, its radius at metal elsewhere, m.
+    fn pushed_at_m(&self, handle: ColliderHandle) -> f64 {
+        if self.contacts.at_collision_radius.contains(&handle) {
+            self.ropes.params.radius_m
+        } else {
+            self.ropes.params.radius_at_metal_m()
+        }
     }
 
     /// The rope's centreline, needle end first, m.

@@ -440,6 +440,14 @@ impl SceneConfig {
         if let Some(m) = t.rope_inertial_mass_kg_per_m {
             c.range("thread.rope_inertial_mass_kg_per_m", m, 1e-6, 10.0);
         }
+        if let Some(r) = t.rope_radius_at_metal_m
+            && !(r.is_finite() && r >= 1e-5 && r <= t.radius_m)
+        {
+            c.0.push((
+                "thread.rope_radius_at_metal_m".to_owned(),
+                format!("must be within 1e-5..{} (thread.radius_m), got {r}", t.radius_m),
+            ));
+        }
         c.range("thread.linear_damping_per_s", t.linear_damping_per_s, 0.0, 100.0);
         if t.radius_m * 2.0 >= t.length_m / t.segments.max(1) as f64 {
             c.0.push((

@@ -10,11 +10,12 @@ use crate::thread::ThreadModel;
 pub type SceneError = knotlab_hw::toml_file::TomlFileError;
 
 /// The keys of `[thread]` only the rope reads.
-const ROPE_KEYS: [&str; 6] = [
+const ROPE_KEYS: [&str; 7] = [
     "axial_stiffness_n",
     "rope_substeps",
     "rope_spacing_radii",
     "rope_inertial_mass_kg_per_m",
+    "rope_radius_at_metal_m",
     "rope_direct_bending",
     "rope_constraint_passes",
 ];

@@ -60,8 +60,8 @@ impl RopeSuture {
             let touches = run.clone().any(|p| {
                 jaw.colliders
                     .iter()
-                    .filter_map(|c| physics.colliders.get(*c))
-                    .any(|c| self.rope.touches(c, p))
+                    .filter_map(|c| Some((*c, physics.colliders.get(*c)?)))
+                    .any(|(handle, c)| self.rope.touches(handle, c, p))
             });
             if !touches {
                 self.let_go[a] = None;

@@ -14,7 +14,14 @@ const SOLID_ROD_SOURCE: &str =
 pub fn checks(suture: &SutureUnderTest) -> Vec<Check> {
     let weight_mg_per_m = suture.weight_per_m_n / G_MPS2 * 1e6;
     let figures = [
-        ("diameter", "mm", suture.diameter_m() * 1e3, (0.200, 0.249), DIAMETER_SOURCE),
+        ("diameter in its knots", "mm", suture.diameter_m() * 1e3, (0.200, 0.249), DIAMETER_SOURCE),
+        (
+            "diameter at the instruments",
+            "mm",
+            suture.diameter_at_metal_m() * 1e3,
+            (0.200, 0.249),
+            DIAMETER_SOURCE,
+        ),
         ("bending stiffness EI", "N m2", suture.bending_stiffness_n_m2(), (1.2e-7, 9.4e-7), SOLID_ROD_SOURCE),
         ("weight per metre", "mg/m", weight_mg_per_m, (28.0, 67.0), SOLID_ROD_SOURCE),
         (

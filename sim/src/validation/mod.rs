@@ -14,6 +14,8 @@
 //! - [`knot`]: an open trefoil pulled tight, against the tightening law of a loose elastic knot.
 //! - [`dynamics`]: a clamped length ringing at the first cantilever mode, and the rope's inertial
 //!   mass against the suture's real one.
+//! - [`pinch`]: the suture drawn between two parts closer than its thickness (an experiment the
+//!   pinch probe prints and the tests hold, not yet a row).
 
 pub mod cantilever;
 pub mod capstan;
@@ -21,6 +23,7 @@ pub mod dynamics;
 pub mod grip;
 pub mod knot;
 pub mod material;
+pub mod pinch;
 pub mod stretch;
 pub mod suture;
 

@@ -63,9 +63,14 @@ impl SutureUnderTest {
         self.params.bending_stiffness_n_m2
     }
 
-    /// The suture's diameter, m (its collision radius twice).
+    /// The suture's diameter in its knots, m (its collision radius twice).
     pub fn diameter_m(&self) -> f64 {
         2.0 * self.params.radius_m
+    }
+
+    /// The suture's diameter where the instruments and the needle push it, m.
+    pub fn diameter_at_metal_m(&self) -> f64 {
+        2.0 * self.params.radius_at_metal_m()
     }
 
     /// The length over which the suture holds its own shape against gravity, (EI / w)^(1/3), m.

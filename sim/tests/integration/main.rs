@@ -19,6 +19,7 @@ mod released_needle_flew_off_the_rope;
 mod rope_among_rigid_bodies;
 mod rope_held_in_jaws;
 mod rope_held_on_the_tissue_tore_the_grip;
+mod rope_jammed_in_a_gap_narrower_than_its_knots;
 mod rope_scene_holds_its_start_condition;
 mod rope_scene_poses_the_links_outside_rapiers_solver;
 mod rope_slides_through_jaws_pulled_past_their_grip;

@@ -1,6 +1,7 @@
 //! The rope (`knotlab_sim::rope`) among Rapier's bodies (`knotlab_sim::rope::rigid`): it drapes
 //! over a bar without entering it and presses on it with its whole weight; friction holds it on a
-//! slope steeper than its friction lets it slide down; a particle attached to a moving kinematic body follows it
+//! slope steeper than its friction lets it slide down; it rests on metal at its radius there and on the
+//! tissue at its collision radius; a particle attached to a moving kinematic body follows it
 //! exactly, and the body feels the rope's weight, as an instrument's gauge would.
 
 use knotlab_sim::rope::rigid::{Attachment, RigidContacts};
@@ -256,4 +257,35 @@ fn a_strand_pushed_onto_another_by_a_body_is_not_pushed_through_it() {
     let middle = ropes.x[over.start + over.len() / 2];
     assert_eq!(passes, 0, "the pushed strand passed through the other {passes} times");
     assert!(middle.z > r, "the pushed strand's middle lies at z = {:.3} mm", middle.z * 1e3);
+}
+
+/// A rope with a radius at metal rests on a bar at that radius, and on a bar listed as pushing it
+/// at its collision radius (the tissue's) at its collision radius, each within 20 µm.
+#[test]
+fn the_rope_rests_on_metal_at_its_radius_there_and_on_the_tissue_at_its_section() {
+    let params = RopeParams { metal_radius_m: Some(0.0001), ..RopeParams::default() };
+    for tissue in [false, true] {
+        let (mut bodies, mut colliders) = (RigidBodySet::new(), ColliderSet::new());
+        let collider = bar(&mut bodies, &mut colliders, 0.0, BAR_HALF_M, 0.5);
+        let z0 = BAR_HALF_M[2] + params.radius_m + 0.0005;
+        let mut ropes = rope(params, Vector3::new(-0.004, 0.0, z0), Vector3::new(0.004, 0.0, z0));
+        let mut contacts = RigidContacts {
+            colliders: vec![(collider, 0..0)],
+            at_collision_radius: if tissue { vec![collider] } else { Vec::new() },
+            friction: 0.5,
+            ..Default::default()
+        };
+        for _ in 0..1000 {
+            contacts.step(&mut ropes, DT_S, &bodies, &colliders);
+        }
+        let expected_m = if tissue { params.radius_m } else { 0.0001 };
+        let middle = ropes.x[ropes.x.len() / 2];
+        assert!(
+            (middle.z - BAR_HALF_M[2] - expected_m).abs() < 2e-5,
+            "on {} the middle rests {:.3} mm above the bar, not {:.3}",
+            if tissue { "tissue" } else { "metal" },
+            (middle.z - BAR_HALF_M[2]) * 1e3,
+            expected_m * 1e3
+        );
+    }
 }

@@ -94,7 +94,7 @@ fn out_of_range_values_are_all_named() {
         .replace("dt_s = 0.001", "dt_s = 0.5")
         .replace(
             "segments = 80",
-            "segments = 2\nfriction_on_itself = -0.5\naxial_stiffness_n = 0.0\nrope_substeps = 0\nrope_spacing_radii = 0.1\nrope_inertial_mass_kg_per_m = 0.0\nrope_constraint_passes = 0",
+            "segments = 2\nfriction_on_itself = -0.5\naxial_stiffness_n = 0.0\nrope_substeps = 0\nrope_spacing_radii = 0.1\nrope_inertial_mass_kg_per_m = 0.0\nrope_constraint_passes = 0\nrope_radius_at_metal_m = 0.001",
         )
         .replace("holding_load_n = 0.3", "holding_load_n = -0.3")
         .replace("force_filter_s = 0.02", "force_filter_s = -0.02");
@@ -111,6 +111,11 @@ fn out_of_range_values_are_all_named() {
             assert!(keys.contains(&"thread.rope_spacing_radii"), "{keys:?}");
             assert!(keys.contains(&"thread.rope_inertial_mass_kg_per_m"), "{keys:?}");
             assert!(keys.contains(&"thread.rope_constraint_passes"), "{keys:?}");
+            let metal = problems.iter().find(|(k, _)| k == "thread.rope_radius_at_metal_m");
+            assert!(
+                metal.is_some_and(|(_, why)| why.contains("thread.radius_m") && why.contains("0.001")),
+                "a radius at metal above the thread's: {problems:?}"
+            );
             assert!(keys.contains(&"servo.calibration_offset_rad.left[2]"), "{keys:?}");
             assert!(keys.contains(&"evaluation.holding_load_n"), "{keys:?}");
             assert!(keys.contains(&"sensor.force_filter_s"), "{keys:?}");
