@@ -3,13 +3,13 @@
 //!
 //! `scenarios/chain.toml` is the nominal scene with the suture as Rapier's capsule chain: one
 //! friction for all (0.15), 0.25 m long, held in the tissue by 0.05 N a flap, no rope substeps or
-//! spacing, inertial mass or constraint passes (the chain has none of them), Rapier's solver at the 8 substeps of 4 sweeps its joints need
+//! spacing, inertial mass, constraint passes or radius at metal (the chain has none of them), Rapier's solver at the 8 substeps of 4 sweeps its joints need
 //! (the rope leaves Rapier only the needle and the flaps: 2 of 1), nothing else changed, so that the
 //! chain's tests run in the nominal operating scene.
 //!
 //! `scenarios/polypropylene-3-0.toml` is the nominal scene with a measured 3-0 polypropylene suture:
-//! its thread's size, stiffness and weight, the rope's substeps, inertial mass, constraint passes and
-//! bending solve (as its own table in docs/validation.md was measured), and the randomization's
+//! its thread's size (pushed at it by metal as by everything else), stiffness and weight, the rope's
+//! substeps, inertial mass, constraint passes and bending solve (as its own table in docs/validation.md was measured), and the randomization's
 //! bending stiffness.
 
 use knotlab_sim::scene::parse_scene;
@@ -26,6 +26,7 @@ fn the_chain_scene_differs_from_the_nominal_one_only_in_the_suture() {
     assert_eq!((nominal.thread.length_m, nominal.stitch.slide_friction_n), (0.2, 0.6));
     assert_eq!(nominal.thread.rope_substeps, Some(6));
     assert_eq!(nominal.thread.rope_spacing_radii, Some(3.0));
+    assert_eq!(nominal.thread.rope_radius_at_metal_m, Some(0.0001125));
     assert_eq!(
         (nominal.thread.rope_inertial_mass_kg_per_m, nominal.thread.rope_constraint_passes),
         (Some(0.67), Some(1))
@@ -36,6 +37,7 @@ fn the_chain_scene_differs_from_the_nominal_one_only_in_the_suture() {
     assert_eq!((chain.thread.length_m, chain.stitch.slide_friction_n), (0.25, 0.05));
     assert_eq!(chain.thread.rope_substeps, None);
     assert_eq!(chain.thread.rope_spacing_radii, None);
+    assert_eq!(chain.thread.rope_radius_at_metal_m, None);
     assert_eq!(chain.thread.axial_stiffness_n, None);
     assert_eq!((chain.solver.solver_iterations, chain.solver.pgs_iterations_per_substep), (8, 4));
     // The chain's own keys, which a rope scene may not give.
@@ -47,6 +49,7 @@ fn the_chain_scene_differs_from_the_nominal_one_only_in_the_suture() {
     chain.thread.length_m = nominal.thread.length_m;
     chain.thread.rope_substeps = nominal.thread.rope_substeps;
     chain.thread.rope_spacing_radii = nominal.thread.rope_spacing_radii;
+    chain.thread.rope_radius_at_metal_m = nominal.thread.rope_radius_at_metal_m;
     chain.thread.rope_inertial_mass_kg_per_m = nominal.thread.rope_inertial_mass_kg_per_m;
     chain.thread.rope_constraint_passes = nominal.thread.rope_constraint_passes;
     chain.thread.axial_stiffness_n = nominal.thread.axial_stiffness_n;
@@ -64,6 +67,7 @@ fn the_polypropylene_scene_differs_from_the_nominal_one_only_in_the_suture() {
     let mut pp = parse_scene(include_str!("../../polypropylene-3-0.toml"), "polypropylene-3-0.toml")
         .expect("the polypropylene scene");
     assert_eq!((pp.thread.radius_m, pp.thread.mass_kg), (0.0001125, 7.2e-6));
+    assert_eq!(pp.thread.rope_radius_at_metal_m, None);
     let ei = pp.thread.bend_stiffness_n_m_per_rad * pp.thread.segment_length_m();
     assert!((ei - 5.0e-7).abs() < 1e-15, "EI {ei:e} N m²");
     assert_eq!((pp.thread.rope_substeps, pp.thread.rope_direct_bending), (Some(12), true));
@@ -73,6 +77,7 @@ fn the_polypropylene_scene_differs_from_the_nominal_one_only_in_the_suture() {
     );
     assert_eq!(pp.randomization.thread_bend_stiffness, [1.25e-4, 3.0e-4]);
     pp.thread.radius_m = nominal.thread.radius_m;
+    pp.thread.rope_radius_at_metal_m = nominal.thread.rope_radius_at_metal_m;
     pp.thread.mass_kg = nominal.thread.mass_kg;
     pp.thread.bend_stiffness_n_m_per_rad = nominal.thread.bend_stiffness_n_m_per_rad;
     pp.thread.rope_substeps = nominal.thread.rope_substeps;

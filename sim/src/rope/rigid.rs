@@ -1,6 +1,7 @@
 //! The rope among Rapier's rigid bodies: each substep, every particle near a collider is pushed out
-//! of it to the rope's radius (at metal [`super::RopeParams::radius_at_metal_m`]), with Coulomb friction against the collider's own motion over the
-//! substep (the rope's contact rule, `super::contact`, against a solid), and particles attached to
+//! of it to the rope's radius (at metal [`super::RopeParams::radius_at_metal_m`]), with Coulomb
+//! friction against the collider's own motion over the substep (the rope's contact rule,
+//! `super::contact`, against a solid), and particles attached to
 //! a body follow it. On an elastic rope (a finite axial stiffness) they are put where the body
 //! holds them (the jaws' grasp, the needle's swage) before the rope's lengths are solved, which
 //! then move only the rest of the rope: the pull on the body is what that solve would have moved
