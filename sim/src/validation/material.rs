@@ -53,22 +53,28 @@ mod tests {
     use super::*;
     use crate::validation::suture::nominal;
 
-    /// Guards the ranges: a 0.22 mm polypropylene rod (EI 3.5e-7 N m², 34 mg/m) passes all four,
-    /// and each figure out of its range fails on its own.
+    /// Guards the ranges: a 0.22 mm polypropylene rod (EI 3.5e-7 N m², 34 mg/m) passes all five,
+    /// and each figure out of its range fails on its own (the diameter in the knots and at the
+    /// instruments apart).
     #[test]
     fn a_real_3_0_suture_passes_and_each_figure_out_of_range_fails() {
         let mut suture = nominal();
         suture.params.radius_m = 0.00011;
+        suture.params.metal_radius_m = None;
         suture.params.bending_stiffness_n_m2 = 3.5e-7;
         suture.weight_per_m_n = 34e-6 * G_MPS2;
         let passed =
             |s: &SutureUnderTest| checks(s).iter().map(|c| c.passed == Some(true)).collect::<Vec<_>>();
-        assert_eq!(passed(&suture), [true; 4]);
+        assert_eq!(passed(&suture), [true; 5]);
         let mut thick = suture.clone();
         thick.params.radius_m = 0.0004;
-        assert_eq!(passed(&thick), [false, true, true, true]);
+        thick.params.metal_radius_m = Some(0.00011);
+        assert_eq!(passed(&thick), [false, true, true, true, true]);
+        let mut thick_at_metal = suture.clone();
+        thick_at_metal.params.metal_radius_m = Some(0.0004);
+        assert_eq!(passed(&thick_at_metal), [true, false, true, true, true]);
         let mut heavy = suture.clone();
         heavy.weight_per_m_n *= 100.0;
-        assert_eq!(passed(&heavy), [true, true, false, false]);
+        assert_eq!(passed(&heavy), [true, true, true, false, false]);
     }
 }
