@@ -22,6 +22,8 @@ pub mod suture;
 use std::ops::Range;
 
 use nalgebra::Vector3;
+use rapier3d::math::Pose;
+use rapier3d::prelude::RigidBodyHandle;
 
 /// What the rope lies in: before the rope's own constraints in each substep it puts the particles it
 /// holds where it holds them; after them and the rope's contacts with itself, it resolves the rope
@@ -56,6 +58,24 @@ pub trait Surroundings {
         false
     }
 
+    /// The pose now of `body`, if these surroundings move it within the step (the flaps on their
+    /// slides): the rope's contacts with its colliders are then solved where it is, and what they
+    /// push it with comes back through [`Self::pushed`]. None by default.
+    fn pose_of(&self, _body: RigidBodyHandle) -> Option<Pose> {
+        None
+    }
+
+    /// The inverse mass, 1/kg, with which `body` answers a push along `direction` (a unit vector), if
+    /// these surroundings move it ([`Self::pose_of`]): a contact then moves the particle and the
+    /// body by their masses. 0 by default: the body goes where it goes, whatever the rope does.
+    fn inverse_mass_along(&self, _body: RigidBodyHandle, _direction: &Vector3<f64>) -> f64 {
+        0.0
+    }
+
+    /// The rope gave `body` this impulse, N s (world frame), in the current substep of `h_s`
+    /// seconds: a body these surroundings move takes it at once. Nothing by default.
+    fn pushed(&mut self, _body: RigidBodyHandle, _impulse_n_s: Vector3<f64>, _h_s: f64) {}
+
     /// After the rope's constraints in a substep of `h_s` seconds that started from `x_prev`.
     fn after(&mut self, ropes: &mut Ropes, x_prev: &[Vector3<f64>], h_s: f64);
 }
@@ -85,6 +105,20 @@ impl<S: Surroundings> Surroundings for Option<S> {
 
     fn pushed_the_rope(&self) -> bool {
         self.as_ref().is_some_and(|s| s.pushed_the_rope())
+    }
+
+    fn pose_of(&self, body: RigidBodyHandle) -> Option<Pose> {
+        self.as_ref().and_then(|s| s.pose_of(body))
+    }
+
+    fn inverse_mass_along(&self, body: RigidBodyHandle, direction: &Vector3<f64>) -> f64 {
+        self.as_ref().map_or(0.0, |s| s.inverse_mass_along(body, direction))
+    }
+
+    fn pushed(&mut self, body: RigidBodyHandle, impulse_n_s: Vector3<f64>, h_s: f64) {
+        if let Some(s) = self {
+            s.pushed(body, impulse_n_s, h_s);
+        }
     }
 
     fn after(&mut self, ropes: &mut Ropes, x_prev: &[Vector3<f64>], h_s: f64) {

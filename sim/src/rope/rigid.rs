@@ -297,6 +297,10 @@ struct Among<'a> {
     slid_by_friction_m: Vec<(usize, Vector3<f64>)>,
 }
 
+/// How far a body the surroundings move ([`Surroundings::pose_of`]) may go from where its collider
+/// was boxed in a substep, m: the box is not taken again for each contact.
+const MOVED_HERE_REACH_M: f64 = 0.0005;
+
 /// A body's poses through the step: where it starts and ends, and the last two asked for between
 /// (each substep asks for its end, which is the next one's start).
 struct BodyPoses {
@@ -308,8 +312,13 @@ struct BodyPoses {
 }
 
 impl Among<'_> {
-    /// The pose of `body` a fraction `f` of the way through the step.
+    /// The pose of `body` a fraction `f` of the way through the step: where the surroundings that
+    /// move it within the step have it now ([`Surroundings::pose_of`]), else between where Rapier
+    /// has it and where it will have it.
     fn body_pose(&mut self, body: RigidBodyHandle, f: f64) -> Option<Pose> {
+        if let Some(pose) = self.more.pose_of(body) {
+            return Some(pose);
+        }
         let k = match self.poses.iter().position(|p| p.body == body) {
             Some(k) => k,
             None => {
@@ -410,12 +419,14 @@ impl Among<'_> {
         };
         impulses[k].1 += impulse;
         impulses[k].2 += (at - com).cross(&impulse);
+        self.more.pushed(body, impulse, self.dt_s / self.substeps as f64);
     }
 
     /// A particle pushed by one body into another that pushes it back (a seam narrower than the
-    /// thread: the wound's flaps shut on it) is pinched between them: put on the seam, midway
-    /// through the last push, moved across the seam only, along it left where the rope carried it;
-    /// the two bodies share the push. Pushed to and fro by the two every substep instead, the
+    /// thread between two bodies that go where they go) is pinched between them: put on the seam,
+    /// midway through the last push, moved across the seam only, along it left where the rope
+    /// carried it; the two bodies share the push. Bodies that move with the rope's contacts (the
+    /// wound's flaps on their slides) are not: the pushes moved them apart. Pushed to and fro by the two every substep instead, the
     /// segments leaving the seam stood stretched (at 0.15 kg/m and 24 substeps by a fifth, for as
     /// long as the wound stayed shut).
     fn pinch(&mut self, ropes: &mut Ropes, h_s: f64, f1: f64) {
@@ -439,6 +450,10 @@ impl Among<'_> {
             else {
                 continue;
             };
+            // Bodies that move with the rope's contacts were pushed apart by them.
+            if self.more.pose_of(first.body).is_some() || self.more.pose_of(last.body).is_some() {
+                continue;
+            }
             let start_m = pushed[group[0]].from_m;
             let middle_m = last.from_m + last.dx_m * 0.5;
             let target_m = start_m + last.normal * (middle_m - start_m).dot(&last.normal);
@@ -577,12 +592,19 @@ impl Surroundings for Among<'_> {
                 CoefficientCombineRule::default(),
                 collider.friction_combine_rule(),
             );
-            let aabb = collider.shape().compute_aabb(&now).loosened(r);
+            let (mut then, mut now) = (then, now);
+            let moved_here = self.more.pose_of(body).is_some();
+            let aabb = collider.shape().compute_aabb(&now).loosened(r + MOVED_HERE_REACH_M);
             let candidates = std::mem::take(&mut self.candidates[k]);
             for &p in &candidates {
                 let x_before = x_prev[p];
                 if ropes.w[p] == 0.0 || exempt.contains(&p) {
                     continue;
+                }
+                if moved_here && let Some(pose) = self.more.pose_of(body) {
+                    // Where the last contact left it.
+                    now = pose * local;
+                    then = now;
                 }
                 let x = ropes.x[p];
                 if !aabb.contains_local_point(to_rapier(&x)) {
@@ -612,6 +634,9 @@ impl Surroundings for Among<'_> {
                 if slip > 0.0 {
                     dx -= tangential * (friction * depth / slip).min(1.0);
                 }
+                // A body that moves with the rope's contacts shares the move by the masses.
+                let w_body = self.more.inverse_mass_along(body, &normal);
+                dx *= ropes.w[p] / (ropes.w[p] + w_body);
                 ropes.x[p] += dx;
                 let impulse = -dx / (ropes.w[p] * h_s);
                 self.push(body, impulse, x, f1);
