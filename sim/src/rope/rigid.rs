@@ -425,10 +425,10 @@ impl Among<'_> {
     /// A particle pushed by one body into another that pushes it back (a seam narrower than the
     /// thread between two bodies that go where they go) is pinched between them: put on the seam,
     /// midway through the last push, moved across the seam only, along it left where the rope
-    /// carried it; the two bodies share the push. Bodies that move with the rope's contacts (the
-    /// wound's flaps on their slides) are not: the pushes moved them apart. Pushed to and fro by the two every substep instead, the
-    /// segments leaving the seam stood stretched (at 0.15 kg/m and 24 substeps by a fifth, for as
-    /// long as the wound stayed shut).
+    /// carried it; the two bodies share the push. Pushed to and fro by the two every substep
+    /// instead, the segments leaving the seam stood stretched (at 0.15 kg/m and 24 substeps by a
+    /// fifth). Bodies that move with the rope's contacts (the wound's flaps on their slides) are
+    /// left to their pushes, which move them apart.
     fn pinch(&mut self, ropes: &mut Ropes, h_s: f64, f1: f64) {
         let pushed = std::mem::take(&mut self.pushed);
         // Each particle's pushes in the order made, the particles in the order of their last push.
@@ -594,7 +594,8 @@ impl Surroundings for Among<'_> {
             );
             let (mut then, mut now) = (then, now);
             let moved_here = self.more.pose_of(body).is_some();
-            let aabb = collider.shape().compute_aabb(&now).loosened(r + MOVED_HERE_REACH_M);
+            let reach_m = if moved_here { r + MOVED_HERE_REACH_M } else { r };
+            let aabb = collider.shape().compute_aabb(&now).loosened(reach_m);
             let candidates = std::mem::take(&mut self.candidates[k]);
             for &p in &candidates {
                 let x_before = x_prev[p];
