@@ -2,15 +2,38 @@
 //! strand wound twice round another and pulled harder at one end (the capstan), and a loose square
 //! knot snugged by its four ends, then loaded by its standing parts with its free ends let go.
 
+use std::f64::consts::{FRAC_PI_2, PI};
+
 use nalgebra::Vector3;
 
 use crate::reef::{as_stitch, loose_knot};
 use knotlab_sim::knot::{KnotType, classify};
 use knotlab_sim::rope::{RopeParams, Ropes};
-pub use knotlab_sim::validation::capstan::wound_pair;
 
 /// Particle spacing of the trials' ropes, m (one and a half radii of the default rope).
-pub use knotlab_sim::validation::capstan::WOUND_SPACING_M as SPACING_M;
+pub const SPACING_M: f64 = 0.0003;
+
+/// Strand A (30 mm, both ends pinned) and B wound twice round it in a helix touching it, B's ends
+/// leading off along -z and +z; both at [`SPACING_M`], one and a half radii of the default rope (a
+/// thicker rope's particles would overlap their second neighbours').
+pub fn wound_pair(params: RopeParams) -> (Ropes, std::ops::Range<usize>) {
+    let mut ropes = Ropes::new(params);
+    let a =
+        ropes.add_strand_along(&[Vector3::new(-0.015, 0.0, 0.0), Vector3::new(0.015, 0.0, 0.0)], SPACING_M);
+    ropes.w[a.start] = 0.0;
+    ropes.w[a.end - 1] = 0.0;
+    let r = 2.04 * params.radius_m;
+    let mut path = vec![Vector3::new(-0.003, 0.0, -0.03), Vector3::new(-0.003, 0.0, -r)];
+    let n = 200;
+    path.extend((0..=n).map(|k| {
+        let f = k as f64 / n as f64;
+        let angle = -FRAC_PI_2 + f * 4.0 * PI;
+        Vector3::new(-0.003 + 0.006 * f, r * angle.cos(), r * angle.sin())
+    }));
+    path.push(Vector3::new(0.003, 0.0, 0.03));
+    let b = ropes.add_strand_along(&path, SPACING_M);
+    (ropes, b)
+}
 /// Step of the trials, s.
 pub const DT_S: f64 = 0.001;
 

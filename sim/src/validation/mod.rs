@@ -7,7 +7,7 @@
 //! - [`material`]: the suture's size, stiffness and weight against a real 3-0 suture's.
 //! - [`stretch`]: inextensibility under a 2 N pull.
 //! - [`cantilever`]: a clamped length bent by a tip load and by a uniform load, against the elastica.
-//! - [`capstan`]: the suture pulled round a fixed cylinder and round taut suture, against the
+//! - [`capstan`]: the suture pulled round a fixed cylinder and over suture, against the
 //!   capstan law.
 //! - [`grip`]: the suture drawn through jaws gripping it by friction: their pull against the grip
 //!   force, its strain at the jaws against the pull over EA.
