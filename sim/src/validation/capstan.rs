@@ -102,8 +102,8 @@ fn wrapped(
 }
 
 /// The suture wrapped `wrap_rad` round a fixed cylinder of friction `friction` (the suture's and
-/// the collider's alike) ([`wrapped`], five radii a turn). Returns the friction the slide showed (`None`: it held up
-/// to 1.5 times `friction`, or a ratio of 1.5 without friction).
+/// the collider's alike) ([`wrapped`], five radii a turn). Returns the friction the slide showed
+/// (`None`: it held up to 1.5 times `friction`, or a ratio of 1.5 without friction).
 pub fn over_cylinder(suture: &SutureUnderTest, wrap_rad: f64, friction: f64) -> Option<f64> {
     let mut bodies = RigidBodySet::new();
     let mut colliders = ColliderSet::new();
