@@ -54,8 +54,11 @@ struct Pulled<'a> {
 }
 
 /// Settles the strand for 2 s under `hold_n` at both ends, then lets the loaded end's pull grow
-/// to `max_ratio` times the held one's; returns the ratio at which the loaded end had slid
-/// [`SLID_M`] within [`WINDOW_S`] (`None`: it held throughout).
+/// to `max_ratio` times the held one's; returns the ratio at the start of the first window of
+/// [`WINDOW_S`] in which the held end was drawn [`SLID_M`] (`None`: it held throughout). The ratio
+/// at the window's start, not at its end: the pull grows on while the slide covers that distance,
+/// by up to 1.5 mu `WINDOW_S` / `RAMP_S` in the friction shown (3.75 % of the coefficient), a bias
+/// of the measurement, not of the suture.
 fn ratio_at_slide(mut pulled: Pulled, dt_s: f64, hold_n: f64, max_ratio: f64) -> Option<f64> {
     let (hold, load) = (pulled.hold, pulled.load);
     pulled.ropes.force_n[hold.0] = hold.1 * hold_n;
@@ -66,14 +69,15 @@ fn ratio_at_slide(mut pulled: Pulled, dt_s: f64, hold_n: f64, max_ratio: f64) ->
     }
     let ramp = (RAMP_S / dt_s).round() as usize;
     let window = (WINDOW_S / dt_s).round() as usize;
+    let ratio = |k: usize| max_ratio.powf(k as f64 / ramp as f64);
     let mut along = Vec::with_capacity(ramp);
     for k in 0..ramp {
-        let ratio = max_ratio.powf(k as f64 / ramp as f64);
-        pulled.ropes.force_n[load.0] = load.1 * (hold_n * ratio);
+        pulled.ropes.force_n[load.0] = load.1 * (hold_n * ratio(k));
         (pulled.step)(&mut pulled.ropes);
         along.push(-pulled.ropes.x[hold.0].dot(&hold.1));
-        if along[k] - along[k.saturating_sub(window)] > SLID_M {
-            return Some(ratio);
+        let start = k.saturating_sub(window);
+        if along[k] - along[start] > SLID_M {
+            return Some(ratio(start));
         }
     }
     None
@@ -214,7 +218,8 @@ mod tests {
     /// Guards the experiment over suture: half a turn over a length of the suture held straight
     /// slides, and shows more friction the more it is given (its particles at the scene's spacing:
     /// closer than their second neighbours' reach, the wound strand's own contacts shoved it along
-    /// the other, and the experiment read 0.0004 whatever the friction).
+    /// the other, and the experiment read 0.0004 whatever the friction). Measured: 0.072 at 0.02,
+    /// 0.097 at 1.
     #[test]
     fn half_a_turn_over_suture_shows_more_friction_the_more_it_is_given() {
         let shown = |mu: f64| {
@@ -224,7 +229,10 @@ mod tests {
             over_suture(&suture, true).expect("it slid")
         };
         let (slippery, rough) = (shown(0.02), shown(1.0));
-        assert!(slippery > 0.0 && rough > slippery + 0.03, "mu shown {slippery:.4} at 0.02, {rough:.4} at 1");
+        assert!(
+            slippery > 0.0 && rough > slippery + 0.015,
+            "mu shown {slippery:.4} at 0.02, {rough:.4} at 1"
+        );
     }
 
     /// Guards the slide's measure against belt creep: a soft suture (EA 4 N) wrapped a full turn at
