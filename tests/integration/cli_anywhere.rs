@@ -163,7 +163,7 @@ fn learn_and_run_from_an_empty_directory_use_the_shipped_files() {
 #[test]
 fn demo_validate_sim_and_obstacles_run_from_an_empty_directory() {
     let here = empty_dir("others");
-    // The longest (about 40 s of experiments), beside the others.
+    // The longest (about 75 s of experiments), beside the others.
     let validate = spawn_in(&here, &["validate", "--json"]);
     let demo = json_in(&here, &["demo", "--until", "0.1", "--out", "demo", "--json"]);
     assert_eq!(demo["scene"], "scenarios/default.toml", "{demo}");
