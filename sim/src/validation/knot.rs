@@ -235,7 +235,8 @@ pub fn let_go(suture: &SutureUnderTest, friction: f64) -> Result<(Rest, Rest), V
 }
 
 /// The pull over the law's tightening force at the loop size the knot rested at, for each load but
-/// the seating one, at [`LOW_FRICTION`] and at the suture's friction on itself.
+/// the seating one, at [`LOW_FRICTION`] and at the suture's friction on itself; then the friction
+/// the lock of the knot let go shows ([`let_go`] at [`LOCK_FRICTION`]).
 pub fn checks(suture: &SutureUnderTest) -> Vec<Check> {
     let mut checks = Vec::new();
     for friction in [LOW_FRICTION, suture.params.static_friction] {
@@ -336,7 +337,7 @@ mod tests {
 
     /// Guards the rope's friction in a knot where the law is sharp: a trefoil pulled tight at 0.15
     /// and let go opens until friction locks it, and the lock's ε shows the friction within the
-    /// check's 35 % (measured: 0.184; not opening at all would read 0.221, opening to nothing void).
+    /// check's 35 % (measured: 0.185; not opening at all would read 0.221, opening to nothing void).
     #[test]
     fn a_trefoil_let_go_locks_where_its_friction_says() {
         let (tight, loose) = let_go(&crate::validation::suture::nominal(), LOCK_FRICTION).expect("a trefoil");
