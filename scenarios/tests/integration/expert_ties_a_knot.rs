@@ -1,8 +1,9 @@
 //! The scripted expert ties the knot in the simulated thread.
 //!
 //! On the nominal scene (the rope), seed 0 of the shipped plan (`scenarios/experts/instrument-tie.toml`,
-//! the canonical demonstration's run) leaves a surgeon's double throw that the evaluator accepts: down
-//! at the stitch, holding the wound closed against the holding load once both have let go.
+//! the canonical demonstration's run, which records the shipped files sample for sample) leaves a
+//! surgeon's double throw that the evaluator accepts: down at the stitch, holding the wound closed
+//! against the holding load once both have let go.
 //!
 //! On the capsule chain (`scenarios/chain.toml`), seed 0 of the base plan (`TieGeometry::default()`)
 //! leaves a surgeon's knot down on the tissue at the stitch that
@@ -11,6 +12,7 @@
 //! and once both let go the holding load opens the wound. A change to the scene, the grasp model or
 //! the plan that stops the expert from tying either fails here.
 
+use knotlab_learner::demonstration::load_demonstration;
 use knotlab_scenarios::expert::{RecordOptions, demonstrate, demonstrate_with, load_tie_geometry};
 use knotlab_sim::knot::KnotType;
 use knotlab_sim::knot::Verdict;
@@ -77,7 +79,8 @@ fn on_the_chain_seed_0_ties_a_surgeons_knot_down_at_the_stitch() {
 }
 
 /// Seed 0 of the shipped plan on the nominal scene ties a surgeon's double throw the evaluator accepts,
-/// holding the wound closed under load, each pull stopped at its own set force.
+/// holding the wound closed under load, each pull stopped at its own set force; its recording is the
+/// shipped demonstration, sample for sample.
 #[test]
 fn seed_0_of_the_shipped_plan_ties_a_surgeons_knot_that_holds() {
     let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
@@ -103,13 +106,31 @@ fn seed_0_of_the_shipped_plan_ties_a_surgeons_knot_that_holds() {
     assert_eq!(e.knot_before, Some(KnotType::Surgeons), "the knot: {:?}", run.events);
     let gap_after_m = e.gap_after_m.expect("the holding test ran");
     assert!(gap_after_m <= limits.max_wound_gap_m, "the wound {gap_after_m} m open under the load");
-    // Each pull stopped at its own set force: the left's on the tail (0.3 N), the right's on the long
-    // end (1 N), the right's gauge reading the rope's pull on the needle.
-    for (arm, set_n) in [("left", 0.3), ("right", 1.0)] {
+    // Each pull stopped at its own set force, a surgeon's snug (3 N): the left's on the tail, the
+    // right's on the long end, the right's gauge reading the rope's pull on the needle.
+    for (arm, set_n) in [("left", 3.0), ("right", 3.0)] {
         let stop =
             run.force_events.iter().find(|f| f.arm == arm && f.name == "set force").unwrap_or_else(|| {
                 panic!("the {arm}'s pull stopped at its set force: {:?}", run.force_events)
             });
         assert!(stop.force_n >= set_n, "{stop:?}");
     }
+    // This run is the canonical demonstration (`scenarios/demos/instrument-tie`, what `knotlab demo
+    // --seed 0` records): every figure learned from the shipped files is one this build reproduces.
+    let shipped = load_demonstration(&root.join("demos/instrument-tie")).expect("the shipped demonstration");
+    assert_eq!(shipped.metadata, run.demonstration.metadata, "the shipped demonstration's metadata");
+    for recorded in &run.demonstration.instruments {
+        let name = recorded.instrument;
+        let on_file = shipped.instrument(name).unwrap_or_else(|| panic!("{name:?} in the shipped files"));
+        let differs = recorded.samples.iter().zip(&on_file.samples).find(|(a, b)| a != b);
+        assert!(
+            differs.is_none() && recorded.samples.len() == on_file.samples.len(),
+            "{name:?}: the shipped demonstration is not what this build records (first difference {differs:?}; \
+             {} samples against {} on file): regenerate it as scenarios/demos/README.md says, and the \
+             figures learned from it",
+            recorded.samples.len(),
+            on_file.samples.len()
+        );
+    }
+    assert_eq!(shipped.instruments.len(), run.demonstration.instruments.len(), "the same instruments");
 }
