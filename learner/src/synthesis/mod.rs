@@ -29,8 +29,8 @@ pub use method::Method;
 pub use offsets::{PrimitiveOffset, PrimitiveSpan, offset_primitives};
 pub use replay::{ReplaySettings, replay};
 pub use schedule::{Schedule, Slot};
-pub use site::relocation;
-pub use skill::{ObstacleSource, PrimitiveSettings, REACH_MARGIN_M, Reach, Site, Synthesis, synthesize};
+pub use site::{Reach, relocation};
+pub use skill::{ObstacleSource, PrimitiveSettings, REACH_MARGIN_M, Site, Synthesis, synthesize};
 pub use take::{Take, takes};
 
 use nalgebra::Vector3;

@@ -1,9 +1,23 @@
-//! Where a skill is instantiated: the new stitch frame, and the rigid motion that carries the
-//! demonstration's world to the new site.
+//! Where a skill is instantiated: the new stitch frame, the rigid motion that carries the
+//! demonstration's world to the new site, and what each instrument reaches there.
 
 use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};
 
+use knotlab_hw::kinematics::TipTarget;
+use knotlab_hw::rig::ArmName;
+
 use crate::primitive::Pose;
+
+/// Whether an instrument can take a tip target (its arm's inverse kinematics with the shaft through
+/// its trocar, as the kinematic preview solves it).
+#[derive(Clone, Copy)]
+pub struct Reach<'a>(pub &'a dyn Fn(ArmName, &TipTarget) -> bool);
+
+impl std::fmt::Debug for Reach<'_> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str("Reach(..)")
+    }
+}
 
 /// The rigid motion `new_world_from_demo_world` that puts the demonstration's stitch frame onto the new
 /// one: a point placed relative to the old stitch lands at the same place relative to the new one.

@@ -12,7 +12,8 @@
 //!   path, at the same progress along it.
 //!
 //! Between primitives the instrument does what it did in the demonstration (the knowledge base's path
-//! of each instrument, moved to the new stitch), on the [`Schedule`]'s clock, except that an instrument
+//! of each instrument, moved to the new stitch), on the [`Schedule`]'s clock (after its last primitive
+//! going no further than it reaches, [`Site::reach`], as a force-controlled pull does), except that an instrument
 //! that waited before its first primitive (within [`WAITED_M`] and [`WAITED_RAD`]) waits where it is;
 //! a primitive that starts elsewhere is reached by a straight minimum-jerk move (at
 //! [`PrimitiveSettings::gap_speed_mps`]). The
@@ -23,14 +24,13 @@
 
 use nalgebra::{Isometry3, UnitQuaternion, Vector2, Vector3};
 
-use knotlab_hw::kinematics::TipTarget;
 use knotlab_hw::rig::ArmName;
 use knotlab_hw::skill::{ForceAction, ForceEvent, JawKey, Skill};
 
 use super::dmp::Dmp;
 use super::orientation::Aim;
 use super::schedule::Schedule;
-use super::site::pose_isometry;
+use super::site::{Reach, pose_isometry};
 use super::track::TrackKeys;
 use super::{Method, StartPose, SynthesisError, Trocars};
 use crate::fluid::{
@@ -90,17 +90,6 @@ pub struct Site<'a> {
     pub starts: &'a [StartPose],
     /// Which tip targets each instrument can take; `None`: every one.
     pub reach: Option<Reach<'a>>,
-}
-
-/// Whether an instrument can take a tip target (its arm's inverse kinematics with the shaft through
-/// its trocar, as the kinematic preview solves it).
-#[derive(Clone, Copy)]
-pub struct Reach<'a>(pub &'a dyn Fn(ArmName, &TipTarget) -> bool);
-
-impl std::fmt::Debug for Reach<'_> {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.write_str("Reach(..)")
-    }
 }
 
 /// How far short of the farthest reachable point a force-controlled pull stops, m: the arm's own
@@ -694,8 +683,11 @@ pub fn synthesize(
             }
         }
     }
+    // After its last primitive each instrument does what it did in the demonstration (the pulls
+    // that cinch the knot, the release), going no further than it reaches.
     for (t, track) in tracks.iter_mut().enumerate() {
         let arm = track.arm;
+        let start = track.poses_len();
         transfer(
             track,
             &kb.instruments[t].path,
@@ -703,6 +695,7 @@ pub fn synthesize(
             |x| schedule.map_time(arm, x),
             &world_from_stitch,
         );
+        track.keep_within_reach(start, site.reach, REACH_MARGIN_M);
     }
     let skill = Skill {
         name: format!("{} ({}, from {})", kb.task, method, kb.demonstration.description),

@@ -10,6 +10,7 @@ use knotlab_hw::skill::profile::min_jerk;
 use knotlab_hw::skill::{ForceEvent, JawKey, PoseKey, Track};
 
 use super::orientation::Aim;
+use super::site::Reach;
 
 /// Keys closer in time than this are one key, s.
 const SAME_TIME_S: f64 = 1e-6;
@@ -99,6 +100,51 @@ impl TrackKeys {
         }
     }
 
+    /// How many pose keys the track has.
+    pub fn poses_len(&self) -> usize {
+        self.poses.len()
+    }
+
+    /// Keys from the `from`-th on that `reach` says the instrument cannot take moved back towards the key
+    /// before them, as far as it reaches with `margin_m` to spare further along the way (by
+    /// bisection), or onto that key where it reaches no further: the instrument goes to the edge of
+    /// its reach and waits there until the keys come back within it. Without `reach`, nothing moves.
+    pub fn keep_within_reach(&mut self, from: usize, reach: Option<Reach<'_>>, margin_m: f64) {
+        let Some(Reach(reaches)) = reach else { return };
+        for k in from.max(1)..self.poses.len() {
+            let key = self.poses[k].clone();
+            let to = Vector3::from(key.world_position_m);
+            let takes = |at: Vector3<f64>| {
+                reaches(
+                    self.arm,
+                    &TipTarget { world_position_m: at, orientation: key.orientation.to_tip_orientation() },
+                )
+            };
+            if takes(to) {
+                continue;
+            }
+            let from_m = Vector3::from(self.poses[k - 1].world_position_m);
+            let way = to - from_m;
+            let length_m = way.norm();
+            let beyond = |f: f64| {
+                let ahead = if length_m > 1e-12 { way * (margin_m / length_m) } else { Vector3::zeros() };
+                takes(from_m + way * f + ahead)
+            };
+            let mut lo = 0.0;
+            if beyond(lo) {
+                let mut hi = 1.0;
+                for _ in 0..20 {
+                    let mid = 0.5 * (lo + hi);
+                    if beyond(mid) { lo = mid } else { hi = mid }
+                }
+            }
+            self.poses[k].world_position_m = (from_m + way * lo).into();
+        }
+        if let Some(last) = self.poses.last() {
+            self.position_m = Vector3::from(last.world_position_m);
+        }
+    }
+
     /// The finished track: jaw keys sorted, those at one time merged (the later wins).
     pub fn build(mut self) -> Track {
         self.jaw.sort_by(|a, b| a.time_s.total_cmp(&b.time_s));
@@ -110,5 +156,36 @@ impl TrackKeys {
             }
         }
         Track { arm: self.arm, poses: self.poses, jaw, events: self.events }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use nalgebra::UnitQuaternion;
+
+    use super::*;
+
+    /// Keys beyond the reach stop at its edge, with the margin to spare, and wait there until the keys
+    /// come back within it; keys before `from` and keys within the reach stay where they are.
+    #[test]
+    fn keys_beyond_the_reach_wait_at_its_edge() {
+        let aim = Aim::Frame(UnitQuaternion::identity());
+        let mut track = TrackKeys::new(ArmName::Left, Vector3::new(0.0, 0.0, 1.0), Vector3::zeros(), aim);
+        for (t, x) in [(1.0, 0.05), (2.0, 0.2), (3.0, 0.3), (4.0, 0.06)] {
+            track.key(t, Vector3::new(x, 0.0, 0.0), aim);
+        }
+        let within = |_: ArmName, target: &TipTarget| target.world_position_m.norm() <= 0.1;
+        let mut untouched = track.clone();
+        untouched.keep_within_reach(1, None, 0.002);
+        track.keep_within_reach(1, Some(Reach(&within)), 0.002);
+        let x: Vec<f64> = track.clone().build().poses.iter().map(|k| k.world_position_m[0]).collect();
+        assert_eq!(x.len(), 5);
+        assert_eq!((x[0], x[1], x[4]), (0.0, 0.05, 0.06), "{x:?}");
+        for far in &x[2..4] {
+            assert!((far - 0.098).abs() < 1e-6, "at the edge with the margin to spare: {x:?}");
+        }
+        assert_eq!(track.position_m.x, 0.06);
+        let before: Vec<f64> = untouched.build().poses.iter().map(|k| k.world_position_m[0]).collect();
+        assert_eq!(before, [0.0, 0.05, 0.2, 0.3, 0.06], "without a reach nothing moves");
     }
 }

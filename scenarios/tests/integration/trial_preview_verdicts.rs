@@ -108,3 +108,29 @@ fn a_pull_that_would_leave_the_reach_stops_within_it() {
     let trial = run_trial(&learned, &setup, &options, None).expect("the trial runs");
     assert_eq!(trial.kinematics, Ok(()), "the kinematic preview");
 }
+
+/// Guards the pulls after the last primitive within reach: at a stitch moved 3 cm towards the tail's
+/// side, turned 21 degrees clockwise and tilted 12 degrees, the left's pull on the tail to the
+/// demonstration's 3 N, played back moved to the new stitch, would take its wrist centre beyond the
+/// arm's reach 26 s into the skill (`unreachable`); it stops where the reach ends and the kinematic
+/// preview passes.
+#[test]
+fn the_tails_pull_after_the_last_primitive_stops_within_reach() {
+    let (learned, scene) = shipped();
+    let options =
+        RecordOptions { cycles_per_sample: 10, stop_after_s: Some(0.1), ..RecordOptions::default() };
+    let setup = TrialSetup {
+        scene,
+        scene_name: "default.toml".to_owned(),
+        seed: 0,
+        stitch: StitchMove {
+            offset_m: Vector3::new(-0.0028, 0.0299, 0.0064),
+            rotate_rad: -0.372,
+            tilt_rad: -0.207,
+        },
+        method: Method::Fluid,
+        offsets: Vec::new(),
+    };
+    let trial = run_trial(&learned, &setup, &options, None).expect("the trial runs");
+    assert_eq!(trial.kinematics, Ok(()), "the kinematic preview");
+}
