@@ -11,6 +11,7 @@
 //! - [`orientation`]: how keys orient the tip (the jaws' direction, not the roll).
 //! - [`approach`]: the way in from where the instruments are to the skill's first poses.
 //! - [`take`]: which primitives bring open jaws round the thread they then close on.
+//! - [`winding`]: a winding aimed round the jaws it winds round, as their wrist can hold them.
 
 pub mod approach;
 pub mod dmp;
@@ -23,6 +24,7 @@ pub mod site;
 pub mod skill;
 pub mod take;
 pub mod track;
+pub mod winding;
 
 pub use approach::{ApproachSettings, StartPose, prepend_approach};
 pub use method::Method;

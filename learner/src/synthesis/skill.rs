@@ -7,7 +7,8 @@
 //!   that, as far as the instrument reaches ([`Site::reach`]), then back to the line's end; the jaw
 //!   opens once the recorded maximum force is reached (a force event);
 //! - 2D: regenerated through the fluid around obstacles ([`Method::Fluid`]) or by a DMP from where the
-//!   instrument is ([`Method::Dmp`]);
+//!   instrument is ([`Method::Dmp`]); one that another instrument follows (a winding round its jaws)
+//!   turned about that instrument's tip as its wrist can hold its jaws ([`super::winding`]);
 //! - synchronized: the stored offsets from the reference applied to every point of the reference's new
 //!   path, at the same progress along it.
 //!
@@ -32,6 +33,7 @@ use super::orientation::Aim;
 use super::schedule::Schedule;
 use super::site::{Reach, pose_isometry};
 use super::track::TrackKeys;
+use super::winding::winding_aim;
 use super::{Method, StartPose, SynthesisError, Trocars};
 use crate::fluid::{
     ArcPath, GridRegion, InstantiateSettings, Instantiation, ObstacleMask, PlaneFrame, instantiate,
@@ -390,6 +392,9 @@ struct NewPath {
     points_m: Vec<Vector3<f64>>,
     /// How each point aims the tip.
     aims: Vec<Aim>,
+    /// The stitch frame it was made at (turned with it where it was aimed round another
+    /// instrument's jaws: [`winding_aim`]), which its followers' frames are given in.
+    world_from_stitch: Isometry3<f64>,
 }
 
 impl NewPath {
@@ -470,7 +475,14 @@ fn two_d_path(
     let (_, from_aim) = placed(new_world_from_stitch, &p.start_pose);
     let (_, to_aim) = placed(new_world_from_stitch, &p.end_pose);
     let aims = native.iter().map(|t| from_aim.towards(&to_aim, t / native_end)).collect();
-    let regenerated = NewPath { name: p.name.clone(), plane, times_s, points_m, aims };
+    let regenerated = NewPath {
+        name: p.name.clone(),
+        plane,
+        times_s,
+        points_m,
+        aims,
+        world_from_stitch: *new_world_from_stitch,
+    };
     // The demonstration's own pace along the path: how far along it the hand was at each moment (the
     // speeds the solver stirs with are floored where the hand was at rest, which shifts the timing).
     let progress = demonstrated_progress(demo_path, p);
@@ -481,7 +493,17 @@ fn two_d_path(
     let times_s = progress.iter().map(|(key, _)| slot.0 + (key.time_s - p.start_s) * scale).collect();
     let points_m = progress.iter().map(|(_, phase)| regenerated.time_at_phase(*phase).1).collect();
     let aims = progress.iter().map(|(key, _)| key_aim(new_world_from_stitch, key)).collect();
-    Ok((NewPath { name: p.name.clone(), plane, times_s, points_m, aims }, inst))
+    Ok((
+        NewPath {
+            name: p.name.clone(),
+            plane,
+            times_s,
+            points_m,
+            aims,
+            world_from_stitch: *new_world_from_stitch,
+        },
+        inst,
+    ))
 }
 
 /// `(demonstrated key, fraction of the path's length covered)` over the primitive's span: each
@@ -543,7 +565,6 @@ fn sync_keys(
     track: &mut TrackKeys,
     p: &SynchronizedPrimitive,
     reference: &NewPath,
-    world_from_stitch: &Isometry3<f64>,
     gap_speed_mps: f64,
 ) -> Result<(), SynthesisError> {
     let axes = [reference.plane.axis_x, reference.plane.axis_y, reference.plane.normal()];
@@ -553,7 +574,7 @@ fn sync_keys(
         let offset =
             axes[0] * sample.offset_m[0] + axes[1] * sample.offset_m[1] + axes[2] * sample.offset_m[2];
         let aim = Aim::Frame(
-            world_from_stitch.rotation
+            reference.world_from_stitch.rotation
                 * pose_isometry(&Pose { position_m: [0.0; 3], quaternion_xyzw: sample.quaternion_xyzw })
                     .rotation,
         );
@@ -657,6 +678,8 @@ pub fn synthesize(
                 force_keys(track, f, path, slot.new_s, &world_from_stitch, settings, site.reach)
             }
             Primitive::TwoD(t) => {
+                // A winding goes round the jaws as the instrument that follows it can hold them.
+                let aimed = winding_aim(kb, t, &world_from_stitch, site.trocars)? * world_from_stitch;
                 let (path, inst) = two_d_path(
                     slot.instrument,
                     track,
@@ -664,7 +687,7 @@ pub fn synthesize(
                     slot.new_s,
                     method,
                     &demo_world_from_stitch,
-                    &world_from_stitch,
+                    &aimed,
                     settings,
                     path,
                     obstacles,
@@ -679,7 +702,7 @@ pub fn synthesize(
                 let reference = paths.iter().find(|q| q.name == s.reference).ok_or_else(|| {
                     invalid(format!("{}.reference", s.name), format!("'{}' was not made", s.reference))
                 })?;
-                sync_keys(track, s, reference, &world_from_stitch, settings.gap_speed_mps)?;
+                sync_keys(track, s, reference, settings.gap_speed_mps)?;
             }
         }
     }

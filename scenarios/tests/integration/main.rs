@@ -14,7 +14,8 @@
 //!   [`suture_stretch_watch`].
 //! - A trial's preview verdicts: [`trial_preview_verdicts`]; its take aimed where the thread lies:
 //!   [`trial_take_aims_at_the_thread`]; the left's wrist past its reach at a turned site:
-//!   [`trial_wrist_follows_its_reach`].
+//!   [`trial_wrist_follows_its_reach`]; the winding round the left's jaws as they are held there:
+//!   [`trial_winding_round_the_jaws`].
 //! - [`common`]: the expert runs the second-throw tests share, and the skill learned from the shipped
 //!   demonstration.
 
@@ -39,4 +40,5 @@ mod short_suture_scene_is_the_chain_one_with_less_thread;
 mod suture_stretch_watch;
 mod trial_preview_verdicts;
 mod trial_take_aims_at_the_thread;
+mod trial_winding_round_the_jaws;
 mod trial_wrist_follows_its_reach;
