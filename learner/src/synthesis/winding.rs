@@ -18,6 +18,10 @@ use super::orientation::recorded_orientation;
 use super::{SynthesisError, Trocars};
 use crate::primitive::{KnowledgeBase, PathKey, Primitive, TwoDPrimitive};
 
+/// The least turn of the follower's frame for which the winding is aimed with it, rad: a frame turned
+/// back less is wound round closely enough as the demonstration had it.
+pub const WINDING_AIMED_FROM_RAD: f64 = 10.0 * std::f64::consts::PI / 180.0;
+
 /// The follower's demonstrated key at `time_s`: the last at or before it (the first where none is).
 fn key_at(path: &[PathKey], time_s: f64) -> Option<&PathKey> {
     path.iter().take_while(|k| k.time_s <= time_s + 1e-9).last().or(path.first())
@@ -58,7 +62,7 @@ pub fn winding_aim(
         };
         let given = UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(w, x, y, z));
         let turn = given * asked.inverse();
-        if turn.angle() < 1e-9 {
+        if turn.angle() < WINDING_AIMED_FROM_RAD {
             continue;
         }
         return Ok(Translation3::from(tip_m) * turn * Translation3::from(-tip_m));
