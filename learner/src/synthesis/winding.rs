@@ -5,9 +5,10 @@
 //! stitch: its frame is turned back to the wrist's reach ([`recorded_orientation`]), and a winding
 //! moved with the stitch would circle an axis that is no longer the jaws' (26 degrees off at the
 //! workspace map's trial 19, where the long end's turns round the jaws never passed half a turn).
-//! So the winding and its follower are turned together about the follower's tip by the turn its
-//! frame is given: the loop goes round the jaws as they will be, and the follower's own path, which
-//! starts at that tip, stays where it was.
+//! So where that frame is turned back by [`WINDING_AIMED_FROM_RAD`] or more, the winding and its
+//! follower are turned together about the follower's tip by the turn its frame is given: the loop
+//! goes round the jaws as they will be, and the follower's own path, which starts at that tip, stays
+//! where it was.
 
 use nalgebra::{Isometry3, Point3, Translation3, UnitQuaternion, Vector3};
 
@@ -19,8 +20,10 @@ use super::{SynthesisError, Trocars};
 use crate::primitive::{KnowledgeBase, PathKey, Primitive, TwoDPrimitive};
 
 /// The least turn of the follower's frame for which the winding is aimed with it, rad: a frame turned
-/// back less is wound round closely enough as the demonstration had it.
-pub const WINDING_AIMED_FROM_RAD: f64 = 10.0 * std::f64::consts::PI / 180.0;
+/// back less is wound round closely enough as the demonstration had it. Within the default
+/// randomization the left's frame is turned back at one corner only (shifted 1 cm along x and y,
+/// turned 10 degrees clockwise: by 10.9 degrees), and its winding is left as demonstrated.
+pub const WINDING_AIMED_FROM_RAD: f64 = 12.0 * std::f64::consts::PI / 180.0;
 
 /// The follower's demonstrated key at `time_s`: the last at or before it (the first where none is).
 fn key_at(path: &[PathKey], time_s: f64) -> Option<&PathKey> {
@@ -31,7 +34,7 @@ fn key_at(path: &[PathKey], time_s: f64) -> Option<&PathKey> {
 /// the instrument that follows it (its synchronized primitive's), as the wrist of that instrument,
 /// its shaft through its trocar in `trocars`, can hold them when the winding starts: the identity
 /// where no instrument follows the winding, its key has no frame, or its wrist reaches the
-/// demonstrated frame.
+/// demonstrated frame or one less than [`WINDING_AIMED_FROM_RAD`] from it.
 pub fn winding_aim(
     kb: &KnowledgeBase,
     winding: &TwoDPrimitive,

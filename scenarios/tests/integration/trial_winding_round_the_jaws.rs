@@ -2,10 +2,12 @@
 
 use knotlab_hw::rig::{ArmName, Rig};
 use knotlab_hw::skill::Orientation;
-use knotlab_learner::synthesis::Method;
+use knotlab_learner::primitive::Primitive;
+use knotlab_learner::synthesis::winding::{WINDING_AIMED_FROM_RAD, winding_aim};
+use knotlab_learner::synthesis::{Method, Trocars};
 use knotlab_scenarios::trial::{Learned, StitchMove, synthesize_for};
 use knotlab_sim::scene::parse_scene;
-use knotlab_sim::world::SimWorld;
+use knotlab_sim::world::{SimWorld, trocar_of};
 use nalgebra::{UnitQuaternion, Vector3};
 
 use super::common;
@@ -66,4 +68,56 @@ fn at_a_turned_site_the_winding_circles_the_jaws_as_they_are_held() {
         turned.to_degrees(),
         nominal.to_degrees()
     );
+}
+
+/// Guards the winding's aim to the sites that need it: at the corners of the default randomization
+/// (the stitch shifted 1 cm along x and y, turned 10 degrees either way) the left's frame in the
+/// loop is turned back less than `WINDING_AIMED_FROM_RAD` (or not at all), and the winding is made
+/// about the jaws as the demonstration held them; at trial 19's site it is turned.
+#[test]
+fn the_winding_is_aimed_only_where_the_left_frame_is_turned_back_far() {
+    let learned = common::shipped_learned();
+    let winding = learned
+        .knowledge
+        .instruments
+        .iter()
+        .flat_map(|ip| &ip.primitives)
+        .find_map(|p| match p {
+            Primitive::TwoD(t) if t.name == "R2" => Some(t),
+            _ => None,
+        })
+        .expect("the winding R2");
+    let aim_rad = |stitch: StitchMove| {
+        let mut scene =
+            parse_scene(include_str!("../../default.toml"), "default.toml").expect("the nominal scene");
+        stitch.apply(&mut scene);
+        let world = SimWorld::new(scene, Rig::shipped().expect("the rig")).expect("the moved world");
+        let trocars = Trocars(
+            [ArmName::Left, ArmName::Right, ArmName::Assist]
+                .into_iter()
+                .map(|a| (a, trocar_of(world.config(), a)))
+                .collect(),
+        );
+        let world_from_stitch = world.tissue().world_from_tissue;
+        let aim = winding_aim(&learned.knowledge, winding, &world_from_stitch, &trocars).expect("the aim");
+        aim.rotation.angle()
+    };
+    let mut largest_rad = 0.0f64;
+    for x in [-0.01, 0.01] {
+        for y in [-0.01, 0.01] {
+            for turn in [-0.17, 0.0, 0.17] {
+                let stitch =
+                    StitchMove { offset_m: Vector3::new(x, y, 0.0), rotate_rad: turn, tilt_rad: 0.0 };
+                let a = aim_rad(stitch);
+                largest_rad = largest_rad.max(a);
+            }
+        }
+    }
+    assert_eq!(largest_rad, 0.0, "a winding within the default randomization turned");
+    let far = aim_rad(StitchMove {
+        offset_m: Vector3::new(-0.002790, 0.029912, 0.006401),
+        rotate_rad: -0.372059,
+        tilt_rad: -0.206757,
+    });
+    assert!(far >= WINDING_AIMED_FROM_RAD, "at trial 19's site the winding turned {far} rad");
 }
