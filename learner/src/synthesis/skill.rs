@@ -13,9 +13,10 @@
 //!   path, at the same progress along it.
 //!
 //! Between primitives the instrument does what it did in the demonstration (the knowledge base's path
-//! of each instrument, moved to the new stitch), on the [`Schedule`]'s clock (after its last primitive
-//! going no further than it reaches, [`Site::reach`], as a force-controlled pull does), except that an instrument
-//! that waited before its first primitive (within [`WAITED_M`] and [`WAITED_RAD`]) waits where it is;
+//! of each instrument, moved to the new stitch), on the [`Schedule`]'s clock (after its last
+//! primitive going no further than it reaches, [`Site::reach`], as a force-controlled pull does),
+//! except that an instrument that waited before its first primitive (within [`WAITED_M`] and
+//! [`WAITED_RAD`]) waits where it is;
 //! a primitive that starts elsewhere is reached by a straight minimum-jerk move (at
 //! [`PrimitiveSettings::gap_speed_mps`]). The
 //! jaws move as the demonstration's did. The tip keeps the demonstrated frame ([`Aim::Frame`]): a
