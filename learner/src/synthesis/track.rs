@@ -112,7 +112,7 @@ impl TrackKeys {
     pub fn keep_within_reach(&mut self, from: usize, reach: Option<Reach<'_>>, margin_m: f64) {
         let Some(Reach(reaches)) = reach else { return };
         for k in from.max(1)..self.poses.len() {
-            let key = self.poses[k].clone();
+            let key = self.poses[k];
             let to = Vector3::from(key.world_position_m);
             let takes = |at: Vector3<f64>| {
                 reaches(
