@@ -6,7 +6,7 @@ use std::path::Path;
 use knotlab_hw::controller::ArmSetup;
 use knotlab_hw::kinematics::ArmJoints;
 use knotlab_hw::rig::{ArmName, Rig};
-use knotlab_hw::skill::preview::kinematic_trajectory;
+use knotlab_hw::skill::preview::{KinematicProblem, kinematic_trajectory};
 use knotlab_learner::demonstration::load_demonstration;
 use knotlab_learner::pattern::load_pattern;
 use knotlab_learner::primitive::learn;
@@ -84,12 +84,8 @@ fn a_skill_whose_preview_hits_an_obstacle_is_judged_collision() {
     assert_eq!(hit.verdict(), Verdict::Failure(FailureMode::Collision));
 }
 
-/// Guards the force-controlled pull within reach: at a stitch moved 2.8 cm towards the right's side
-/// (and 7 mm along the wound) the right's pull of R5, on to 125 % of its line, would take its wrist
-/// centre beyond the arm's reach (0.8166 m from the shoulder) 40 s into the skill, and the trial would
-/// be judged `unreachable`; the pull stops where the reach ends and the kinematic preview passes.
-#[test]
-fn a_pull_that_would_leave_the_reach_stops_within_it() {
+/// The kinematic preview of the shipped skill (fluid) at the stitch moved by `stitch`.
+fn preview_at(stitch: StitchMove) -> Result<(), KinematicProblem> {
     let (learned, scene) = shipped();
     let options =
         RecordOptions { cycles_per_sample: 10, stop_after_s: Some(0.1), ..RecordOptions::default() };
@@ -97,16 +93,25 @@ fn a_pull_that_would_leave_the_reach_stops_within_it() {
         scene,
         scene_name: "default.toml".to_owned(),
         seed: 0,
-        stitch: StitchMove {
-            offset_m: Vector3::new(0.0066, -0.0281, -0.0001),
-            rotate_rad: 0.0373,
-            tilt_rad: -0.0245,
-        },
+        stitch,
         method: Method::Fluid,
         offsets: Vec::new(),
     };
-    let trial = run_trial(&learned, &setup, &options, None).expect("the trial runs");
-    assert_eq!(trial.kinematics, Ok(()), "the kinematic preview");
+    run_trial(&learned, &setup, &options, None).expect("the trial runs").kinematics
+}
+
+/// Guards the force-controlled pull within reach: at a stitch moved 2.8 cm towards the right's side
+/// (and 7 mm along the wound) the right's pull of R5, on to 125 % of its line, would take its wrist
+/// centre beyond the arm's reach (0.8166 m from the shoulder) 40 s into the skill, and the trial would
+/// be judged `unreachable`; the pull stops where the reach ends and the kinematic preview passes.
+#[test]
+fn a_pull_that_would_leave_the_reach_stops_within_it() {
+    let stitch = StitchMove {
+        offset_m: Vector3::new(0.0066, -0.0281, -0.0001),
+        rotate_rad: 0.0373,
+        tilt_rad: -0.0245,
+    };
+    assert_eq!(preview_at(stitch), Ok(()), "the kinematic preview");
 }
 
 /// Guards the pulls after the last primitive within reach: at a stitch moved 3 cm towards the tail's
@@ -116,21 +121,7 @@ fn a_pull_that_would_leave_the_reach_stops_within_it() {
 /// preview passes.
 #[test]
 fn the_tails_pull_after_the_last_primitive_stops_within_reach() {
-    let (learned, scene) = shipped();
-    let options =
-        RecordOptions { cycles_per_sample: 10, stop_after_s: Some(0.1), ..RecordOptions::default() };
-    let setup = TrialSetup {
-        scene,
-        scene_name: "default.toml".to_owned(),
-        seed: 0,
-        stitch: StitchMove {
-            offset_m: Vector3::new(-0.0028, 0.0299, 0.0064),
-            rotate_rad: -0.372,
-            tilt_rad: -0.207,
-        },
-        method: Method::Fluid,
-        offsets: Vec::new(),
-    };
-    let trial = run_trial(&learned, &setup, &options, None).expect("the trial runs");
-    assert_eq!(trial.kinematics, Ok(()), "the kinematic preview");
+    let stitch =
+        StitchMove { offset_m: Vector3::new(-0.0028, 0.0299, 0.0064), rotate_rad: -0.372, tilt_rad: -0.207 };
+    assert_eq!(preview_at(stitch), Ok(()), "the kinematic preview");
 }
