@@ -494,17 +494,7 @@ fn two_d_path(
     let times_s = progress.iter().map(|(key, _)| slot.0 + (key.time_s - p.start_s) * scale).collect();
     let points_m = progress.iter().map(|(_, phase)| regenerated.time_at_phase(*phase).1).collect();
     let aims = progress.iter().map(|(key, _)| key_aim(new_world_from_stitch, key)).collect();
-    Ok((
-        NewPath {
-            name: p.name.clone(),
-            plane,
-            times_s,
-            points_m,
-            aims,
-            world_from_stitch: *new_world_from_stitch,
-        },
-        inst,
-    ))
+    Ok((NewPath { times_s, points_m, aims, ..regenerated }, inst))
 }
 
 /// `(demonstrated key, fraction of the path's length covered)` over the primitive's span: each
