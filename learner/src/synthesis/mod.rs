@@ -32,7 +32,7 @@ pub use offsets::{PrimitiveOffset, PrimitiveSpan, offset_primitives};
 pub use replay::{ReplaySettings, replay};
 pub use schedule::{Schedule, Slot};
 pub use site::{Reach, relocation};
-pub use skill::{ObstacleSource, PrimitiveSettings, REACH_MARGIN_M, Site, Synthesis, synthesize};
+pub use skill::{AT_REST_M, ObstacleSource, PrimitiveSettings, REACH_MARGIN_M, Site, Synthesis, synthesize};
 pub use take::{Take, takes};
 
 use nalgebra::Vector3;

@@ -2,10 +2,11 @@
 //! rules of each primitive type:
 //! - linear: from where the instrument is to the moved end, straight, with the demonstrated speed
 //!   profile (stretched to the new length, the demonstrated duration kept);
-//! - force-controlled: the demonstrated movement, moved, then on along its line (start to where it
-//!   came to rest) until the line is elongated by [`PrimitiveSettings::force_elongation`] or, short of
-//!   that, as far as the instrument reaches ([`Site::reach`]), then back to the line's end; the jaw
-//!   opens once the recorded maximum force is reached (a force event);
+//! - force-controlled: the demonstrated movement, moved, up to where it came to rest, then at once on
+//!   along its line (start to there) until the line is elongated by
+//!   [`PrimitiveSettings::force_elongation`] or, short of that, as far as the instrument reaches
+//!   ([`Site::reach`]), there until the slot's end, then back to the line's end; the jaw opens once
+//!   the recorded maximum force is reached (a force event);
 //! - 2D: regenerated through the fluid around obstacles ([`Method::Fluid`]) or by a DMP from where the
 //!   instrument is ([`Method::Dmp`]); one that another instrument follows (a winding round its jaws)
 //!   turned about that instrument's tip as its wrist can hold its jaws ([`super::winding`]);
@@ -320,23 +321,29 @@ fn force_keys(
     reach: Option<Reach<'_>>,
 ) {
     let (start, start_aim) = placed(world_from_stitch, &p.start_pose);
-    let (end, end_aim) = placed(world_from_stitch, &p.end_pose);
+    let (_, end_aim) = placed(world_from_stitch, &p.end_pose);
     let line_end = world_from_stitch.transform_point(&Vector3::from(p.line_end_m).into()).coords;
     gap_move(track, slot.0, start, start_aim, settings.gap_speed_mps);
     let d = p.end_s - p.start_s;
-    // The demonstrated movement up to the jaws' opening, moved; the line from its start to where it came
-    // to rest gives the direction it goes on in.
+    // The demonstrated movement up to where it came to rest, moved; the line from its start to there
+    // gives the direction it goes on in, at once (not after whatever the demonstration did at rest): a
+    // pull that has not brought its force goes on while the other instruments still hold what they
+    // held as it came to rest.
+    let rest_s = came_to_rest_s(path, p);
+    let pulled_s = rest_s - p.start_s;
     let shift = slot.0 - p.start_s;
-    transfer(track, path, (p.start_s, p.end_s), |t| t + shift, world_from_stitch);
-    track.key(slot.0 + d, end, end_aim);
+    transfer(track, path, (p.start_s, rest_s), |t| t + shift, world_from_stitch);
+    track.key(slot.0 + pulled_s, line_end, end_aim);
     let elongation = pull_within_reach(track, reach, start, line_end, end_aim, settings.force_elongation);
     let far = start + (line_end - start) * elongation;
-    track.move_to(slot.0 + settings.force_elongation * d, far, end_aim, 20);
+    track.move_to(slot.0 + settings.force_elongation * pulled_s, far, end_aim, 20);
+    track.hold_until(slot.0 + settings.force_elongation * d);
     track.move_to(slot.1, line_end, end_aim, 20);
     let (from_rad, to_rad) = (p.jaw.from_rad, p.jaw.to_rad);
     track.jaw.push(JawKey { time_s: slot.0, jaw_rad: from_rad });
     track.jaw.push(JawKey { time_s: slot.1 - 0.01, jaw_rad: from_rad });
     track.jaw.push(JawKey { time_s: slot.1, jaw_rad: to_rad });
+    // The paper's rule: the jaws let go once the recorded force is reached, wherever that is.
     track.events.push(ForceEvent {
         name: p.name.clone(),
         from_s: slot.0,
@@ -346,6 +353,24 @@ fn force_keys(
         fires_with: None,
         action: ForceAction::OpenJaw { jaw_rad: to_rad },
     });
+}
+
+/// How far from the line's end a demonstrated tip may be for its pull to have come to rest there, m.
+pub const AT_REST_M: f64 = 0.001;
+
+/// When the demonstrated force-controlled movement came to rest at its line's end: the first time of
+/// the primitive's span from which the path stays within [`AT_REST_M`] of it (the span's end if it
+/// never does).
+fn came_to_rest_s(path: &[PathKey], p: &ForcePrimitive) -> f64 {
+    let line_end = Vector3::from(p.line_end_m);
+    let mut rest_s = p.end_s;
+    for key in path.iter().rev().filter(|k| k.time_s >= p.start_s && k.time_s <= p.end_s) {
+        if (Vector3::from(key.position_m) - line_end).norm() > AT_REST_M {
+            break;
+        }
+        rest_s = key.time_s;
+    }
+    rest_s
 }
 
 /// How far along the line from `start` through `line_end` a force-controlled pull goes on, as a

@@ -1,6 +1,7 @@
 //! The rules of skill synthesis, on a synthetic demonstration learned with the shipped
 //! pattern: the force-controlled primitive goes on to 125 % of its line and comes back, with the jaw
-//! opening at the recorded force; no primitive starts before the primitives it waits for are done, and
+//! opening at the recorded force, and (on the shipped recording, whose pull is held before the jaws
+//! open) goes on as soon as it comes to rest; no primitive starts before the primitives it waits for are done, and
 //! a longer one delays those that wait; a skill made at a moved stitch is the nominal one moved; the
 //! fluid method regenerates the 2D primitive; the replay baseline plays the demonstration back.
 
@@ -11,14 +12,14 @@ use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};
 use knotlab_hw::kinematics::TipTarget;
 use knotlab_hw::rig::ArmName;
 use knotlab_hw::skill::{ForceAction, Orientation, Skill, Track};
-use knotlab_learner::demonstration::Demonstration;
+use knotlab_learner::demonstration::{Demonstration, load_demonstration};
 use knotlab_learner::fluid::ObstacleMask;
 use knotlab_learner::pattern::load_pattern;
 use knotlab_learner::primitive::{KnowledgeBase, Primitive, learn};
 use knotlab_learner::synthesis::site::pose_isometry;
 use knotlab_learner::synthesis::{
-    Method, PrimitiveSettings, REACH_MARGIN_M, Reach, ReplaySettings, Schedule, Site, StartPose, Synthesis,
-    Trocars, relocation, replay, synthesize, takes,
+    AT_REST_M, Method, PrimitiveSettings, REACH_MARGIN_M, Reach, ReplaySettings, Schedule, Site, StartPose,
+    Synthesis, Trocars, relocation, replay, synthesize, takes,
 };
 use knotlab_learner::synthetic::{SyntheticSettings, canonical_demonstration};
 
@@ -129,6 +130,62 @@ fn a_force_controlled_primitive_goes_on_to_125_percent_and_comes_back_opening_at
         assert_eq!(t.jaw_at(slot.new_s.0 + 0.5), Some(p.jaw.from_rad), "{name}: holds while pulling");
         assert!((t.jaw_at(slot.new_s.1).unwrap() - p.jaw.to_rad).abs() < 1e-12, "{name}: open at the end");
     }
+}
+
+/// A force-controlled primitive whose demonstration held its pull before letting go (the shipped
+/// recording's R5 comes to rest with the knot snug and holds it there for seconds before the jaws
+/// open) goes on along its line as soon as the demonstrated movement comes to rest, while the other
+/// instruments still hold what they held, not after the hold; its jaws let go at the recorded force.
+#[test]
+fn a_pull_held_before_letting_go_goes_on_from_its_rest() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
+    let demo =
+        load_demonstration(&root.join("scenarios/demos/instrument-tie")).expect("the shipped demonstration");
+    let pattern =
+        load_pattern(&root.join("scenarios/patterns/knot_tying.toml")).expect("the shipped pattern");
+    let kb = learn(&demo, &pattern).expect("the shipped demonstration is learned");
+    let Some(Primitive::Force(p)) = kb.primitive("R5") else { panic!("R5 is force-controlled") };
+    let world = nominal(&kb);
+    let made = make(&kb, &demo, Method::Fluid, world);
+    let slot = made.schedule.slot("R5").expect("scheduled");
+    let t = track(&made.skill, ArmName::Right);
+    let start = world * nalgebra::Point3::from(Vector3::from(p.start_pose.position_m));
+    let end = world * nalgebra::Point3::from(Vector3::from(p.line_end_m));
+    let line = end - start;
+    let progress = |x: Vector3<f64>| (x - start.coords).dot(&line) / line.norm_squared();
+    // Where the demonstrated right came to rest, and how long it held there before its jaws opened.
+    let right = demo.instruments.iter().find(|r| r.instrument == ArmName::Right).expect("a right");
+    let rest_s = right
+        .samples
+        .iter()
+        .rev()
+        .filter(|s| s.time_s >= p.start_s && s.time_s <= p.end_s)
+        .take_while(|s| (Vector3::from(s.position_m) - end.coords).norm() <= AT_REST_M)
+        .last()
+        .map(|s| s.time_s)
+        .expect("R5 ends at rest");
+    let held_s = p.start_s + p.jaw.at_s - rest_s;
+    assert!(held_s > 2.0, "the demonstration held its pull {held_s:.2} s before letting go");
+    // On to 125 % of its line a quarter of the pull's time after it came to rest, long before the
+    // demonstrated hold ends; still there as the hold ends.
+    let settings = PrimitiveSettings::default();
+    let pulled_s = rest_s - p.start_s;
+    for at_s in
+        [slot.new_s.0 + settings.force_elongation * pulled_s + 0.01, slot.new_s.0 + (p.end_s - p.start_s)]
+    {
+        let reached = progress(position(t, at_s));
+        assert!(
+            (reached - settings.force_elongation).abs() < 0.01,
+            "{:.2} s into the slot the pull is at {reached:.3} of its line (expected {})",
+            at_s - slot.new_s.0,
+            settings.force_elongation
+        );
+    }
+    // The jaws let go at the recorded force, inside the slot.
+    let event = t.events.iter().find(|e| e.name == "R5").expect("a force event");
+    assert_eq!(event.threshold_n, p.max_force_n);
+    assert_eq!((event.from_s, event.until_s), slot.new_s);
+    assert_eq!(event.action, ForceAction::OpenJaw { jaw_rad: p.jaw.to_rad });
 }
 
 /// A force-controlled pull that would leave the instrument's reach stops where the reach ends, short
