@@ -2,11 +2,12 @@
 //! touches it there:
 //!
 //! ```text
-//! cargo run --release -p knotlab-scenarios --example stretch_probe -- [TURN_DEG] [METHOD] [RATIO]
+//! cargo run --release -p knotlab-scenarios --example stretch_probe -- [TURN_DEG] [METHOD] [RATIO] [SHIFT_X_M SHIFT_Y_M SHIFT_Z_M] [TILT_DEG]
 //! ```
 //!
-//! The nominal scene's stitch turned by TURN_DEG (default 0) about the tissue's normal, the skill
-//! carried there by METHOD (fluid, dmp or replay; default fluid), seed 0. Whenever the most stretched
+//! The nominal scene's stitch turned by TURN_DEG (default 0) about the tissue's normal, shifted by
+//! SHIFT_X_M, SHIFT_Y_M, SHIFT_Z_M (world frame, default 0) and tilted by TILT_DEG about the wound
+//! (default 0), the skill carried there by METHOD (fluid, dmp or replay; default fluid), seed 0. Whenever the most stretched
 //! segment is stretched beyond RATIO (default 0.08) of its rest length it prints (at most every 0.25
 //! s): the time, the segment, its neighbours' stretch, the links the particles near it touch, the
 //! instruments' force gauges, the grips and the run inside the stitch. At the end: the verdict with
@@ -55,7 +56,15 @@ fn main() {
         scene,
         scene_name: "default".into(),
         seed: 0,
-        stitch: StitchMove { offset_m: Vector3::zeros(), rotate_rad: rotate_deg.to_radians(), tilt_rad: 0.0 },
+        stitch: StitchMove {
+            offset_m: Vector3::new(
+                number(&args, 4, 0.0, "SHIFT_X_M"),
+                number(&args, 5, 0.0, "SHIFT_Y_M"),
+                number(&args, 6, 0.0, "SHIFT_Z_M"),
+            ),
+            rotate_rad: rotate_deg.to_radians(),
+            tilt_rad: number(&args, 7, 0.0, "TILT_DEG").to_radians(),
+        },
         method,
         offsets: Vec::new(),
     };

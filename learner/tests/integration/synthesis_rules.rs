@@ -18,8 +18,8 @@ use knotlab_learner::pattern::load_pattern;
 use knotlab_learner::primitive::{KnowledgeBase, Primitive, learn};
 use knotlab_learner::synthesis::site::pose_isometry;
 use knotlab_learner::synthesis::{
-    AT_REST_M, Method, PrimitiveSettings, REACH_MARGIN_M, Reach, ReplaySettings, Schedule, Site, StartPose,
-    Synthesis, Trocars, relocation, replay, synthesize, takes,
+    AT_REST_M, ApproachSettings, Method, PrimitiveSettings, REACH_MARGIN_M, Reach, ReplaySettings, Schedule,
+    Site, StartPose, Synthesis, Trocars, prepend_approach, relocation, replay, synthesize, takes,
 };
 use knotlab_learner::synthetic::{SyntheticSettings, canonical_demonstration};
 
@@ -186,6 +186,71 @@ fn a_pull_held_before_letting_go_goes_on_from_its_rest() {
     assert_eq!(event.threshold_n, p.max_force_n);
     assert_eq!((event.from_s, event.until_s), slot.new_s);
     assert_eq!(event.action, ForceAction::OpenJaw { jaw_rad: p.jaw.to_rad });
+}
+
+/// An instrument that starts turned otherwise than the demonstration's first key, moved, turns it
+/// (the scene's right holds the needle along its shaft; at a turned and tilted site the moved
+/// demonstration's first frame is bent tens of degrees from that) is turned by the way in, at its
+/// pace, before the skill starts: the skill's first key is the tip where it is, turned as that first
+/// key. Started as the instrument is, the skill turned it in its first tenth of a second, which the
+/// arm followed joint by joint at full speed, its tip swinging centimetres out and back.
+#[test]
+fn an_instrument_starting_turned_otherwise_is_turned_by_the_way_in() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
+    let demo =
+        load_demonstration(&root.join("scenarios/demos/instrument-tie")).expect("the shipped demonstration");
+    let pattern =
+        load_pattern(&root.join("scenarios/patterns/knot_tying.toml")).expect("the shipped pattern");
+    let kb = learn(&demo, &pattern).expect("the shipped demonstration is learned");
+    let world = nominal(&kb)
+        * UnitQuaternion::from_axis_angle(&Vector3::z_axis(), (-23.5f64).to_radians())
+        * UnitQuaternion::from_axis_angle(&Vector3::x_axis(), (-13.7f64).to_radians());
+    let trocars = trocars(&world);
+    let mut starts = starts(&kb, &demo, &world);
+    // The right starts with its jaws along its shaft, as the scene puts it.
+    let trocar = trocars.of(ArmName::Right).expect("a right trocar");
+    for start in starts.iter_mut().filter(|s| s.arm == ArmName::Right) {
+        let tip = start.world_from_tip.translation.vector;
+        let along = UnitQuaternion::rotation_between(&Vector3::z(), &(tip - trocar)).expect("a shaft");
+        start.world_from_tip.rotation = along;
+    }
+    let site = Site { new_world_from_stitch: world, trocars: &trocars, starts: &starts, reach: None };
+    let mut free = |_: &str, _: ArmName, _: &_, region: &knotlab_learner::fluid::GridRegion| {
+        Ok(ObstacleMask::free(region.n))
+    };
+    let mut skill = synthesize(&kb, Method::Fluid, &site, &PrimitiveSettings::default(), &mut free)
+        .expect("synthesis")
+        .skill;
+    let settings = ApproachSettings::default();
+    let lead_s = prepend_approach(&mut skill, &starts, &settings);
+    let right = track(&skill, ArmName::Right);
+    let frame = |k: &knotlab_hw::skill::PoseKey| match k.orientation {
+        Orientation::Frame { quaternion_xyzw: [x, y, z, w] } => {
+            Some(UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(w, x, y, z)))
+        }
+        _ => None,
+    };
+    let first = right.poses.iter().find(|k| k.time_s >= lead_s - 1e-9).expect("a key after the way in");
+    let turn = frame(first).expect("the first key is a frame").angle_to(&along_shaft_of(&starts));
+    assert!(turn > 0.3, "the demonstration's first frame, moved, is turned {turn:.2} rad from the start");
+    assert!(
+        lead_s >= turn / settings.turn_rad_per_s - 1e-6,
+        "the way in ({lead_s:.2} s) makes the {turn:.2} rad turn at its pace"
+    );
+    // From the way in's end on, the tip turns no faster than a hand does.
+    let keys: Vec<_> =
+        right.poses.iter().filter(|k| k.time_s >= lead_s - 1e-9 && k.time_s <= lead_s + 1.0).collect();
+    for pair in keys.windows(2) {
+        let (a, b) = (frame(pair[0]), frame(pair[1]));
+        let (Some(a), Some(b)) = (a, b) else { panic!("{:.3} s: a key without a frame", pair[1].time_s) };
+        let rate = a.angle_to(&b) / (pair[1].time_s - pair[0].time_s);
+        assert!(rate < 1.0, "{:.3} s: the tip turns at {rate:.2} rad/s", pair[1].time_s);
+    }
+}
+
+/// The right's start frame in `starts`.
+fn along_shaft_of(starts: &[StartPose]) -> UnitQuaternion<f64> {
+    starts.iter().find(|s| s.arm == ArmName::Right).expect("a right").world_from_tip.rotation
 }
 
 /// A force-controlled pull that would leave the instrument's reach stops where the reach ends, short
