@@ -685,9 +685,9 @@ pub fn synthesize(
                 // The track starts where the tip is, turned as the demonstration's first key, moved,
                 // turns it: the way in (`super::prepend_approach`) makes that turn at its own pace
                 // before the skill starts. Left to the skill's first keys, a turned or tilted site's
-                // turn of tens of degrees came within a tenth of a second, which the arm followed
-                // joint by joint at full speed, its tip swinging centimetres out and back (tearing the
-                // needle from the right's jaws).
+                // turn of tens of degrees would come within a tenth of a second, which the arm follows
+                // joint by joint at full speed, its tip swinging centimetres out and back (enough to
+                // tear the needle from the right's jaws).
                 track.key(0.0, track.position_m, key_aim(&world_from_stitch, first));
             }
             transfer(

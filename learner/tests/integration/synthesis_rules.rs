@@ -192,8 +192,8 @@ fn a_pull_held_before_letting_go_goes_on_from_its_rest() {
 /// (the scene's right holds the needle along its shaft; at a turned and tilted site the moved
 /// demonstration's first frame is bent tens of degrees from that) is turned by the way in, at its
 /// pace, before the skill starts: the skill's first key is the tip where it is, turned as that first
-/// key. Started as the instrument is, the skill turned it in its first tenth of a second, which the
-/// arm followed joint by joint at full speed, its tip swinging centimetres out and back.
+/// key. Started as the instrument is, the skill would turn it in its first tenth of a second, which
+/// the arm follows joint by joint at full speed, its tip swinging centimetres out and back.
 #[test]
 fn an_instrument_starting_turned_otherwise_is_turned_by_the_way_in() {
     let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
