@@ -31,6 +31,16 @@ fn learned(seed: u64) -> (KnowledgeBase, Demonstration) {
     (learn(&demo, &pattern).expect("the synthetic demonstration is learned"), demo)
 }
 
+/// The shipped demonstration (the scripted expert's recording) learned with the shipped pattern.
+fn shipped_learned() -> (KnowledgeBase, Demonstration) {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
+    let demo =
+        load_demonstration(&root.join("scenarios/demos/instrument-tie")).expect("the shipped demonstration");
+    let pattern =
+        load_pattern(&root.join("scenarios/patterns/knot_tying.toml")).expect("the shipped pattern");
+    (learn(&demo, &pattern).expect("the shipped demonstration is learned"), demo)
+}
+
 fn trocars(world_from_stitch: &Isometry3<f64>) -> Trocars {
     // Trocars 8 cm above the stitch, spread as the scene's are.
     let at = |x: f64, y: f64| world_from_stitch.transform_point(&nalgebra::Point3::new(x, y, 0.08)).coords;
@@ -138,12 +148,7 @@ fn a_force_controlled_primitive_goes_on_to_125_percent_and_comes_back_opening_at
 /// instruments still hold what they held, not after the hold; its jaws let go at the recorded force.
 #[test]
 fn a_pull_held_before_letting_go_goes_on_from_its_rest() {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
-    let demo =
-        load_demonstration(&root.join("scenarios/demos/instrument-tie")).expect("the shipped demonstration");
-    let pattern =
-        load_pattern(&root.join("scenarios/patterns/knot_tying.toml")).expect("the shipped pattern");
-    let kb = learn(&demo, &pattern).expect("the shipped demonstration is learned");
+    let (kb, demo) = shipped_learned();
     let Some(Primitive::Force(p)) = kb.primitive("R5") else { panic!("R5 is force-controlled") };
     let world = nominal(&kb);
     let made = make(&kb, &demo, Method::Fluid, world);
@@ -196,12 +201,7 @@ fn a_pull_held_before_letting_go_goes_on_from_its_rest() {
 /// the arm follows joint by joint at full speed, its tip swinging centimetres out and back.
 #[test]
 fn an_instrument_starting_turned_otherwise_is_turned_by_the_way_in() {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
-    let demo =
-        load_demonstration(&root.join("scenarios/demos/instrument-tie")).expect("the shipped demonstration");
-    let pattern =
-        load_pattern(&root.join("scenarios/patterns/knot_tying.toml")).expect("the shipped pattern");
-    let kb = learn(&demo, &pattern).expect("the shipped demonstration is learned");
+    let (kb, demo) = shipped_learned();
     let world = nominal(&kb)
         * UnitQuaternion::from_axis_angle(&Vector3::z_axis(), (-23.5f64).to_radians())
         * UnitQuaternion::from_axis_angle(&Vector3::x_axis(), (-13.7f64).to_radians());
