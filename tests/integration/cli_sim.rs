@@ -84,6 +84,7 @@ fn validate_reports_every_check_and_exits_by_the_judged_ones() {
         "cantilever_uniform_load",
         "capstan_cylinder",
         "capstan_suture",
+        "slide_on_suture",
         "knot_trefoil",
         "dynamics",
     ] {

@@ -9,6 +9,7 @@
 //! - [`cantilever`]: a clamped length bent by a tip load and by a uniform load, against the elastica.
 //! - [`capstan`]: the suture pulled round a fixed cylinder and over suture, against the
 //!   capstan law.
+//! - [`slide`]: the suture drawn straight over suture under a known load, against Coulomb's law.
 //! - [`grip`]: the suture drawn through jaws gripping it by friction: their pull against the grip
 //!   force, its strain at the jaws against the pull over EA.
 //! - [`knot`]: an open trefoil pulled tight, against the tightening law of a loose elastic knot.
@@ -24,6 +25,7 @@ pub mod grip;
 pub mod knot;
 pub mod material;
 pub mod pinch;
+pub mod slide;
 pub mod stretch;
 pub mod suture;
 
@@ -129,6 +131,7 @@ pub fn run_all(suture: &SutureUnderTest) -> Vec<Check> {
     checks.extend(stretch::checks(suture));
     checks.extend(cantilever::checks(suture));
     checks.extend(capstan::checks(suture));
+    checks.extend(slide::checks(suture));
     checks.extend(grip::checks(suture));
     checks.extend(knot::checks(suture));
     checks.extend(dynamics::checks(suture));
