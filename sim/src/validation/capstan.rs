@@ -202,7 +202,7 @@ pub fn checks(suture: &SutureUnderTest) -> Vec<Check> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::validation::suture::nominal;
+    use crate::validation::suture::{nominal, nominal_at_friction};
 
     /// Guards the rope's friction on colliders: half a turn round the cylinder at 0.5 slides where
     /// the capstan law says, within 5 %, and without friction at once.
@@ -222,12 +222,7 @@ mod tests {
     /// 0.097 at 1.
     #[test]
     fn half_a_turn_over_suture_shows_more_friction_the_more_it_is_given() {
-        let shown = |mu: f64| {
-            let mut suture = nominal();
-            suture.params.static_friction = mu;
-            suture.params.kinetic_friction = 0.8 * mu;
-            over_suture(&suture, true).expect("it slid")
-        };
+        let shown = |mu: f64| over_suture(&nominal_at_friction(mu), true).expect("it slid");
         let (slippery, rough) = (shown(0.02), shown(1.0));
         assert!(
             slippery > 0.0 && rough > slippery + 0.015,

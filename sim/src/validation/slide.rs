@@ -101,7 +101,7 @@ pub fn checks(suture: &SutureUnderTest) -> Vec<Check> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::validation::suture::nominal;
+    use crate::validation::suture::nominal_at_friction;
 
     /// Guards the rope's friction on itself: a strand drawn straight over a strand held straight,
     /// pressed onto it by 1 N, slides at its friction times the load, within 5 %, at 0.05 and at
@@ -109,12 +109,7 @@ mod tests {
     /// 0.0462, 0.459).
     #[test]
     fn a_strand_drawn_over_suture_slides_at_its_friction_times_the_load() {
-        let shown = |mu: f64| {
-            let mut suture = nominal();
-            suture.params.static_friction = mu;
-            suture.params.kinetic_friction = 0.8 * mu;
-            drawn_over_suture(&suture, LOAD_N).expect("it slid")
-        };
+        let shown = |mu: f64| drawn_over_suture(&nominal_at_friction(mu), LOAD_N).expect("it slid");
         for mu in [0.05, 0.5] {
             let mu_shown = shown(mu);
             assert!((mu_shown - mu).abs() < 0.05 * mu, "mu {mu}: shown {mu_shown:.4}");

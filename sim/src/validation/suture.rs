@@ -92,6 +92,16 @@ pub(crate) fn nominal() -> SutureUnderTest {
     SutureUnderTest::from_thread(&scene.thread, scene.sensor.grip_force_n, scene.solver.dt_s)
 }
 
+/// The nominal suture with its friction on itself set to `mu` (static; kinetic 0.8 of it, as the
+/// scene has them), for the experiments' tests.
+#[cfg(test)]
+pub(crate) fn nominal_at_friction(mu: f64) -> SutureUnderTest {
+    let mut suture = nominal();
+    suture.params.static_friction = mu;
+    suture.params.kinetic_friction = 0.8 * mu;
+    suture
+}
+
 /// The suture of the 3-0 polypropylene scene (`scenarios/polypropylene-3-0.toml`), for the
 /// experiments' tests.
 #[cfg(test)]
