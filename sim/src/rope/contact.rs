@@ -1,6 +1,12 @@
 //! Contacts between rope segments: capsules of the rope's radius round each segment, pushed apart
 //! on positions, with Coulomb friction on the substep's relative tangential displacement (Macklin
-//! et al. 2014: below `static_friction` times the push, the slip is undone entirely). A pair that
+//! et al. 2014: below `static_friction` times the push, the slip is undone entirely). The contacts
+//! are solved in each of the substep's passes over the rope's lengths and joints, and a pair's
+//! pushes and its friction's moves are summed over the passes: the friction is bounded by the
+//! whole push, and the passes converge on the substep's joint solution of rope and contacts (the
+//! lengths and joints solved alone first spread a press along the strand, and the friction a strand
+//! drawn over another showed fell short of its coefficient by the substep squared over the
+//! particles' mass: 0.446 for 0.5 at 0.15 kg/m in 6 substeps, 0.488 in two passes, 0.499 in four). A pair that
 //! lay within a diameter of touching when the substep began is pushed apart to the side it lay on
 //! then: whatever moved one strand past the other's axis within the substep (a body's push, the
 //! lengths' pull), the contact takes it back rather than on through.
@@ -46,6 +52,12 @@ pub(super) struct Watch {
     gap_m: Vec<f64>,
     /// Each candidate's credit, m.
     credit_m: Vec<f64>,
+    /// How far each candidate's pair has been pushed apart over the substep's passes so far, m:
+    /// the normal impulse (times the pair's inverse mass and the substep) that bounds its friction.
+    pushed_m: Vec<f64>,
+    /// How far each candidate's friction has moved its points back along each other over the
+    /// substep's passes so far, m: the friction's impulse, as [`Self::pushed_m`] the normal one.
+    rubbed_m: Vec<Vector3<f64>>,
     /// How many pairs' closest points were computed.
     pairs_measured: u64,
     /// Solve every candidate, culling none (to check that the culling changes nothing).
@@ -91,6 +103,14 @@ impl Watch {
         self.segment_moved_m = vec![0.0; none + 1];
         self.gap_m = vec![f64::NEG_INFINITY; ropes.candidates.len()];
         self.credit_m = vec![0.0; ropes.candidates.len()];
+        self.pushed_m = vec![0.0; ropes.candidates.len()];
+        self.rubbed_m = vec![Vector3::zeros(); ropes.candidates.len()];
+    }
+
+    /// A new substep's solve: no pair pushed apart or held by its friction yet.
+    pub(super) fn start_substep(&mut self) {
+        self.pushed_m.iter_mut().for_each(|m| *m = 0.0);
+        self.rubbed_m.iter_mut().for_each(|m| *m = Vector3::zeros());
     }
 
     /// Measures how far every segment has moved from the reference; where one has moved too far,
@@ -157,7 +177,9 @@ pub(super) fn solve_contacts(
     for k in 0..ropes.candidates.len() {
         let (i, j) = ropes.candidates[k];
         let moved_m = watch.credit_m[k] + watch.segment_moved_m[i] + watch.segment_moved_m[j];
-        if watch.gap_m[k] - moved_m >= ROUNDING_M && !watch.exhaustive {
+        // A pair pushed apart earlier in the substep keeps its friction though it touch no more.
+        let pushed_before = watch.pushed_m[k] > 0.0;
+        if watch.gap_m[k] - moved_m >= ROUNDING_M && !pushed_before && !watch.exhaustive {
             continue;
         }
         watch.pairs_measured += 1;
@@ -172,16 +194,20 @@ pub(super) fn solve_contacts(
         // substep (a body's push, a length's pull), and is pushed back to the side it came from.
         let then = (x_prev[a] * (1.0 - s) + x_prev[b] * s) - (x_prev[c] * (1.0 - t) + x_prev[d] * t);
         let through = then.norm_squared() < 4.0 * two_r * two_r && delta.dot(&then) < 0.0;
-        if (dist >= two_r || dist < 1e-12) && !through {
+        let overlapping = (dist < two_r && dist >= 1e-12) || through;
+        let rubbing = pushed_before && dist >= 1e-12;
+        if !(overlapping || rubbing) {
             continue;
         }
         let (n, depth) = if through {
             let n = then.normalize();
             (n, two_r - delta.dot(&n))
         } else {
-            (delta / dist, two_r - dist)
+            (delta / dist, (two_r - dist).max(0.0))
         };
-        touching += 1;
+        if overlapping {
+            touching += 1;
+        }
         let weights = [(a, 1.0 - s), (b, s), (c, -(1.0 - t)), (d, -t)];
         let wsum: f64 = weights.iter().map(|(p, k)| ropes.w[*p] * k * k).sum();
         if wsum == 0.0 {
@@ -193,14 +219,22 @@ pub(super) fn solve_contacts(
                 ropes.held_pull[p] += n * (k * depth / wsum);
             }
         }
+        watch.pushed_m[k] += depth;
+        let pushed_m = watch.pushed_m[k];
         // Friction: the contact points' relative displacement over the substep, across the normal.
         let moved = |p: usize| ropes.x[p] - x_prev[p];
         let rel = (moved(a) * (1.0 - s) + moved(b) * s) - (moved(c) * (1.0 - t) + moved(d) * t);
         let tangential = rel - n * rel.dot(&n);
-        let slip = tangential.norm();
-        if slip >= 1e-15 {
-            let undo =
-                if slip < mu_s * depth { tangential } else { tangential * (mu_k * depth / slip).min(1.0) };
+        // The friction's whole move over the substep, were this slip undone too: kept if within the
+        // static bound on the pair's whole push, else cut to the kinetic one.
+        let rubbed = watch.rubbed_m[k] - n * watch.rubbed_m[k].dot(&n);
+        let wanted = rubbed + tangential;
+        let wanted_m = wanted.norm();
+        if tangential.norm() >= 1e-15 {
+            let kept =
+                if wanted_m <= mu_s * pushed_m { wanted } else { wanted * (mu_k * pushed_m / wanted_m) };
+            let undo = kept - rubbed;
+            watch.rubbed_m[k] = kept;
             for (p, k) in weights {
                 ropes.x[p] -= undo * (ropes.w[p] * k / wsum);
                 if ropes.w[p] == 0.0 && k != 0.0 {

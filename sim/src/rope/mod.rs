@@ -174,9 +174,7 @@ pub struct RopeParams {
     /// Gauss-Seidel fallback carries none, and each of its passes after the first stiffens an
     /// elastic rope's lengths towards inextensible).
     pub constraint_passes: usize,
-    /// Passes over the contacts in each substep. More let friction act closer to its coefficient:
-    /// with 4 the reef trial's square knot at friction 0.5 holds within 0.1-0.8 mm where with 1 it
-    /// creeps 1.4-2.2 mm a second, at three times the cost.
+    /// Passes over the contacts after each pass over the lengths and joints.
     pub contact_passes: usize,
     /// Velocity damping, 1/s.
     pub damping_per_s: f64,
@@ -451,7 +449,7 @@ impl Ropes {
             surroundings.hold(self, &mut held, h);
             self.held = held;
             self.x_held.clone_from(&self.x);
-            self.solve_held(h);
+            self.solve_held(h, &mut watch, &x_prev);
             // A hold that would slip under that pull lets its particles go for the substep: solved
             // again with them free, they are put back afterwards, and the hold gives way. The
             // surroundings read the pull on the held particles as they stand, so from a copy.
@@ -461,14 +459,8 @@ impl Ropes {
             if slipping {
                 self.x.clone_from(&self.x_held);
                 surroundings.start_slipping(self, h);
-                self.solve_held(h);
+                self.solve_held(h, &mut watch, &x_prev);
             }
-            // The contacts move the held particles no more than the lengths did.
-            std::mem::swap(&mut self.w, &mut self.w_solve);
-            for pass in 0..self.params.contact_passes.max(1) {
-                self.contacts_last = contact::solve_contacts(self, &mut watch, &x_prev, pass == 0);
-            }
-            std::mem::swap(&mut self.w, &mut self.w_solve);
             surroundings.after(self, &x_prev, h);
             // The rope's contacts with itself have the last word: a body's push (the jaws', the
             // tissue's) that left two strands overlapping would carry one through the other in
@@ -489,9 +481,11 @@ impl Ropes {
         self.x_prev = x_prev;
     }
 
-    /// The lengths and joints solved over a substep of `h_s` seconds with the held particles
-    /// pinned, the pull on them summed anew.
-    fn solve_held(&mut self, h_s: f64) {
+    /// The lengths, joints and contacts solved over a substep of `h_s` seconds that started from
+    /// `x_prev`, with the held particles pinned, the pull on them summed anew. Each pass solves the
+    /// contacts after the lengths and joints, their pushes and friction summed over the passes
+    /// (the contacts move the held particles no more than the lengths do).
+    fn solve_held(&mut self, h_s: f64, watch: &mut contact::Watch, x_prev: &[Vector3<f64>]) {
         let n = self.x.len();
         self.w_solve.clone_from(&self.w);
         for (w, held) in self.w_solve.iter_mut().zip(&self.held) {
@@ -508,12 +502,16 @@ impl Ropes {
         }
         self.stretch_lambda.clear();
         self.stretch_lambda.resize(self.rest_m.len(), 0.0);
+        watch.start_substep();
         for _ in 0..self.params.constraint_passes.max(1) {
             for _ in 0..self.params.stretch_iterations {
                 self.solve_stretch(h_s);
             }
             if bending {
                 self.solve_bending();
+            }
+            for contact_pass in 0..self.params.contact_passes.max(1) {
+                self.contacts_last = contact::solve_contacts(self, watch, x_prev, contact_pass == 0);
             }
         }
         std::mem::swap(&mut self.w, &mut self.w_solve);
