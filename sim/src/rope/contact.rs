@@ -160,6 +160,18 @@ fn closest(ropes: &Ropes, a: usize, b: usize, c: usize, d: usize) -> (f64, f64, 
     (s, t, p - q)
 }
 
+/// What bounds the friction of a pass over the contacts.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) enum Friction {
+    /// The pair's pushes summed over the substep's passes (the passes over the rope).
+    Summed,
+    /// This pass's push alone, its moves not summed: the pass after the bodies pushed the rope,
+    /// which keeps two strands from being carried through each other. (Bounded by the substep's
+    /// pushes, its friction would hold the rope against what the bodies moved it by: a knot
+    /// snugged over a stitch stopped 2 mm short of closing the wound.)
+    OwnPush,
+}
+
 /// Solves every candidate contact once (in the candidates' order); returns how many touched.
 /// `moved_elsewhere`: whether anything but this solver moved the particles since it last ran.
 pub(super) fn solve_contacts(
@@ -167,6 +179,7 @@ pub(super) fn solve_contacts(
     watch: &mut Watch,
     x_prev: &[Vector3<f64>],
     moved_elsewhere: bool,
+    friction: Friction,
 ) -> usize {
     let two_r = 2.0 * ropes.params.radius_m;
     let (mu_s, mu_k) = (ropes.params.static_friction, ropes.params.kinetic_friction);
@@ -178,7 +191,7 @@ pub(super) fn solve_contacts(
         let (i, j) = ropes.candidates[k];
         let moved_m = watch.credit_m[k] + watch.segment_moved_m[i] + watch.segment_moved_m[j];
         // A pair pushed apart earlier in the substep keeps its friction though it touch no more.
-        let pushed_before = watch.pushed_m[k] > 0.0;
+        let pushed_before = friction == Friction::Summed && watch.pushed_m[k] > 0.0;
         if watch.gap_m[k] - moved_m >= ROUNDING_M && !pushed_before && !watch.exhaustive {
             continue;
         }
@@ -220,21 +233,26 @@ pub(super) fn solve_contacts(
             }
         }
         watch.pushed_m[k] += depth;
-        let pushed_m = watch.pushed_m[k];
+        let (pushed_m, rubbed_m) = match friction {
+            Friction::Summed => (watch.pushed_m[k], watch.rubbed_m[k]),
+            Friction::OwnPush => (depth, Vector3::zeros()),
+        };
         // Friction: the contact points' relative displacement over the substep, across the normal.
         let moved = |p: usize| ropes.x[p] - x_prev[p];
         let rel = (moved(a) * (1.0 - s) + moved(b) * s) - (moved(c) * (1.0 - t) + moved(d) * t);
         let tangential = rel - n * rel.dot(&n);
         // The friction's whole move over the substep, were this slip undone too: kept if within the
         // static bound on the pair's whole push, else cut to the kinetic one.
-        let rubbed = watch.rubbed_m[k] - n * watch.rubbed_m[k].dot(&n);
+        let rubbed = rubbed_m - n * rubbed_m.dot(&n);
         let wanted = rubbed + tangential;
         let wanted_m = wanted.norm();
         if tangential.norm() >= 1e-15 {
             let kept =
                 if wanted_m <= mu_s * pushed_m { wanted } else { wanted * (mu_k * pushed_m / wanted_m) };
             let undo = kept - rubbed;
-            watch.rubbed_m[k] = kept;
+            if friction == Friction::Summed {
+                watch.rubbed_m[k] = kept;
+            }
             for (p, k) in weights {
                 ropes.x[p] -= undo * (ropes.w[p] * k / wsum);
                 if ropes.w[p] == 0.0 && k != 0.0 {

@@ -467,7 +467,7 @@ impl Ropes {
             // the next substep.
             if surroundings.pushed_the_rope() {
                 std::mem::swap(&mut self.w, &mut self.w_solve);
-                contact::solve_contacts(self, &mut watch, &x_prev, true);
+                contact::solve_contacts(self, &mut watch, &x_prev, true, contact::Friction::OwnPush);
                 std::mem::swap(&mut self.w, &mut self.w_solve);
             }
             let damp = 1.0 / (1.0 + h * self.params.damping_per_s);
@@ -511,7 +511,13 @@ impl Ropes {
                 self.solve_bending();
             }
             for contact_pass in 0..self.params.contact_passes.max(1) {
-                self.contacts_last = contact::solve_contacts(self, watch, x_prev, contact_pass == 0);
+                self.contacts_last = contact::solve_contacts(
+                    self,
+                    watch,
+                    x_prev,
+                    contact_pass == 0,
+                    contact::Friction::Summed,
+                );
             }
         }
         std::mem::swap(&mut self.w, &mut self.w_solve);
