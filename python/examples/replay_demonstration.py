@@ -1,6 +1,7 @@
 """The shipped expert's demonstration played back through `knotlab/KnotTying-v0`'s `step`: the scene
 as the demonstration was recorded in it (no randomization, seed 0), the recorded tip poses and jaws
-turned into the environment's actions at its control rate. It ties the knot.
+turned into the environment's actions at its control rate, and the knot's verdict (open loop,
+where the knot comes to rest is chaotic: see docs/python.md).
 
     python python/examples/replay_demonstration.py
 """
