@@ -13,32 +13,34 @@ use nalgebra::Vector3;
 
 use super::Bend;
 
-/// The direct bending solve's working space (kept to spare allocating it anew).
+/// The direct bending solve's working space and its factorisation (kept to spare allocating and
+/// factoring it anew: the matrix depends on the particles' inverse masses only, the same in every
+/// pass over a substep).
 #[derive(Clone, Debug, Default)]
 pub(super) struct Scratch {
-    /// The factorisation's pivots `D`.
+    /// Each run of consecutive joints, as a range of joint indices, and whether its matrix could be
+    /// factored.
+    runs: Vec<(std::ops::Range<usize>, bool)>,
+    /// The factorisation's pivots `D`, one a joint.
     pivot: Vec<f64>,
-    /// `L`'s first and second subdiagonals.
+    /// `L`'s first and second subdiagonals, one entry a joint.
     l1: Vec<f64>,
     l2: Vec<f64>,
-    /// The right-hand side, then the solution `λ`.
+    /// The right-hand side, then the solution `λ`, of the run being solved.
     lambda: Vec<Vector3<f64>>,
 }
 
-/// Projects every run of consecutive joints (a strand's: each joint's first particle one after the
-/// previous joint's) of `joints` onto its constraints at once, moving `x` by the inverse masses `w`.
-/// What a pinned particle (`w` 0) would have been moved by, times its mass, is added to its entry
-/// of `pinned_pull` (as `x`).
-/// Returns false where a run's matrix is singular (a pivot not positive, as when a joint's three
-/// particles are all pinned and it has no compliance), leaving that run as it was.
-pub(super) fn project(
-    joints: &[Bend],
-    lambda: &mut [Vector3<f64>],
-    x: &mut [Vector3<f64>],
-    w: &[f64],
-    scratch: &mut Scratch,
-    pinned_pull: &mut [Vector3<f64>],
-) -> bool {
+/// Factors the matrix of every run of consecutive joints (a strand's: each joint's first particle
+/// one after the previous joint's) of `joints` for the inverse masses `w`, into `scratch`, for
+/// [`project`]. Returns false where a run's matrix is singular (a pivot not positive, as when a
+/// joint's three particles are all pinned and it has no compliance): [`project`] leaves that run
+/// as it is.
+pub(super) fn factor(joints: &[Bend], w: &[f64], scratch: &mut Scratch) -> bool {
+    let Scratch { runs, pivot, l1, l2, .. } = scratch;
+    runs.clear();
+    pivot.clear();
+    l1.clear();
+    l2.clear();
     let mut ok = true;
     let mut start = 0;
     while start < joints.len() {
@@ -46,27 +48,23 @@ pub(super) fn project(
         while end < joints.len() && joints[end].p[0] == joints[end - 1].p[0] + 1 {
             end += 1;
         }
-        ok &= project_run(&joints[start..end], &mut lambda[start..end], x, w, scratch, pinned_pull);
+        let factored = factor_run(&joints[start..end], w, pivot, l1, l2);
+        // A run that could not be factored keeps its place in the joint-indexed entries.
+        pivot.resize(end, 0.0);
+        l1.resize(end, 0.0);
+        l2.resize(end, 0.0);
+        runs.push((start..end, factored));
+        ok &= factored;
         start = end;
     }
     ok
 }
 
-/// Projects one run of consecutive joints.
-fn project_run(
-    run: &[Bend],
-    total: &mut [Vector3<f64>],
-    x: &mut [Vector3<f64>],
-    w: &[f64],
-    scratch: &mut Scratch,
-    pinned_pull: &mut [Vector3<f64>],
-) -> bool {
+/// Factors one run's pentadiagonal matrix `LDLᵀ`, pushing its pivots and subdiagonals. False where
+/// a pivot is not positive.
+fn factor_run(run: &[Bend], w: &[f64], pivot: &mut Vec<f64>, l1: &mut Vec<f64>, l2: &mut Vec<f64>) -> bool {
     let n = run.len();
-    let Scratch { pivot, l1, l2, lambda } = scratch;
-    pivot.clear();
-    l1.clear();
-    l2.clear();
-    lambda.clear();
+    let first = pivot.len();
     // The matrix's diagonal, first and second off-diagonals: joints j and j+1 share particles
     // p[1], p[2] of j (p[0], p[1] of j+1); j and j+2 share p[2] of j (p[0] of j+2).
     let diag = |j: usize| {
@@ -82,22 +80,62 @@ fn project_run(
         w[a.p[2]] * a.g[2] * b.g[0]
     };
     for j in 0..n {
+        let at = first + j;
         let mut d = diag(j);
         if j >= 1 {
-            d -= l1[j - 1] * l1[j - 1] * pivot[j - 1];
+            d -= l1[at - 1] * l1[at - 1] * pivot[at - 1];
         }
         if j >= 2 {
-            d -= l2[j - 2] * l2[j - 2] * pivot[j - 2];
+            d -= l2[at - 2] * l2[at - 2] * pivot[at - 2];
         }
         if !(d > 0.0 && d.is_finite()) {
             return false;
         }
         pivot.push(d);
         let e = if j + 1 < n { off1(j) } else { 0.0 };
-        let coupled = if j >= 1 { l2[j - 1] * l1[j - 1] * pivot[j - 1] } else { 0.0 };
+        let coupled = if j >= 1 { l2[at - 1] * l1[at - 1] * pivot[at - 1] } else { 0.0 };
         l1.push((e - coupled) / d);
         l2.push(if j + 2 < n { off2(j) / d } else { 0.0 });
     }
+    true
+}
+
+/// Projects every run of `joints` onto its constraints at once, with the matrices [`factor`] left
+/// in `scratch` (for these joints and `w`), moving `x` by the inverse masses `w`; each joint's
+/// multiplier is carried on in `lambda`. What a pinned particle (`w` 0) would have been moved by,
+/// times its mass, is added to its entry of `pinned_pull` (as `x`). A run whose matrix could not be
+/// factored is left as it was.
+pub(super) fn project(
+    joints: &[Bend],
+    lambda: &mut [Vector3<f64>],
+    x: &mut [Vector3<f64>],
+    w: &[f64],
+    scratch: &mut Scratch,
+    pinned_pull: &mut [Vector3<f64>],
+) {
+    let Scratch { runs, pivot, l1, l2, lambda: solution } = scratch;
+    for (range, factored) in runs.iter() {
+        if *factored {
+            let r = range.clone();
+            let factors = (&pivot[r.clone()], &l1[r.clone()], &l2[r.clone()]);
+            project_run(&joints[r.clone()], &mut lambda[r], factors, x, w, solution, pinned_pull);
+        }
+    }
+}
+
+/// Projects one run of consecutive joints with its factorisation `(D, L's first subdiagonal, its
+/// second)`.
+fn project_run(
+    run: &[Bend],
+    total: &mut [Vector3<f64>],
+    (pivot, l1, l2): (&[f64], &[f64], &[f64]),
+    x: &mut [Vector3<f64>],
+    w: &[f64],
+    lambda: &mut Vec<Vector3<f64>>,
+    pinned_pull: &mut [Vector3<f64>],
+) {
+    let n = run.len();
+    lambda.clear();
     // Forward: L y = -(C + α̃ λ); then z = y / D; back: Lᵀ Δλ = z.
     for j in 0..n {
         let b = &run[j];
@@ -134,7 +172,6 @@ fn project_run(
             x[p] += l * (w[p] * g);
         }
     }
-    true
 }
 
 #[cfg(test)]
@@ -226,7 +263,8 @@ mod tests {
         let mut scratch = Scratch::default();
         let mut lambda = vec![Vector3::zeros(); n];
         let mut pull = vec![Vector3::zeros(); ropes.x.len()];
-        assert!(project(&joints, &mut lambda, &mut ropes.x, &ropes.w, &mut scratch, &mut pull));
+        assert!(factor(&joints, &ropes.w, &mut scratch));
+        project(&joints, &mut lambda, &mut ropes.x, &ropes.w, &mut scratch, &mut pull);
         let worst = ropes.x.iter().zip(&expected).map(|(a, b)| (a - b).norm()).fold(0.0, f64::max);
         assert!(worst < 1e-12, "differs from the dense solve by {worst:e} m");
     }

@@ -524,13 +524,19 @@ impl Ropes {
     }
 
     /// Readies the joints for a substep of `h_s` seconds: their constants (worked out anew when the
-    /// stiffness, the substep or the rope changed) and their multipliers at zero.
+    /// stiffness, the substep or the rope changed), their multipliers at zero and, solved a strand
+    /// at once, their matrices factored for the inverse masses as they stand (the held particles
+    /// pinned), which every pass over the substep shares.
     fn start_bending(&mut self, h_s: f64) {
         let key = (self.params.bending_stiffness_n_m2.to_bits(), h_s.to_bits(), self.rest_m.len());
         if self.bends.key != key {
             self.bends = Bends::new(self, h_s, key);
         }
         self.bends.lambda.iter_mut().for_each(|l| *l = Vector3::zeros());
+        if self.params.direct_bending {
+            // A run it cannot factor (every particle pinned, no compliance) cannot move either.
+            bend::factor(&self.bends.joints, &self.w, &mut self.bend_scratch);
+        }
     }
 
     /// One XPBD pass over the joints: at joint `b` between segments `a b` and `b c` (rest lengths
@@ -543,7 +549,6 @@ impl Ropes {
     fn solve_bending(&mut self) {
         let Bends { joints, lambda, .. } = &mut self.bends;
         if self.params.direct_bending {
-            // A run it cannot solve (every particle pinned, no compliance) cannot move either.
             bend::project(joints, lambda, &mut self.x, &self.w, &mut self.bend_scratch, &mut self.held_pull);
             return;
         }

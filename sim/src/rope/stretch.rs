@@ -12,6 +12,8 @@ pub struct Scratch {
     dir: Vec<Vector3<f64>>,
     lambda: Vec<f64>,
     c_prime: Vec<f64>,
+    /// Each particle's move times its mass.
+    push: Vec<Vector3<f64>>,
 }
 
 /// Projects the strand `x` (its particles, in order; `w` their inverse masses, `rest_m` the rest
@@ -46,10 +48,11 @@ pub fn project_strand(
     if n == 0 {
         return true;
     }
-    let Scratch { dir, lambda, c_prime } = scratch;
+    let Scratch { dir, lambda, c_prime, push } = scratch;
     dir.clear();
     lambda.clear();
     c_prime.clear();
+    push.clear();
     // Row k's diagonal and right-hand side, a row with both ends pinned (nothing can move, its
     // multiplier zero) made the identity.
     let row = |k: usize, len: f64| {
@@ -60,9 +63,12 @@ pub fn project_strand(
     // The row waiting for its successor's direction: its diagonal, right-hand side and the
     // off-diagonal to its predecessor (0 for the first).
     let mut pending = (0.0, 0.0, 0.0);
+    // How far the strand's lengths are off, in all, m.
+    let mut off_m = 0.0;
     for k in 0..n {
         let d = x[k + 1] - x[k];
         let len = d.norm();
+        off_m += (len - rest_m[k]).abs();
         dir.push(if len > 1e-15 { d / len } else { Vector3::x() });
         let (diag, rhs) = row(k, len);
         if k == 0 {
@@ -88,7 +94,7 @@ pub fn project_strand(
     }
     // dx_i = w_i (grad_i C_(i-1) lambda_(i-1) + grad_i C_i lambda_i), grad_i C_i = -dir_i,
     // grad_(i+1) C_i = dir_i.
-    let push = |i: usize| {
+    push.extend((0..=n).map(|i| {
         let mut push = Vector3::zeros();
         if i < n {
             push -= dir[i] * lambda[i];
@@ -97,18 +103,16 @@ pub fn project_strand(
             push += dir[i - 1] * lambda[i - 1];
         }
         push
-    };
+    }));
     // Near singular (a straight strand drawn taut between two pinned particles), the multipliers
     // are finite but would throw a particle ten segments' lengths or more beyond what the
     // strand's lengths are off by in all (a light particle flung metres by a pull is put back by
     // that much): refused as singular.
-    let off_m: f64 = (0..n).map(|k| ((x[k + 1] - x[k]).norm() - rest_m[k]).abs()).sum();
     let most_m = 10.0 * rest_m.iter().copied().fold(0.0, f64::max) + 2.0 * off_m;
-    if (0..=n).any(|i| (push(i) * w[i]).norm() > most_m) {
+    if push.iter().zip(w).any(|(push, w)| (push * *w).norm() > most_m) {
         return false;
     }
-    for i in 0..=n {
-        let push = push(i);
+    for (i, push) in push.iter().enumerate() {
         if w[i] == 0.0 {
             pinned_pull[i] += push;
         }
