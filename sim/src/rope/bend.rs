@@ -114,6 +114,7 @@ pub(super) fn project(
     pinned_pull: &mut [Vector3<f64>],
 ) {
     let Scratch { runs, pivot, l1, l2, lambda: solution } = scratch;
+    debug_assert_eq!(pivot.len(), joints.len(), "the joints' matrices factored for other joints");
     for (range, factored) in runs.iter() {
         if *factored {
             let r = range.clone();
