@@ -688,6 +688,51 @@ mod tests {
         assert!(ropes.x.iter().all(|p| p.iter().all(|c| c.is_finite())));
     }
 
+    /// A strand laid along `path` with its particles `spacing_radii` apart, string (no bending
+    /// stiffness), left to itself for 20 ms: the contacts it found in the last substep and how far
+    /// its particles moved, m.
+    fn left_alone(spacing_radii: f64, path: &[Vector3<f64>]) -> (usize, f64) {
+        let params = RopeParams { bending_stiffness_n_m2: 0.0, ..RopeParams::default() };
+        let spacing_m = spacing_radii * params.radius_m;
+        let mut ropes = Ropes::new(params);
+        ropes.add_strand_along(path, spacing_m);
+        let laid = ropes.x.clone();
+        for _ in 0..20 {
+            ropes.step(0.001);
+        }
+        let moved_m = ropes.x.iter().zip(&laid).map(|(x, laid)| (x - laid).norm()).fold(0.0, f64::max);
+        (ropes.contacts_last, moved_m)
+    }
+
+    /// Guards the least spacing a scene may ask for (`crate::thread::ROPE_SPACING_RADII_RANGE`): a
+    /// strand laid there, straight or curved round another of its size (its axis two radii from the
+    /// other's, three quarters of a turn), touches nothing of itself and lies still; laid closer
+    /// (0.9 radii straight, 1 radius curved), its segments three along touch and push it apart.
+    #[test]
+    fn a_strand_at_the_least_spacing_allowed_lies_still_straight_and_curved_tight() {
+        let radius_m = RopeParams::default().radius_m;
+        let straight = [Vector3::zeros(), Vector3::new(0.02, 0.0, 0.0)];
+        let curved: Vec<_> = (0..=270)
+            .map(|deg| {
+                let a = f64::from(deg).to_radians();
+                Vector3::new(a.cos(), a.sin(), 0.0) * (2.0 * radius_m)
+            })
+            .collect();
+        let least = crate::thread::ROPE_SPACING_RADII_RANGE.0;
+        for (what, path, closer) in [("straight", &straight[..], 0.9), ("curved", &curved[..], 1.0)] {
+            let (contacts, moved_m) = left_alone(least, path);
+            assert!(
+                contacts == 0 && moved_m < 1e-12,
+                "{what} at {least} radii: {contacts} contacts, moved {moved_m:e} m"
+            );
+            let (contacts, moved_m) = left_alone(closer, path);
+            assert!(
+                contacts > 0 && moved_m > 1e-6,
+                "{what} at {closer} radii: {contacts} contacts, moved {moved_m:e} m"
+            );
+        }
+    }
+
     /// A strand bent at a right angle in its middle, left to itself for 0.2 s: how far its ends
     /// lie apart, as a fraction of its length.
     fn straightened(bending_stiffness_n_m2: f64) -> f64 {

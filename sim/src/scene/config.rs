@@ -435,7 +435,8 @@ impl SceneConfig {
             c.count("thread.rope_constraint_passes", n, 1, 100);
         }
         if let Some(k) = t.rope_spacing_radii {
-            c.range("thread.rope_spacing_radii", k, 0.5, 4.0);
+            let (least, most) = crate::thread::ROPE_SPACING_RADII_RANGE;
+            c.range("thread.rope_spacing_radii", k, least, most);
         }
         if let Some(m) = t.rope_inertial_mass_kg_per_m {
             c.range("thread.rope_inertial_mass_kg_per_m", m, 1e-6, 10.0);
