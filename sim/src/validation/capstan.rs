@@ -166,16 +166,26 @@ pub fn over_suture(suture: &SutureUnderTest, held_straight: bool) -> Option<f64>
     Some(ratio.ln() / wrap)
 }
 
+/// A wrap's figure and what its label adds: the friction it showed, or, where it held up to the
+/// most it was pulled with (1.5 times the law's ratio), no figure (NaN, which fails a judged check)
+/// and a label saying so.
+fn figure(shown: Option<f64>) -> (f64, &'static str) {
+    match shown {
+        Some(shown) => (shown, ""),
+        None => (f64::NAN, " (held: no slide up to the most it was pulled)"),
+    }
+}
+
 /// The friction shown round the cylinder at wraps of 90, 180, 360 and 720 degrees, at 0.15 and 0.5,
 /// within 5 %; over suture, reported.
 pub fn checks(suture: &SutureUnderTest) -> Vec<Check> {
     let mut checks = Vec::new();
     for friction in [0.15, 0.5] {
         for wrap_deg in [90.0f64, 180.0, 360.0, 720.0] {
-            let shown = over_cylinder(suture, wrap_deg.to_radians(), friction).unwrap_or(f64::INFINITY);
+            let (shown, held) = figure(over_cylinder(suture, wrap_deg.to_radians(), friction));
             checks.push(Check::new(
                 "capstan_cylinder",
-                format!("mu shown, wrap {wrap_deg} deg, mu {friction}"),
+                format!("mu shown, wrap {wrap_deg} deg, mu {friction}{held}"),
                 "1",
                 shown,
                 friction,
@@ -186,11 +196,12 @@ pub fn checks(suture: &SutureUnderTest) -> Vec<Check> {
     }
     let mu = suture.params.static_friction;
     for (held_straight, how) in [(true, "held straight"), (false, "held by its ends")] {
+        let (shown, held) = figure(over_suture(suture, held_straight));
         checks.push(Check::new(
             "capstan_suture",
-            format!("mu shown, half a turn over suture {how}, mu {mu}"),
+            format!("mu shown, half a turn over suture {how}, mu {mu}{held}"),
             "1",
-            over_suture(suture, held_straight).unwrap_or(f64::INFINITY),
+            shown,
             mu,
             Tolerance::Report,
             "capstan law; yarn on yarn the law's assumptions fail (ASTM D3412 option 3: report, do not judge)",
@@ -203,6 +214,14 @@ pub fn checks(suture: &SutureUnderTest) -> Vec<Check> {
 mod tests {
     use super::*;
     use crate::validation::suture::{nominal, nominal_at_friction};
+
+    /// A wrap that held throughout has no figure, and its label says it held.
+    #[test]
+    fn a_wrap_that_held_is_labelled_so_and_has_no_figure() {
+        let (shown, held) = figure(None);
+        assert!(shown.is_nan() && held.contains("held"), "{shown} {held}");
+        assert_eq!(figure(Some(0.49)), (0.49, ""));
+    }
 
     /// Guards the rope's friction on colliders: half a turn round the cylinder at 0.5 slides where
     /// the capstan law says, within 5 %, and without friction at once.
