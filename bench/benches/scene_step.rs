@@ -3,10 +3,10 @@
 //! on one core. Target: faster than real time (a step of 1 ms in under 1 ms).
 //!
 //! `cargo bench -p knotlab-bench --bench scene_step` times the sequence played over one simulated
-//! second (1,000 steps) with divan, counted per step; again with the suture at its real diameter in
-//! its knots (0.225 mm, its particles 0.34 mm apart), its bending solved a strand at once and its
-//! lengths, joints and contacts passed over four times a substep, the rope `knotlab validate` passes
-//! 31 of 36 checks on. Found: 0.47 s for the shipped scene's second, 4.9 s at the real diameter.
+//! second (1,000 steps) with divan, counted per step; again in `scenarios/real-diameter.toml`, the
+//! suture at its real diameter in its knots (0.225 mm, its particles 0.34 mm apart), its bending
+//! solved a strand at once and its lengths, joints and contacts passed over four times a substep, the
+//! rope `knotlab validate` passes 31 of 36 checks on. Found: 0.47 s for the shipped scene's second, 4.9 s at the real diameter.
 //! (How the chain's and the solver's discretisation trade speed for stretch and tunnelling:
 //! `cargo bench -p knotlab-lab --bench scene`.)
 
@@ -24,13 +24,14 @@ fn stress_sequence_in_one_second(bencher: divan::Bencher) {
     stress_second(bencher, knotlab_bench::shipped_scene());
 }
 
-/// The same with the suture at its real diameter in its knots, in four passes.
+/// The same in `scenarios/real-diameter.toml`: the suture at its real diameter in its knots, in four
+/// passes.
 #[divan::bench(sample_count = 5, sample_size = 1)]
 fn stress_sequence_in_one_second_at_the_real_diameter(bencher: divan::Bencher) {
-    let mut scene = knotlab_bench::shipped_scene();
-    scene.thread.radius_m = 0.0001125;
-    scene.thread.rope_direct_bending = true;
-    scene.thread.rope_constraint_passes = Some(4);
+    let scene = knotlab_bench::scene_or_exit(
+        include_str!("../../scenarios/real-diameter.toml"),
+        "scenarios/real-diameter.toml",
+    );
     stress_second(bencher, scene);
 }
 

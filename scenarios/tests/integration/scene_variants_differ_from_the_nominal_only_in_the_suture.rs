@@ -11,6 +11,9 @@
 //! its thread's size (pushed at it by metal as by everything else), stiffness and weight, the rope's
 //! substeps, inertial mass, constraint passes and bending solve (as its own table in docs/validation.md was measured), and the randomization's
 //! bending stiffness.
+//!
+//! `scenarios/real-diameter.toml` is the nominal scene with the suture at its real diameter in its
+//! knots: its radius, and the rope's bending solve and constraint passes that diameter needs.
 
 use knotlab_sim::scene::parse_scene;
 use knotlab_sim::thread::ThreadModel;
@@ -87,4 +90,21 @@ fn the_polypropylene_scene_differs_from_the_nominal_one_only_in_the_suture() {
     pp.randomization.thread_bend_stiffness = nominal.randomization.thread_bend_stiffness;
     pp.description = nominal.description.clone();
     assert_eq!(pp, nominal, "every other setting as in default.toml");
+}
+
+/// `real-diameter.toml` differs from `default.toml` only in the thread's radius, the rope's bending
+/// solve and its constraint passes.
+#[test]
+fn the_real_diameter_scene_differs_from_the_nominal_one_only_in_the_suture() {
+    let nominal = parse_scene(include_str!("../../default.toml"), "default.toml").expect("the shipped scene");
+    let mut real = parse_scene(include_str!("../../real-diameter.toml"), "real-diameter.toml")
+        .expect("the real-diameter scene");
+    assert_eq!(real.thread.radius_m, 0.0001125);
+    assert_eq!(real.thread.rope_radius_at_metal_m, Some(real.thread.radius_m));
+    assert_eq!((real.thread.rope_direct_bending, real.thread.rope_constraint_passes), (true, Some(4)));
+    real.thread.radius_m = nominal.thread.radius_m;
+    real.thread.rope_direct_bending = nominal.thread.rope_direct_bending;
+    real.thread.rope_constraint_passes = nominal.thread.rope_constraint_passes;
+    real.description = nominal.description.clone();
+    assert_eq!(real, nominal, "every other setting as in default.toml");
 }
