@@ -6,7 +6,8 @@
 //! second (1,000 steps) with divan, counted per step; again in `scenarios/real-diameter.toml`, the
 //! suture at its real diameter in its knots (0.225 mm, its particles 0.34 mm apart), its bending
 //! solved a strand at once and its lengths, joints and contacts passed over four times a substep, the
-//! rope `knotlab validate` passes 31 of 36 checks on. Found: 0.47 s for the shipped scene's second, 4.9 s at the real diameter.
+//! rope `knotlab validate` passes 31 of 36 checks on. Found: 0.47 s for the shipped scene's second,
+//! 4.9 s at the real diameter.
 //! (How the chain's and the solver's discretisation trade speed for stretch and tunnelling:
 //! `cargo bench -p knotlab-lab --bench scene`.)
 
