@@ -38,6 +38,34 @@ fn table_line(text: &str, key: &str) -> usize {
         .map_or(0, |k| k + 1)
 }
 
+/// The 1-based line where `text` gives the value at the dotted `key` (a table's keys joined by dots,
+/// an array's elements by `[i]` from 0, as the range checks name them: `thread.segments`,
+/// `servo.calibration_offset_rad.left[2]`, `obstacles[0].centre_m`), or, where the text gives no
+/// value of its own for the whole path (`trocars.left.x`, a point written as an array), the line of
+/// the nearest value that holds it. 0 when the text gives none of it.
+pub fn key_line(text: &str, key: &str) -> usize {
+    let Ok(root) = toml::de::DeTable::parse(text) else {
+        return 0;
+    };
+    let root = toml::de::DeValue::Table(root.into_inner());
+    let mut value = &root;
+    let mut line = 0;
+    for part in key.split('.') {
+        let (name, indices) = part.split_once('[').map_or((part, None), |(name, rest)| (name, Some(rest)));
+        let Some(found) = value.get(name) else {
+            return line;
+        };
+        (value, line) = (found.get_ref(), line_of(text, found.span().start));
+        for index in indices.into_iter().flat_map(|rest| rest.split('[')).map(|i| i.trim_end_matches(']')) {
+            let Some(found) = index.parse::<usize>().ok().and_then(|i| value.get(i)) else {
+                return line;
+            };
+            (value, line) = (found.get_ref(), line_of(text, found.span().start));
+        }
+    }
+    line
+}
+
 /// Largest TOML text knotlab reads, bytes: its files are a few to a few tens of kilobytes.
 pub const MAX_TOML_BYTES: usize = 1 << 20;
 
@@ -162,13 +190,15 @@ pub enum TomlFileError {
         /// What is wrong.
         reason: String,
     },
-    /// Values out of range or combinations that cannot work; every one is listed.
-    #[error("{file}: {}", problems.iter().map(|(k, r)| format!("{k}: {r}")).collect::<Vec<_>>().join("; "))]
+    /// Values out of range or combinations that cannot work; every one is listed, at its line.
+    #[error("{}", problems.iter().zip(lines).map(|((k, r), line)| format!("{}: {k}: {r}", located(file, *line))).collect::<Vec<_>>().join("; "))]
     Invalid {
         /// The file.
         file: String,
         /// (key, reason) for each problem.
         problems: Vec<(String, String)>,
+        /// Each problem's 1-based line ([`key_line`]; 0 when the file gives none of its key).
+        lines: Vec<usize>,
     },
 }
 
@@ -189,7 +219,8 @@ pub fn parse_checked<T: DeserializeOwned>(
     if problems.is_empty() {
         Ok(value)
     } else {
-        Err(TomlFileError::Invalid { file: file.to_owned(), problems })
+        let lines = problems.iter().map(|(key, _)| key_line(text, key)).collect();
+        Err(TomlFileError::Invalid { file: file.to_owned(), problems, lines })
     }
 }
 
@@ -207,6 +238,30 @@ pub fn load_checked<T: DeserializeOwned>(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Guards the line a range problem is reported at: a key's own line, an array element's, an
+    /// array of tables' entry's key, the nearest line holding a path the text does not spell out,
+    /// and 0 for a key the text does not give.
+    #[test]
+    fn a_problems_key_is_found_at_its_line() {
+        let text = "top = 1\n[thread]\nsegments = 80\n\n[servo.calibration_offset_rad]\nleft = [\n  0.0,\n  0.3,\n]\n[trocars]\nleft = [1.0, 2.0, 3.0]\n[[obstacles]]\ncentre_m = [0.0, 0.0, 0.0]\n[[obstacles]]\ncentre_m = [1.0, 0.0, 0.0]\nhalf = { x = 1.0,\n  y = 2.0 }\n";
+        for (key, line) in [
+            ("top", 1),
+            ("thread.segments", 3),
+            ("thread", 2),
+            ("servo.calibration_offset_rad.left", 6),
+            ("servo.calibration_offset_rad.left[1]", 8),
+            ("trocars.left.x", 11),
+            ("obstacles[1].centre_m", 15),
+            ("obstacles[1].half.y", 17),
+            ("obstacles[2].centre_m", 12),
+            ("thread.radius_m", 2),
+            ("nowhere", 0),
+        ] {
+            assert_eq!(key_line(text, key), line, "{key}");
+        }
+        assert_eq!(key_line("not = = toml", "not"), 0);
+    }
 
     #[derive(Debug, serde::Deserialize)]
     #[serde(deny_unknown_fields)]

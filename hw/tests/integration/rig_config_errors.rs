@@ -149,8 +149,11 @@ backend = "sim"
     assert!(has(&p, "arms.camera.trocar_m", "needed"), "{p:?}");
     assert!(has(&p, "arms", "mixes sim and melfa"), "{p:?}");
     assert!(has(&p, "pedals.backend", "use dummy"), "{p:?}");
+    // Each problem at its line: the file's 1-based line of the key.
+    let line = text.lines().position(|l| l.trim_start().starts_with("speed_scale")).expect("speed_scale") + 1;
     let text = parse_rig_config(text, "rig.toml").unwrap_err().to_string();
-    assert!(text.starts_with("rig.toml: controller.speed_scale: 1.5 is not in (0, 1]; "), "{text}");
+    let first = format!("rig.toml:{line}: controller.speed_scale: 1.5 is not in (0, 1]; ");
+    assert!(text.starts_with(&first), "{text}");
 }
 
 /// A rig config that cannot be read is refused naming its path.

@@ -87,7 +87,7 @@ fn a_missing_key_is_named() {
     assert!(e.contains("thread") && e.contains("missing field `friction`"), "{e}");
 }
 
-/// Every out-of-range value in a scene is reported at once, each under its own key.
+/// Every out-of-range value in a scene is reported at once, each under its own key and at its line.
 #[test]
 fn out_of_range_values_are_all_named() {
     let text = CHAIN
@@ -122,6 +122,14 @@ fn out_of_range_values_are_all_named() {
         }
         other => panic!("expected range errors, got {other:?}"),
     }
+    let line_of = |key: &str| text.lines().position(|l| l.starts_with(key)).expect(key) + 1;
+    let e = err(&text);
+    for (key, at) in [("thread.rope_spacing_radii", "rope_spacing_radii ="), ("solver.dt_s", "dt_s =")] {
+        let named = format!("bad.toml:{}: {key}: must be within", line_of(at));
+        assert!(e.contains(&named), "{named} in {e}");
+    }
+    let left = line_of("left = [0.0, 0.0, 0.3");
+    assert!(e.contains(&format!("bad.toml:{left}: servo.calibration_offset_rad.left[2]")), "{e}");
 }
 
 /// Randomization bounds given high before low or out of range are named by key, and a misspelt randomization
