@@ -86,6 +86,8 @@ pub enum Void {
     PassedThroughItself(f64),
     /// At the end it no longer held a trefoil (or no knot could be read).
     NoLongerATrefoil,
+    /// At the end it no longer held the knot it was laid as (or no knot could be read).
+    NoLongerTheKnotLaid,
 }
 
 impl std::fmt::Display for Void {
@@ -93,6 +95,7 @@ impl std::fmt::Display for Void {
         match self {
             Void::PassedThroughItself(t) => write!(f, "void: passed through itself at {t:.1} s"),
             Void::NoLongerATrefoil => write!(f, "void: no longer a trefoil"),
+            Void::NoLongerTheKnotLaid => write!(f, "void: no longer the knot it was laid as"),
         }
     }
 }

@@ -13,6 +13,8 @@
 //! - [`grip`]: the suture drawn through jaws gripping it by friction: their pull against the grip
 //!   force, its strain at the jaws against the pull over EA.
 //! - [`knot`]: an open trefoil pulled tight, against the tightening law of a loose elastic knot.
+//! - [`long_knot`]: the long overhand knots 5_1 and 7_1 pulled tight, against the friction law of
+//!   long knots (an experiment the `long_knot_sweep` example prints, not yet a row).
 //! - [`dynamics`]: a clamped length ringing at the first cantilever mode, and the rope's inertial
 //!   mass against the suture's real one.
 //! - [`pinch`]: the suture drawn between two parts closer than its thickness (an experiment the
@@ -23,6 +25,7 @@ pub mod capstan;
 pub mod dynamics;
 pub mod grip;
 pub mod knot;
+pub mod long_knot;
 pub mod material;
 pub mod pinch;
 pub mod slide;
