@@ -25,19 +25,6 @@ pub fn line_of(text: &str, offset: usize) -> usize {
     text[..offset.min(text.len())].matches('\n').count() + 1
 }
 
-/// The 1-based line of the header `[key]` of a table, 0 when it has none (the top level, an inline
-/// table).
-fn table_line(text: &str, key: &str) -> usize {
-    text.lines()
-        .position(|l| {
-            let l = l.split('#').next().unwrap_or("").trim();
-            l.strip_prefix('[')
-                .and_then(|l| l.strip_suffix(']'))
-                .is_some_and(|inner| inner.split('.').map(str::trim).eq(key.split('.')))
-        })
-        .map_or(0, |k| k + 1)
-}
-
 /// The 1-based line where `text` gives the value at the dotted `key` (a table's keys joined by dots,
 /// an array's elements by `[i]` from 0, as the range checks name them: `thread.segments`,
 /// `servo.calibration_offset_rad.left[2]`, `obstacles[0].centre_m`), or, where the text gives no
@@ -158,8 +145,8 @@ pub fn deserialize<T: DeserializeOwned>(text: &str) -> Result<T, TomlProblem> {
             .replace("$__serde_spanned_private_value.", "");
         let inner = e.into_inner();
         TomlProblem {
-            // A missing key has no text of its own: its table's header is where it belongs.
-            line: inner.span().map_or_else(|| table_line(text, &key), |s| line_of(text, s.start)),
+            // A missing key has no text of its own: its table's line is where it belongs.
+            line: inner.span().map_or_else(|| key_line(text, &key), |s| line_of(text, s.start)),
             key: if key == "." { "(top level)".to_owned() } else { key },
             reason: inner.message().to_owned(),
         }
@@ -287,6 +274,45 @@ mod tests {
         let p = deserialize::<Outer>("[inner\n").unwrap_err();
         assert_eq!((p.line, p.key.as_str()), (1, "(syntax)"), "{p}");
         assert_eq!(deserialize::<Outer>("[inner]\ncount = 2\n").unwrap().inner.count, 2);
+    }
+
+    #[derive(Debug, serde::Deserialize)]
+    #[serde(deny_unknown_fields)]
+    #[allow(dead_code)]
+    struct Listed {
+        inner: Inner,
+        #[serde(default)]
+        items: Vec<Inner>,
+    }
+
+    /// A missing key, which has no text of its own, is reported at the line of the table it is
+    /// missing from: a table's header, an array of tables' entry; the top level at the first line.
+    #[test]
+    fn a_missing_key_is_found_at_its_tables_line() {
+        let p = deserialize::<Outer>(
+            "# a comment
+
+[inner]
+",
+        )
+        .unwrap_err();
+        assert_eq!((p.line, p.key.as_str()), (3, "inner"), "{p}");
+        let text = "[inner]
+count = 1
+[[items]]
+count = 2
+
+[[items]]
+# none
+";
+        let p = deserialize::<Listed>(text).unwrap_err();
+        assert_eq!((p.line, p.key.as_str()), (6, "items[1]"), "{p}");
+        let p = deserialize::<Outer>(
+            "# nothing
+",
+        )
+        .unwrap_err();
+        assert_eq!((p.line, p.key.as_str()), (1, "(top level)"), "{p}");
     }
 
     /// A text nesting arrays deeper than the bound is refused at the line it passes it, before the

@@ -3,6 +3,8 @@
 
 use std::path::Path;
 
+use knotlab_hw::toml_file::key_line;
+
 use super::config::SceneConfig;
 use crate::thread::ThreadModel;
 
@@ -49,7 +51,7 @@ fn model_keys(text: &str, file: &str, config: &SceneConfig) -> Result<(), SceneE
     };
     let refuse = |key: &str, reason: String| SceneError::Schema {
         file: file.to_owned(),
-        line: key_line(text, "thread", key),
+        line: key_line(text, &format!("thread.{key}")),
         key: format!("thread.{key}"),
         reason,
     };
@@ -64,32 +66,11 @@ fn model_keys(text: &str, file: &str, config: &SceneConfig) -> Result<(), SceneE
     if config.thread.model == ThreadModel::Chain && !thread.contains_key("bend_damping_n_m_s_per_rad") {
         return Err(SceneError::Schema {
             file: file.to_owned(),
-            line: key_line(text, "thread", "model").max(key_line(text, "thread", "")),
+            // The model's line, or the table's where the model is left to its default.
+            line: key_line(text, "thread.model"),
             key: "thread.bend_damping_n_m_s_per_rad".to_owned(),
             reason: "missing: the chain's joints need it".to_owned(),
         });
     }
     Ok(())
-}
-
-/// The 1-based line of `key` in `[table]` (with an empty `key`, the table's header), 0 if not found.
-fn key_line(text: &str, table: &str, key: &str) -> usize {
-    let mut inside = false;
-    for (i, line) in text.lines().enumerate() {
-        let line = line.trim();
-        if line.starts_with('[') {
-            inside = line.trim_start_matches('[').split(']').next().map(str::trim) == Some(table);
-            if inside && key.is_empty() {
-                return i + 1;
-            }
-            continue;
-        }
-        if inside
-            && !key.is_empty()
-            && line.strip_prefix(key).is_some_and(|rest| rest.trim_start().starts_with('='))
-        {
-            return i + 1;
-        }
-    }
-    0
 }
