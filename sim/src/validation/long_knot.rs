@@ -16,7 +16,7 @@
 //! trefoil's law keeps.
 //!
 //! The knot is laid loose as the torus knot, its strands six radii apart, cut open on its outer rim
-//! with straight tails along the cut's tangent. Equal dead loads pull its ends apart along the line
+//! with straight tails leaving the ring outward. Equal dead loads pull its ends apart along the line
 //! between them: the law's load for a loose knot until it rests (seated: the laid torus snaps
 //! tighter as its bends relax), then a load raised steadily to the law's for a tight knot. While
 //! the knot slides tighter, the pull over the law's force at its shortening is sampled; the figure
@@ -119,7 +119,7 @@ fn shortening_for(turns: usize, s: f64, h_m: f64) -> f64 {
 
 /// The loose long knot's centreline, m: the (2, 2 turns + 1) torus knot, its strands
 /// [`TUBE_RADII`] twice apart, its ring about as long as the law's loosest knot shortens, cut open
-/// on its outer rim with straight tails along the cut's tangent.
+/// on its outer rim, with straight tails leaving the ring outward there.
 pub fn open_long_knot(turns: usize, radius_m: f64) -> Vec<Vector3<f64>> {
     let q = (2 * turns + 1) as f64;
     let tube = TUBE_RADII * radius_m;
@@ -130,14 +130,21 @@ pub fn open_long_knot(turns: usize, radius_m: f64) -> Vec<Vector3<f64>> {
         Vector3::new(r * (2.0 * t).cos(), r * (2.0 * t).sin(), tube * (q * t).sin())
     };
     let tangent = |t: f64| (p(t + 1e-6) - p(t - 1e-6)).normalize();
-    let cut = 0.02;
+    let outward = |t: f64| Vector3::new((2.0 * t).cos(), (2.0 * t).sin(), 0.0);
+    // Cut far enough either side of the rim's point that the strand's two ends lie more than a
+    // diameter apart across the tube (about 2.9 radii at q = 5), and each tail leaves the ring
+    // outward, half a right angle from its tangent: along the tangent the two tails would run
+    // through each other's ends.
+    let cut = 0.5 / q;
     let samples = 4000;
     let span = 2.0 * std::f64::consts::PI - 2.0 * cut;
     let tail = TAIL_MAJOR_RADII * major;
-    let mut path = vec![p(cut) - tangent(cut) * tail];
-    path.extend((0..=samples).map(|k| p(cut + span * k as f64 / samples as f64)));
     let end = cut + span;
-    path.push(p(end) + tangent(end) * tail);
+    let first_tail = (outward(cut) - tangent(cut)).normalize();
+    let last_tail = (outward(end) + tangent(end)).normalize();
+    let mut path = vec![p(cut) + first_tail * tail];
+    path.extend((0..=samples).map(|k| p(cut + span * k as f64 / samples as f64)));
+    path.push(p(end) + last_tail * tail);
     path
 }
 
@@ -300,5 +307,26 @@ mod tests {
         assert_eq!(classify(&open_long_knot(1, r)).unwrap().knot, KnotType::Trefoil);
         assert_eq!(classify(&open_long_knot(2, r)).unwrap().knot, KnotType::Surgeons);
         assert_eq!(classify(&open_long_knot(3, r)).unwrap().determinant, Some(7));
+    }
+
+    /// Guards the laying: no two points of a laid long knot more than 20 radii apart along it lie
+    /// closer than 2.5 radii (a rope's two strands touch at 2), tails included; the closest are the
+    /// ends either side of the cut, across the tube.
+    #[test]
+    fn the_laid_long_knots_do_not_touch_themselves() {
+        let r = 0.0004;
+        for turns in [1, 2, 3] {
+            let path = open_long_knot(turns, r);
+            let arc = crate::knot::centreline::arc_lengths_m(&path);
+            let mut closest = f64::INFINITY;
+            for i in (0..path.len()).step_by(3) {
+                for j in (i..path.len()).step_by(3) {
+                    if arc[j] - arc[i] > 20.0 * r {
+                        closest = closest.min((path[j] - path[i]).norm());
+                    }
+                }
+            }
+            assert!(closest > 2.5 * r, "{turns} turns: closest {:.2} radii", closest / r);
+        }
     }
 }
