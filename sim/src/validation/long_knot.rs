@@ -309,6 +309,19 @@ mod tests {
         assert_eq!(classify(&open_long_knot(3, r)).unwrap().determinant, Some(7));
     }
 
+    /// Guards the rope's friction in the surgeon's double throw pulled tight at its ends: it slides
+    /// at two thirds of the long-knot law's pull (measured 0.671 over a 60 s ramp at friction 0.5;
+    /// 0.688 over 240 s, 0.700 at half the spacing), sliding through most of the ramp, and ends the
+    /// knot it was laid as.
+    #[test]
+    fn the_double_throw_slides_at_two_thirds_of_the_long_knot_law() {
+        let t = tighten(&crate::validation::suture::nominal(), 2, 0.5, 60.0).expect("still a 5_1");
+        assert!(t.sliding.len() >= 40, "{} samples sliding", t.sliding.len());
+        let ratio = t.median_ratio();
+        assert!((0.55..0.8).contains(&ratio), "the pull over the law's force {ratio:.3}");
+        assert!(t.end_m < 0.5 * t.seated_m, "{t:?}");
+    }
+
     /// Guards the laying: no two points of a laid long knot more than 20 radii apart along it lie
     /// closer than 2.5 radii (a rope's two strands touch at 2), tails included; the closest are the
     /// ends either side of the cut, across the tube.
