@@ -43,7 +43,7 @@ const CLEARANCE_RADII: f64 = 6.0;
 const TAIL_UNITS: f64 = 15.0;
 /// The experiment's velocity damping, 1/s (a rest does not depend on it; the knot's own friction
 /// stops it, and a heavier drag on the whole strand slows the pull through the knot to a crawl).
-const DAMPING_PER_S: f64 = 0.5;
+pub(super) const DAMPING_PER_S: f64 = 0.5;
 /// Longest rest sought at one load, s.
 pub const MAX_REST_S: f64 = 90.0;
 /// The low friction the law is checked at beside the suture's own: the elastic part dominates
@@ -52,9 +52,9 @@ pub const MAX_REST_S: f64 = 90.0;
 pub const LOW_FRICTION: f64 = 0.05;
 /// The knot is at rest once its shortening changed by less than this many radii over
 /// [`REST_WINDOW_S`].
-const REST_RADII: f64 = 0.25;
+pub(super) const REST_RADII: f64 = 0.25;
 /// See [`REST_RADII`], s.
-const REST_WINDOW_S: usize = 2;
+pub(super) const REST_WINDOW_S: usize = 2;
 /// The friction the lock is checked at: its `ε0 = 2 σ μ` (0.148) lies between the laid knot's ε
 /// and the tightened one's (about 0.22), so a knot that did not open at all would read 47 % high.
 pub const LOCK_FRICTION: f64 = 0.15;

@@ -27,7 +27,8 @@
 use nalgebra::Vector3;
 
 use super::SutureUnderTest;
-use super::knot::{MAX_REST_S, Void};
+// The trefoil's damping and rest: the same experiment, another knot.
+use super::knot::{DAMPING_PER_S, MAX_REST_S, REST_RADII, REST_WINDOW_S, Void};
 use crate::rope::{RopeParams, Ropes};
 
 /// The braids' turns of the knots checked: the cinquefoil 5_1 (the surgeon's double throw) and 7_1.
@@ -41,13 +42,6 @@ pub const N2H_OVER_E: [f64; 2] = [0.004, 0.03];
 const TUBE_RADII: f64 = 3.0;
 /// Each straight tail's length, in the torus's major radii.
 const TAIL_MAJOR_RADII: f64 = 1.5;
-/// The experiment's velocity damping, 1/s (as the trefoil's).
-const DAMPING_PER_S: f64 = 0.5;
-/// The knot is at rest once its ends' distance changed by less than this many radii over
-/// [`REST_WINDOW_S`].
-const REST_RADII: f64 = 0.25;
-/// See [`REST_RADII`], s.
-const REST_WINDOW_S: usize = 2;
 /// How often the ramp is sampled, s.
 const SAMPLE_S: f64 = 0.5;
 /// A sample counts as sliding where the shortening fell by more than this many radii a second.
