@@ -14,7 +14,7 @@
 //!   force, its strain at the jaws against the pull over EA.
 //! - [`knot`]: an open trefoil pulled tight, against the tightening law of a loose elastic knot.
 //! - [`long_knot`]: the long overhand knots 5_1 and 7_1 pulled tight, against the friction law of
-//!   long knots (an experiment the `long_knot_sweep` example prints, not yet a row).
+//!   long knots (reported; the `long_knot_sweep` example sweeps frictions and ramps).
 //! - [`dynamics`]: a clamped length ringing at the first cantilever mode, and the rope's inertial
 //!   mass against the suture's real one.
 //! - [`pinch`]: the suture drawn between two parts closer than its thickness (an experiment the
@@ -137,6 +137,7 @@ pub fn run_all(suture: &SutureUnderTest) -> Vec<Check> {
     checks.extend(slide::checks(suture));
     checks.extend(grip::checks(suture));
     checks.extend(knot::checks(suture));
+    checks.extend(long_knot::checks(suture));
     checks.extend(dynamics::checks(suture));
     checks
 }

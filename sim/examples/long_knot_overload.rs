@@ -1,0 +1,90 @@
+//! A long overhand knot of `knotlab validate` (the (2, 2n+1) torus knot laid loose) seated under
+//! the long-knot law's loose load, then pulled by its ends with a load raised steadily to LOAD_N
+//! over a minute: each second the pull, the shortening, the most stretched segment, the knot the
+//! classifier reads and the pairs of segments the crossing watch counted passing through each other.
+//! It shows where a tight knot's strands are squeezed through each other, seen or not:
+//!
+//! ```text
+//! cargo run --release -p knotlab-sim --example long_knot_overload [SCENE [TURNS [LOAD_N]]]
+//! ```
+//!
+//! SCENE defaults to `scenarios/default.toml`, TURNS to 2 (the surgeon's double throw), LOAD_N to
+//! 3 (the shipped expert's snug on each end).
+
+use knotlab_sim::knot::classify::classify;
+use knotlab_sim::rope::{RopeParams, Ropes};
+use knotlab_sim::scene::parse_scene;
+use knotlab_sim::validation::SutureUnderTest;
+use knotlab_sim::validation::long_knot::{N2H_OVER_E, law_n, open_long_knot};
+
+fn main() {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let path = args.first().cloned().unwrap_or_else(|| "scenarios/default.toml".to_owned());
+    let turns = match args.get(1).map(|a| a.parse::<usize>()) {
+        None => 2,
+        Some(Ok(n)) if (1..=6).contains(&n) => n,
+        Some(_) => {
+            eprintln!("long_knot_overload: TURNS must be a whole number from 1 to 6, got {:?}", args[1]);
+            std::process::exit(2);
+        }
+    };
+    let top_n = match args.get(2).map(|a| a.parse::<f64>()) {
+        None => 3.0,
+        Some(Ok(f)) if f.is_finite() && f > 0.0 && f <= 100.0 => f,
+        Some(_) => {
+            eprintln!("long_knot_overload: LOAD_N must be a force in (0, 100] N, got {:?}", args[2]);
+            std::process::exit(2);
+        }
+    };
+    let text = match std::fs::read_to_string(&path) {
+        Ok(t) => t,
+        Err(e) => {
+            eprintln!("long_knot_overload: cannot read {path}: {e}");
+            std::process::exit(2);
+        }
+    };
+    let suture = match parse_scene(&text, &path)
+        .map_err(|e| e.to_string())
+        .and_then(|scene| SutureUnderTest::from_scene(&scene).map_err(|e| format!("{path}: {e}")))
+    {
+        Ok(s) => s,
+        Err(e) => {
+            eprintln!("long_knot_overload: {e}");
+            std::process::exit(2);
+        }
+    };
+    let (h, b, mu) = (suture.params.radius_m, suture.bending_stiffness_n_m2(), suture.params.static_friction);
+    let params = RopeParams { damping_per_s: 0.5, kinetic_friction: 0.8 * mu, ..suture.params };
+    let mut ropes = Ropes::new(params);
+    let strand = ropes.add_strand_along(&open_long_knot(turns, h), suture.spacing_m);
+    let (first, last) = (strand.start, strand.end - 1);
+    let length_m: f64 = ropes.polyline(0).windows(2).map(|p| (p[1] - p[0]).norm()).sum();
+    let along = (ropes.x[last] - ropes.x[first]).normalize();
+    let n2 = (turns * turns) as f64;
+    let seat_n = law_n(turns, n2 * h / N2H_OVER_E[0], h, b, mu).unwrap_or(0.0);
+    let steps_per_s = (1.0 / suture.dt_s).round() as usize;
+    let (seat_s, ramp_s): (usize, usize) = (10, 60);
+    println!(
+        "| s | pull, N | shortening, mm | most stretched segment | knot (determinant) | pairs crossed in that second |"
+    );
+    println!("|---|---|---|---|---|---|");
+    for second in 1..=seat_s + ramp_s + 10 {
+        let ramp = (second.saturating_sub(seat_s) as f64 / ramp_s as f64).min(1.0);
+        let pull_n = seat_n + (top_n - seat_n) * ramp;
+        ropes.force_n[first] = -along * pull_n;
+        ropes.force_n[last] = along * pull_n;
+        let mut crossed = Vec::new();
+        for _ in 0..steps_per_s {
+            ropes.step(suture.dt_s);
+            crossed.extend_from_slice(ropes.crossed_last_step());
+        }
+        let knot = classify(&ropes.polyline(0))
+            .map_or_else(|e| format!("({e})"), |c| format!("{} ({:?})", c.knot, c.determinant));
+        println!(
+            "| {second} | {pull_n:.3} | {:.1} | {:.3} | {knot} | {} |",
+            (length_m - (ropes.x[last] - ropes.x[first]).norm()) * 1e3,
+            ropes.max_stretch_ratio(),
+            crossed.len()
+        );
+    }
+}
