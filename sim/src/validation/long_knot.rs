@@ -21,7 +21,7 @@
 //! tighter as its bends relax), then a load raised steadily to the law's for a tight knot. While
 //! the knot slides tighter, the pull over the law's force at its shortening is sampled; the figure
 //! is their median. The law is for n >> 1; at n = 2 and 3 its sources give no band, and the suite
-//! reports the figures without judging them (`docs/validation.md`, "The long knots"); the
+//! reports the figures without judging them (`docs/validation.md`, "What each check measures"); the
 //! `long_knot_sweep` example sweeps frictions and ramps.
 
 use nalgebra::Vector3;
@@ -163,8 +163,8 @@ pub struct Sliding {
     pub law_n: f64,
 }
 
-/// What a tightening measured: the samples taken while the knot slid, and the pull over the law's
-/// force among them (their median; NaN without any).
+/// What a tightening measured: the samples taken while the knot slid, and its shortening seated and
+/// at the ramp's end.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Tightening {
     /// The samples taken while the knot slid tighter.
@@ -279,22 +279,26 @@ pub fn checks(suture: &SutureUnderTest) -> Vec<Check> {
     KNOTS
         .iter()
         .map(|&(turns, ramp_s)| {
-            let knot = if turns == 2 { "5_1, the double throw".to_owned() } else { format!("{}_1", 2 * turns + 1) };
+            let knot =
+                if turns == 2 { "5_1, the double throw".to_owned() } else { format!("{}_1", 2 * turns + 1) };
             let (ratio, figure) = match tighten(suture, turns, friction, ramp_s) {
                 Ok(t) => {
                     let (lo, hi) = t.sliding.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), s| {
                         (a.min(s.n2h_over_e), b.max(s.n2h_over_e))
                     });
+                    let samples = match t.sliding.len() {
+                        0 => "no sample sliding".to_owned(),
+                        k => format!("median of {k} samples sliding at n^2 h/e {lo:.3}-{hi:.3}"),
+                    };
                     (
                         t.median_ratio(),
-                        format!(
-                            "pull over the law's force, median of {} samples sliding at n^2 h/e {lo:.3}-{hi:.3}, \
-                             n = {turns} ({knot}), mu {friction}",
-                            t.sliding.len()
-                        ),
+                        format!("pull over the law's force, {samples}, n = {turns} ({knot}), mu {friction}"),
                     )
                 }
-                Err(void) => (f64::NAN, format!("pull over the law's force, n = {turns} ({knot}), mu {friction} ({void})")),
+                Err(void) => (
+                    f64::NAN,
+                    format!("pull over the law's force, n = {turns} ({knot}), mu {friction} ({void})"),
+                ),
             };
             Check::new("knot_long", figure, "1", ratio, 1.0, Tolerance::Report, SOURCE)
         })
