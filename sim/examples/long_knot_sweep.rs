@@ -1,6 +1,7 @@
 //! The long overhand knots of `knotlab validate` (the (2, 2n+1) torus knots, n the braid's turns)
-//! tightened at one friction after another on a scene's suture: at each rest the shortening, the
-//! law's collapse variable `n^2 h / e`, and the pull over the law's force there (Jawed et al. 2015):
+//! tightened at one friction after another on a scene's suture: the shortening seated and at the
+//! ramp's end, how many samples the knot slid in and over which `n^2 h / e`, and the median (and
+//! range) of the pull over the law's force among them (Jawed et al. 2015):
 //!
 //! ```text
 //! cargo run --release -p knotlab-sim --example long_knot_sweep [SCENE [TURNS [RAMP_S [MU ...]]]]
