@@ -43,7 +43,7 @@ const CLEARANCE_RADII: f64 = 6.0;
 const TAIL_UNITS: f64 = 15.0;
 /// The experiment's velocity damping, 1/s (a rest does not depend on it; the knot's own friction
 /// stops it, and a heavier drag on the whole strand slows the pull through the knot to a crawl).
-pub(super) const DAMPING_PER_S: f64 = 0.5;
+const DAMPING_PER_S: f64 = 0.5;
 /// Longest rest sought at one load, s.
 pub const MAX_REST_S: f64 = 90.0;
 /// The low friction the law is checked at beside the suture's own: the elastic part dominates
@@ -123,19 +123,29 @@ pub fn open_trefoil(radius_m: f64) -> Vec<Vector3<f64>> {
     path.into_iter().map(|q| q * scale).collect()
 }
 
-/// The laid trefoil and what its rests are read against.
-struct Laid {
-    ropes: Ropes,
-    first: usize,
-    last: usize,
-    length_m: f64,
-    along: Vector3<f64>,
+/// A knot laid in the suture's rope for a pulling experiment (the trefoil here, the long knots in
+/// [`super::long_knot`]) and what its rests are read against.
+pub(super) struct Laid {
+    pub(super) ropes: Ropes,
+    /// The strand's first and last particles, where the pulls act.
+    pub(super) first: usize,
+    pub(super) last: usize,
+    /// The laid strand's length, m.
+    pub(super) length_m: f64,
+    /// The line between its ends as laid, first to last (unit): the pulls' direction.
+    pub(super) along: Vector3<f64>,
     elapsed_s: f64,
 }
 
 impl Laid {
     /// Lays the loose trefoil in `suture`'s rope with friction `friction` on itself.
     fn new(suture: &SutureUnderTest, friction: f64) -> Laid {
+        Self::along_path(suture, friction, &open_trefoil(suture.params.radius_m))
+    }
+
+    /// Lays `path` in `suture`'s rope with friction `friction` on itself (kinetic 0.8 of it), damped
+    /// as the experiment is.
+    pub(super) fn along_path(suture: &SutureUnderTest, friction: f64, path: &[Vector3<f64>]) -> Laid {
         let params = RopeParams {
             damping_per_s: DAMPING_PER_S,
             static_friction: friction,
@@ -143,7 +153,7 @@ impl Laid {
             ..suture.params
         };
         let mut ropes = Ropes::new(params);
-        let strand = ropes.add_strand_along(&open_trefoil(suture.params.radius_m), suture.spacing_m);
+        let strand = ropes.add_strand_along(path, suture.spacing_m);
         let (first, last) = (strand.start, strand.end - 1);
         let length_m: f64 = ropes.polyline(0).windows(2).map(|p| (p[1] - p[0]).norm()).sum();
         let along = (ropes.x[last] - ropes.x[first]).normalize();

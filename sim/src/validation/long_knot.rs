@@ -27,9 +27,9 @@
 use nalgebra::Vector3;
 
 use super::{Check, SutureUnderTest, Tolerance};
-// The trefoil's damping and rest: the same experiment, another knot.
-use super::knot::{DAMPING_PER_S, MAX_REST_S, REST_RADII, REST_WINDOW_S, Void};
-use crate::rope::{RopeParams, Ropes};
+// The trefoil's laying, damping and rest: the same experiment, another knot.
+use super::knot::{Laid, MAX_REST_S, REST_RADII, REST_WINDOW_S, Void};
+use crate::rope::Ropes;
 
 /// The knots the suite pulls, by their braids' turns, each with its ramp, s: the cinquefoil 5_1 (the
 /// surgeon's double throw), over a ramp slow enough that one four times as long moves its figure by
@@ -203,19 +203,9 @@ pub fn tighten(
 ) -> Result<Tightening, Void> {
     let h = suture.params.radius_m;
     let b = suture.bending_stiffness_n_m2();
-    let params = RopeParams {
-        damping_per_s: DAMPING_PER_S,
-        static_friction: friction,
-        kinetic_friction: 0.8 * friction,
-        ..suture.params
-    };
-    let mut ropes = Ropes::new(params);
     let laid = open_long_knot(turns, h);
     let knot_laid = crate::knot::classify::classify(&laid).map_err(|_| Void::NoLongerTheKnotLaid)?;
-    let strand = ropes.add_strand_along(&laid, suture.spacing_m);
-    let (first, last) = (strand.start, strand.end - 1);
-    let length_m: f64 = ropes.polyline(0).windows(2).map(|p| (p[1] - p[0]).norm()).sum();
-    let along = (ropes.x[last] - ropes.x[first]).normalize();
+    let Laid { mut ropes, first, last, length_m, along, .. } = Laid::along_path(suture, friction, &laid);
     let steps_per_s = (1.0 / suture.dt_s).round() as usize;
     let load = |s: f64| law_n(turns, shortening_for(turns, s, h), h, b, friction).unwrap_or(f64::NAN);
     let (seat_n, top_n) = (load(N2H_OVER_E[0]), load(N2H_OVER_E[N2H_OVER_E.len() - 1]));
