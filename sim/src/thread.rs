@@ -104,6 +104,11 @@ pub struct ThreadParams {
     /// ([`crate::rope::RopeParams::constraint_passes`]); left out, one. The chain ignores it.
     #[serde(default)]
     pub rope_constraint_passes: Option<usize>,
+    /// Whether the rope's contacts with itself are solved from either end in turn
+    /// ([`crate::rope::RopeParams::contacts_both_ways`]); left out, always from the needle end.
+    /// The chain ignores it.
+    #[serde(default)]
+    pub rope_contacts_both_ways: bool,
 }
 
 /// How the suture is simulated.
@@ -141,6 +146,7 @@ impl Default for ThreadParams {
             rope_radius_at_metal_m: None,
             rope_direct_bending: false,
             rope_constraint_passes: None,
+            rope_contacts_both_ways: false,
             linear_damping_per_s: 1.0,
             twist_free: true,
             model: ThreadModel::Chain,

@@ -172,7 +172,8 @@ pub(super) enum Friction {
     OwnPush,
 }
 
-/// Solves every candidate contact once (in the candidates' order); returns how many touched.
+/// Solves every candidate contact once, in the candidates' order or, on the substeps
+/// [`Ropes::contacts_backward`] says, the other way round; returns how many touched.
 /// `moved_elsewhere`: whether anything but this solver moved the particles since it last ran.
 pub(super) fn solve_contacts(
     ropes: &mut Ropes,
@@ -187,7 +188,10 @@ pub(super) fn solve_contacts(
     if moved_elsewhere {
         watch.measure_moves(ropes);
     }
-    for k in 0..ropes.candidates.len() {
+    let count = ropes.candidates.len();
+    let backward = ropes.contacts_backward;
+    for step in 0..count {
+        let k = if backward { count - 1 - step } else { step };
         let (i, j) = ropes.candidates[k];
         let moved_m = watch.credit_m[k] + watch.segment_moved_m[i] + watch.segment_moved_m[j];
         // A pair pushed apart earlier in the substep keeps its friction though it touch no more.

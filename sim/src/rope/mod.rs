@@ -180,6 +180,15 @@ pub struct RopeParams {
     /// draws 1.52 mm apart with one, 1.11 mm of it in the last half second, and 0.34 mm with four,
     /// 0.085 mm in the last half second.
     pub contact_passes: usize,
+    /// Whether the contacts are solved from either end of the candidate pairs in turn, one
+    /// substep from the first pair, the next from the last ([`contact::solve_contacts`]). Solved
+    /// always from the first, each contact starting from where the pairs before it left the
+    /// particles, the solve pulls a knot along the rope towards the strand's first particle: the
+    /// surgeon's double throw held by 1 N on each end creeps 14 mm/s that way and runs off the end
+    /// (`knotlab validate`'s `knot_creep`). Solved both ways it stays, and a rope's wraps and knots
+    /// hold less than the one-way solve held them (`docs/validation.md`, "A knot creeping along
+    /// its rope").
+    pub contacts_both_ways: bool,
     /// Velocity damping, 1/s.
     pub damping_per_s: f64,
     /// Pairs of segments closer than this beyond touching are watched for contact, m; they are
@@ -224,6 +233,7 @@ impl Default for RopeParams {
             direct_bending: false,
             constraint_passes: 1,
             contact_passes: 1,
+            contacts_both_ways: false,
             damping_per_s: 100.0,
             contact_margin_m: 0.001,
             bending_stiffness_n_m2: 1e-7,
@@ -283,6 +293,10 @@ pub struct Ropes {
     x_held: Vec<Vector3<f64>>,
     /// The watch for strands passing through each other.
     crossing: crate::crossing::CrossingWatch,
+    /// Whether this substep's contacts are solved from the last candidate pair to the first
+    /// ([`contact::solve_contacts`]); turned over every substep where
+    /// [`RopeParams::contacts_both_ways`], else never.
+    contacts_backward: bool,
 }
 
 /// The bending constraints' constants ([`Ropes::solve_bending`]), worked out once for a rope, its
@@ -359,6 +373,7 @@ impl Ropes {
             x_free: Vec::new(),
             x_held: Vec::new(),
             crossing: crate::crossing::CrossingWatch::default(),
+            contacts_backward: false,
         }
     }
 
@@ -436,6 +451,10 @@ impl Ropes {
                 watch.found(self);
                 crossing.candidates_changed(self.candidates.len());
             }
+            // The contacts are solved one after another, each from where the last left the
+            // particles: always in one order, that order pulls a knot along the rope
+            // ([`RopeParams::contacts_both_ways`]).
+            self.contacts_backward = self.params.contacts_both_ways && !self.contacts_backward;
             x_prev.clone_from(&self.x);
             for i in 0..self.x.len() {
                 if self.w[i] > 0.0 {

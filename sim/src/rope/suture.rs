@@ -65,7 +65,8 @@ const TOUCH_SLOP_M: f64 = 1e-4;
 /// substep, its substeps the scene's `thread.rope_substeps` (20 if left out), its inertial mass the
 /// scene's `thread.rope_inertial_mass_kg_per_m` (0.67 kg/m if left out), its bending solved a
 /// strand at once if `thread.rope_direct_bending`, its lengths and joints passed over
-/// `thread.rope_constraint_passes` times a substep (once if left out), its contact margin [`CONTACT_MARGIN_RADII`] radii.
+/// `thread.rope_constraint_passes` times a substep (once if left out), its contacts solved from
+/// either end in turn if `thread.rope_contacts_both_ways`, its contact margin [`CONTACT_MARGIN_RADII`] radii.
 pub fn rope_params(thread: &ThreadParams) -> RopeParams {
     let friction = thread.friction_on_itself.unwrap_or(thread.friction);
     RopeParams {
@@ -82,6 +83,7 @@ pub fn rope_params(thread: &ThreadParams) -> RopeParams {
         contact_margin_m: CONTACT_MARGIN_RADII * thread.radius_m,
         direct_bending: thread.rope_direct_bending,
         constraint_passes: thread.rope_constraint_passes.unwrap_or(1),
+        contacts_both_ways: thread.rope_contacts_both_ways,
         ..RopeParams::default()
     }
 }

@@ -12,7 +12,7 @@ use crate::thread::ThreadModel;
 pub type SceneError = knotlab_hw::toml_file::TomlFileError;
 
 /// The keys of `[thread]` only the rope reads.
-const ROPE_KEYS: [&str; 7] = [
+const ROPE_KEYS: [&str; 8] = [
     "axial_stiffness_n",
     "rope_substeps",
     "rope_spacing_radii",
@@ -20,6 +20,7 @@ const ROPE_KEYS: [&str; 7] = [
     "rope_radius_at_metal_m",
     "rope_direct_bending",
     "rope_constraint_passes",
+    "rope_contacts_both_ways",
 ];
 
 /// The keys of `[thread]` only the chain reads.
