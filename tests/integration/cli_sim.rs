@@ -86,6 +86,8 @@ fn validate_reports_every_check_and_exits_by_the_judged_ones() {
         "capstan_suture",
         "slide_on_suture",
         "knot_trefoil",
+        "knot_long",
+        "knot_creep",
         "dynamics",
     ] {
         assert!(experiments.contains(e), "no {e} in {v}");

@@ -15,6 +15,7 @@
 //! - [`knot`]: an open trefoil pulled tight, against the tightening law of a loose elastic knot.
 //! - [`long_knot`]: the long overhand knots 5_1 and 7_1 pulled tight, against the friction law of
 //!   long knots (reported; the `long_knot_sweep` example sweeps frictions and ramps).
+//! - [`creep`]: the double throw held by equal pulls on its ends, staying where it is on the rope.
 //! - [`dynamics`]: a clamped length ringing at the first cantilever mode, and the rope's inertial
 //!   mass against the suture's real one.
 //! - [`pinch`]: the suture drawn between two parts closer than its thickness (an experiment the
@@ -22,6 +23,7 @@
 
 pub mod cantilever;
 pub mod capstan;
+pub mod creep;
 pub mod dynamics;
 pub mod grip;
 pub mod knot;
@@ -138,6 +140,7 @@ pub fn run_all(suture: &SutureUnderTest) -> Vec<Check> {
     checks.extend(grip::checks(suture));
     checks.extend(knot::checks(suture));
     checks.extend(long_knot::checks(suture));
+    checks.extend(creep::checks(suture));
     checks.extend(dynamics::checks(suture));
     checks
 }

@@ -14,6 +14,7 @@ mod holding_test_passed_an_untied_stitch;
 mod jaws_took_a_coil_lying_beside_them;
 mod kinematic_link_spun_when_its_quaternion_flipped_sign;
 mod knot_classify;
+mod knot_crept_along_its_rope_under_equal_pulls;
 mod needle_gauge_missed_the_ropes_pull;
 mod released_needle_flew_off_the_rope;
 mod rope_among_rigid_bodies;

@@ -1,0 +1,29 @@
+//! A knot pulled by equal loads on its two ends stays where it is along the rope where the rope's
+//! contacts are solved from either end in turn. Solved always from its first particle's end, they
+//! pull the surgeon's double throw along the rope towards that end (14.8 mm/s under 1 N), no
+//! strand passing through another, until it runs off the end and comes undone: the nominal
+//! scene's rope does, and `knotlab validate` fails it (`knot_creep`).
+
+use knotlab_sim::scene::parse_scene;
+use knotlab_sim::validation::SutureUnderTest;
+use knotlab_sim::validation::creep::{TOLERANCE_M_PER_S, creep_m_per_s};
+
+fn nominal() -> SutureUnderTest {
+    let scene = parse_scene(include_str!("../../../scenarios/default.toml"), "default.toml")
+        .expect("the shipped scene");
+    SutureUnderTest::from_scene(&scene).expect("the rope")
+}
+
+/// Solved both ways, the nominal suture's double throw pulled 1 N on each end moves less than
+/// 1 mm/s along the rope once closed; solved one way (the nominal scene's), more than 10 mm/s
+/// towards the first end (measured 14.8), still the double throw.
+#[test]
+fn a_knot_pulled_equally_at_both_ends_stays_where_the_contacts_are_solved_both_ways() {
+    let mut suture = nominal();
+    suture.params.contacts_both_ways = true;
+    let both = creep_m_per_s(&suture).expect("the double throw, closed");
+    assert!(both.abs() < TOLERANCE_M_PER_S, "both ways it moved {:.2} mm/s", both * 1e3);
+    suture.params.contacts_both_ways = false;
+    let one = creep_m_per_s(&suture).expect("the double throw, closed");
+    assert!(one < -0.01, "one way it moved {:.2} mm/s", one * 1e3);
+}
