@@ -1,8 +1,9 @@
 //! A long overhand knot of `knotlab validate` (the (2, 2n+1) torus knot laid loose) seated under
 //! the long-knot law's loose load, then pulled by its ends with a load raised steadily to LOAD_N
 //! over a minute: each second the pull, the shortening, the most stretched segment, the knot the
-//! classifier reads and the pairs of segments the crossing watch counted passing through each other.
-//! It shows where a tight knot's strands are squeezed through each other, seen or not:
+//! classifier reads, where it sits along the rope (the middle of its crossings, from the first
+//! end) and the pairs of segments the crossing watch counted passing through each other. It shows
+//! whether a knot pulled tight keeps its type and its place on the rope:
 //!
 //! ```text
 //! cargo run --release -p knotlab-sim --example long_knot_overload [SCENE [TURNS [LOAD_N]]]
@@ -65,9 +66,9 @@ fn main() {
     let steps_per_s = (1.0 / suture.dt_s).round() as usize;
     let (seat_s, ramp_s): (usize, usize) = (10, 60);
     println!(
-        "| s | pull, N | shortening, mm | most stretched segment | knot (determinant) | pairs crossed in that second |"
+        "| s | pull, N | shortening, mm | most stretched segment | knot (determinant) | knot's place, mm | pairs crossed in that second |"
     );
-    println!("|---|---|---|---|---|---|");
+    println!("|---|---|---|---|---|---|---|");
     for second in 1..=seat_s + ramp_s + 10 {
         let ramp = (second.saturating_sub(seat_s) as f64 / ramp_s as f64).min(1.0);
         let pull_n = seat_n + (top_n - seat_n) * ramp;
@@ -78,10 +79,18 @@ fn main() {
             ropes.step(suture.dt_s);
             crossed.extend_from_slice(ropes.crossed_last_step());
         }
-        let knot = classify(&ropes.polyline(0))
-            .map_or_else(|e| format!("({e})"), |c| format!("{} ({:?})", c.knot, c.determinant));
+        let (knot, place) = classify(&ropes.polyline(0)).map_or_else(
+            |e| (format!("({e})"), String::new()),
+            |c| {
+                let place = c
+                    .span
+                    .as_ref()
+                    .map_or_else(String::new, |s| format!("{:.1}", (s.start_m + s.end_m) * 0.5e3));
+                (format!("{} ({:?})", c.knot, c.determinant), place)
+            },
+        );
         println!(
-            "| {second} | {pull_n:.3} | {:.1} | {:.3} | {knot} | {} |",
+            "| {second} | {pull_n:.3} | {:.1} | {:.3} | {knot} | {place} | {} |",
             (length_m - (ropes.x[last] - ropes.x[first]).norm()) * 1e3,
             ropes.max_stretch_ratio(),
             crossed.len()
