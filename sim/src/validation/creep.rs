@@ -5,7 +5,7 @@
 //! crossings moves along the rope, judged against zero. A rope whose contacts are solved always
 //! from one end fails it ([`crate::rope::RopeParams::contacts_both_ways`]).
 
-use super::knot::{Laid, MAX_REST_S, REST_RADII, REST_WINDOW_S, Void};
+use super::knot::{Laid, MAX_REST_S, Void, at_rest};
 use super::long_knot::open_long_knot;
 use super::{Check, SutureUnderTest, Tolerance};
 use crate::knot::classify::{KnotType, classify};
@@ -57,12 +57,10 @@ pub fn creep_m_per_s(suture: &SutureUnderTest) -> Result<f64, Void> {
     // Closed: at rest, its shortening steady.
     let shortening = |ropes: &Ropes| length_m - (ropes.x[last] - ropes.x[first]).norm();
     let mut apart = Vec::new();
-    for second in 1..=MAX_REST_S as usize {
+    for _ in 0..MAX_REST_S as usize {
         run(&mut ropes, 1)?;
         apart.push(shortening(&ropes));
-        if second > REST_WINDOW_S
-            && (apart[second - 1] - apart[second - 1 - REST_WINDOW_S]).abs() < REST_RADII * radius_m
-        {
+        if at_rest(&apart, radius_m) {
             break;
         }
     }

@@ -55,6 +55,14 @@ pub const LOW_FRICTION: f64 = 0.05;
 pub(super) const REST_RADII: f64 = 0.25;
 /// See [`REST_RADII`], s.
 pub(super) const REST_WINDOW_S: usize = 2;
+
+/// Whether a knot whose ends lay `apart_m` apart at the end of each second so far (or whose
+/// shortening was so) is at rest: over the last [`REST_WINDOW_S`] seconds it moved less than
+/// [`REST_RADII`] radii of a rope of radius `radius_m`.
+pub(super) fn at_rest(apart_m: &[f64], radius_m: f64) -> bool {
+    let n = apart_m.len();
+    n > REST_WINDOW_S && (apart_m[n - 1] - apart_m[n - 1 - REST_WINDOW_S]).abs() < REST_RADII * radius_m
+}
 /// The friction the lock is checked at: its `ε0 = 2 σ μ` (0.148) lies between the laid knot's ε
 /// and the tightened one's (about 0.22), so a knot that did not open at all would read 47 % high.
 pub const LOCK_FRICTION: f64 = 0.15;
@@ -179,9 +187,7 @@ impl Laid {
                 }
             }
             apart.push((ropes.x[self.last] - ropes.x[self.first]).norm());
-            if second > REST_WINDOW_S
-                && (apart[second - 1] - apart[second - 1 - REST_WINDOW_S]).abs() < REST_RADII * h
-            {
+            if at_rest(&apart, h) {
                 rested_s = second as f64;
                 break;
             }

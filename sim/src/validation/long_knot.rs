@@ -28,7 +28,7 @@ use nalgebra::Vector3;
 
 use super::{Check, SutureUnderTest, Tolerance};
 // The trefoil's laying, damping and rest: the same experiment, another knot.
-use super::knot::{Laid, MAX_REST_S, REST_RADII, REST_WINDOW_S, Void};
+use super::knot::{Laid, MAX_REST_S, Void, at_rest};
 use crate::rope::Ropes;
 
 /// The knots the suite pulls, by their braids' turns, each with its ramp, s: the cinquefoil 5_1 (the
@@ -223,14 +223,12 @@ pub fn tighten(
     let shortening = |ropes: &Ropes| length_m - (ropes.x[last] - ropes.x[first]).norm();
     // Seated: at rest under the loosest load.
     let mut apart = Vec::new();
-    for second in 1..=MAX_REST_S as usize {
+    for _ in 0..MAX_REST_S as usize {
         for _ in 0..steps_per_s {
             step(&mut ropes, seat_n)?;
         }
         apart.push(shortening(&ropes));
-        if second > REST_WINDOW_S
-            && (apart[second - 1] - apart[second - 1 - REST_WINDOW_S]).abs() < REST_RADII * h
-        {
+        if at_rest(&apart, h) {
             break;
         }
     }
