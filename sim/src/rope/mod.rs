@@ -184,7 +184,7 @@ pub struct RopeParams {
     /// substep from the first pair, the next from the last ([`contact::solve_contacts`]). Solved
     /// always from the first, each contact starting from where the pairs before it left the
     /// particles, the solve pulls a knot along the rope towards the strand's first particle: the
-    /// surgeon's double throw held by 1 N on each end creeps 14 mm/s that way and runs off the end
+    /// surgeon's double throw held by 1 N on each end creeps 15 mm/s that way and runs off the end
     /// (`knotlab validate`'s `knot_creep`). Solved both ways it stays, and a rope's wraps and knots
     /// hold less than the one-way solve held them (`docs/validation.md`, "A knot creeping along
     /// its rope").
