@@ -34,7 +34,7 @@ fn place_m(ropes: &Ropes) -> Result<f64, Void> {
 
 /// How fast the double throw, laid in `suture`'s rope at its own friction and pulled by
 /// [`PULL_N`] on each end, moves along the rope once closed, m/s (positive: towards the strand's
-/// last end). Void where it passed through itself or came undone.
+/// last end). Void where it passed through itself, came undone or never closed.
 pub fn creep_m_per_s(suture: &SutureUnderTest) -> Result<f64, Void> {
     let radius_m = suture.params.radius_m;
     let path = open_long_knot(2, radius_m);
@@ -57,7 +57,10 @@ pub fn creep_m_per_s(suture: &SutureUnderTest) -> Result<f64, Void> {
     // Closed: at rest, its shortening steady.
     let shortening = |ropes: &Ropes| length_m - (ropes.x[last] - ropes.x[first]).norm();
     let mut apart = Vec::new();
-    for _ in 0..MAX_REST_S as usize {
+    loop {
+        if apart.len() >= MAX_REST_S as usize {
+            return Err(Void::NeverRested);
+        }
         run(&mut ropes, 1)?;
         apart.push(shortening(&ropes));
         if at_rest(&apart, radius_m) {

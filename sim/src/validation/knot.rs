@@ -96,6 +96,8 @@ pub enum Void {
     NoLongerATrefoil,
     /// At the end it no longer held the knot it was laid as (or no knot could be read).
     NoLongerTheKnotLaid,
+    /// It was still closing after [`MAX_REST_S`] under its pulls: no rest to measure from.
+    NeverRested,
 }
 
 impl std::fmt::Display for Void {
@@ -104,6 +106,7 @@ impl std::fmt::Display for Void {
             Void::PassedThroughItself(t) => write!(f, "void: passed through itself at {t:.1} s"),
             Void::NoLongerATrefoil => write!(f, "void: no longer a trefoil"),
             Void::NoLongerTheKnotLaid => write!(f, "void: no longer the knot it was laid as"),
+            Void::NeverRested => write!(f, "void: still closing after {MAX_REST_S} s"),
         }
     }
 }
