@@ -37,7 +37,7 @@ fn the_demonstration_played_back_through_the_steps_ties_the_knot() {
     let demo = load_demonstration(&root.join("demos/instrument-tie")).expect("the shipped demonstration");
     let settings = EpisodeSettings::default();
     let commands = demonstration_commands(&demo, &settings).expect("its commands");
-    assert_eq!(commands.len(), 777, "38.85 s at 20 Hz");
+    assert_eq!(commands.len(), 768, "38.42 s at 20 Hz");
     let mut episode = Episode::new(nominal_world(), settings).expect("an episode");
     let mut ended = None;
     for (k, c) in commands.iter().enumerate() {

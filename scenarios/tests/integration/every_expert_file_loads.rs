@@ -63,10 +63,13 @@ fn every_expert_file_loads() {
     };
     assert_eq!(cinches, expected);
     // The shipped plan, cinched by both ends: looks-at-the-tail's with each pull going on to its own
-    // set force (a surgeon's snug, 3 N), slower, and the right going the left's way as it draws the tail back.
+    // set force (a surgeon's snug, 3 N), slower, aimed at the tissue's surface, and the right going
+    // the left's way as it draws the tail back.
     let both = load_tie_geometry(&expert_path("instrument-tie.toml")).unwrap();
     let expected = knotlab_scenarios::expert::TieGeometry {
         pull_s: 5.0,
+        left_pull_to_m: [0.0, 0.06, 0.0],
+        right_pull_to_m: [0.0, -0.05, 0.0],
         pulls_stop_together: false,
         pull_force_n: 3.0,
         tail_pull_force_n: Some(3.0),
