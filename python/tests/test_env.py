@@ -94,7 +94,7 @@ def test_the_demonstration_played_back_through_step_ties_the_knot():
     1.5 mm over."""
     env = knotlab.KnotTyingEnv(randomize=False)
     actions = knotlab.demonstration_actions(env=env)
-    assert actions.shape == (777, 21) and np.abs(actions).max() <= 1.0
+    assert actions.shape == (768, 21) and np.abs(actions).max() <= 1.0
     playbacks = [actions]
     for draw in (1, 2):
         moved = actions * (1.0 + 1e-9 * np.random.default_rng(draw).standard_normal(actions.shape))
