@@ -200,7 +200,9 @@ impl ArmRuntime {
                 state.above_since_s.is_some_and(|since| time_s - since >= event.sustain_s - 1e-12);
             let joined = inside
                 && event.fires_with.as_ref().is_some_and(|name| {
-                    fired_names.iter().any(|(other, fired)| *other != arm && fired == name)
+                    fired_names
+                        .iter()
+                        .any(|(other, fired)| fired == name && (*other != arm || *name != event.name))
                 });
             if state.fired_at_s.is_none() && (sustained || joined) {
                 state.fired_at_s = Some(time_s);

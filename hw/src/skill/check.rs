@@ -145,15 +145,13 @@ impl Skill {
                     );
                 }
                 if let Some(name) = &event.fires_with {
-                    let elsewhere = self
-                        .tracks
-                        .iter()
-                        .enumerate()
-                        .any(|(other, o)| other != t && o.events.iter().any(|e| &e.name == name));
+                    let elsewhere = self.tracks.iter().enumerate().any(|(other, o)| {
+                        o.events.iter().any(|e| &e.name == name && (other != t || e.name != event.name))
+                    });
                     if !elsewhere {
                         p.add(
                             format!("{ep}.fires_with"),
-                            format!("no other track has an event named {name:?}"),
+                            format!("no other event (of this track or another) is named {name:?}"),
                         );
                     }
                 }

@@ -21,9 +21,10 @@ pub struct ForceEvent {
     /// passing spike (a coil catching as the thread is drawn through it) has not reached its force.
     #[serde(default)]
     pub sustain_s: f64,
-    /// It also fires, whatever this instrument's force, in the cycle after an event of this name
-    /// fires on another track (two pulls stop together at the first one's set force: the other
-    /// pulling on tears the thread out of the jaws that stopped).
+    /// It also fires, whatever this instrument's force, in the first cycle of its window after an
+    /// event of this name fired: on another track (two pulls stop together at the first one's set
+    /// force: the other pulling on tears the thread out of the jaws that stopped), or another event
+    /// of this one (a pull that stopped at its force lets go when its window opens).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub fires_with: Option<String>,
     /// What happens.

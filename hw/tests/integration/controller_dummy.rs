@@ -307,6 +307,52 @@ fn a_force_event_opens_the_jaw_when_the_threshold_is_crossed() {
     assert!(fired[0].force_n >= 1.5 && fired[0].force_n < 1.5 + 5.0 * PERIOD_S + 1e-9);
 }
 
+/// An event linked by `fires_with` to another of its own track fires in the first cycle of its
+/// window after that one fired (a pull held at its force lets go later): the hold at 1.2 N from
+/// 0.3 s, the opening at 0.6 s, its window's start; without the hold it does not fire at all.
+#[test]
+fn an_event_that_fires_with_one_of_its_own_track_fires_when_its_window_opens() {
+    let arm = ArmName::Left;
+    let (_, start) = parked(arm);
+    let events = vec![
+        ForceEvent {
+            name: "stop".into(),
+            from_s: 0.0,
+            until_s: 0.9,
+            threshold_n: 1.0,
+            sustain_s: 0.0,
+            fires_with: None,
+            action: ForceAction::Hold,
+        },
+        ForceEvent {
+            name: "let go".into(),
+            from_s: 0.6,
+            until_s: 0.9,
+            threshold_n: 100.0,
+            sustain_s: 0.0,
+            fires_with: Some("stop".into()),
+            action: ForceAction::OpenJaw { jaw_rad: 0.5 },
+        },
+    ];
+    let run = |pull_n: f64| {
+        let (mut controller, _, force) = dummy_controller(arm, PERIOD_S, ControllerParams::default());
+        controller.load_skill(hold_still_skill(arm, start, events.clone())).unwrap();
+        for cycle in 0..=900 {
+            let t = cycle as f64 * PERIOD_S;
+            force.set(Vector3::new(0.0, 0.0, if t >= 0.3 { pull_n } else { 0.0 }));
+            controller.step().unwrap();
+        }
+        controller.fired_events().iter().map(|f| (f.event, f.time_s)).collect::<Vec<_>>()
+    };
+    let fired = run(1.2);
+    assert_eq!(fired.len(), 2, "{fired:?}");
+    assert_eq!(fired[0].0, 0);
+    assert!((fired[0].1 - 0.301).abs() < 1.5 * PERIOD_S, "held at {fired:?}");
+    assert_eq!(fired[1].0, 1);
+    assert!((fired[1].1 - 0.6).abs() < 1.5 * PERIOD_S, "let go at {fired:?}");
+    assert!(run(0.5).is_empty(), "no hold, no letting go");
+}
+
 /// A force event with a 50 ms sustain ignores a 30 ms spike over its threshold and fires once, 50 ms into
 /// the sustained pull.
 #[test]
@@ -466,7 +512,9 @@ fn an_event_that_fires_with_another_stops_both_pulls_at_the_first_force() {
     dangling.tracks[0].events[0].fires_with = Some("set farce".into());
     let text = controller.load_skill(dangling).unwrap_err().to_string();
     assert!(
-        text.contains("tracks[0].events[0].fires_with: no other track has an event named \"set farce\""),
+        text.contains(
+            "tracks[0].events[0].fires_with: no other event (of this track or another) is named \"set farce\""
+        ),
         "{text}"
     );
 }

@@ -5,8 +5,12 @@
 //! - force-controlled: the demonstrated movement, moved, up to where it came to rest, then at once on
 //!   along its line (start to there) until the line is elongated by
 //!   [`PrimitiveSettings::force_elongation`] or, short of that, as far as the instrument reaches
-//!   ([`Site::reach`]), there until the slot's end, then back to the line's end; the jaw opens once
-//!   the recorded maximum force is reached (a force event);
+//!   ([`Site::reach`]), there until the slot's end, then back to the line's end; once the recorded
+//!   maximum force is reached the tip stops there and holds, and the jaws open when the
+//!   demonstration's opened (the primitive's span on), at once if the force comes later (two force
+//!   events; the paper opens them at once, and a knot let go at once by the long end was left
+//!   beside the stitch where the demonstrated hold laid it on it), at the slot's end if it never
+//!   comes;
 //! - 2D: regenerated through the fluid around obstacles ([`Method::Fluid`]) or by a DMP from where the
 //!   instrument is ([`Method::Dmp`]); one that another instrument follows (a winding round its jaws)
 //!   turned about that instrument's tip as its wrist can hold its jaws ([`super::winding`]);
@@ -343,7 +347,7 @@ fn force_keys(
     track.jaw.push(JawKey { time_s: slot.0, jaw_rad: from_rad });
     track.jaw.push(JawKey { time_s: slot.1 - 0.01, jaw_rad: from_rad });
     track.jaw.push(JawKey { time_s: slot.1, jaw_rad: to_rad });
-    // The paper's rule: the jaws let go once the recorded force is reached, wherever that is.
+    // At the recorded force the tip stops and holds, wherever that is ...
     track.events.push(ForceEvent {
         name: p.name.clone(),
         from_s: slot.0,
@@ -351,6 +355,18 @@ fn force_keys(
         threshold_n: p.max_force_n,
         sustain_s: 0.0,
         fires_with: None,
+        action: ForceAction::Hold,
+    });
+    // ... and the jaws let go as long after the pull's start as the demonstration's did (the
+    // demonstrated hold at the snug lays the knot down), or at the force if it comes later (the
+    // paper's rule).
+    track.events.push(ForceEvent {
+        name: format!("{} lets go", p.name),
+        from_s: (slot.0 + p.jaw.at_s).min(slot.1),
+        until_s: slot.1,
+        threshold_n: p.max_force_n,
+        sustain_s: 0.0,
+        fires_with: Some(p.name.clone()),
         action: ForceAction::OpenJaw { jaw_rad: to_rad },
     });
 }

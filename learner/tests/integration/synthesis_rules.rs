@@ -16,7 +16,7 @@ use knotlab_hw::skill::{ForceAction, Orientation, Skill, Track};
 use knotlab_learner::demonstration::{Demonstration, load_demonstration};
 use knotlab_learner::fluid::ObstacleMask;
 use knotlab_learner::pattern::load_pattern;
-use knotlab_learner::primitive::{KnowledgeBase, Primitive, learn};
+use knotlab_learner::primitive::{ForcePrimitive, KnowledgeBase, Primitive, learn};
 use knotlab_learner::synthesis::site::pose_isometry;
 use knotlab_learner::synthesis::{
     AT_REST_M, ApproachSettings, Method, PrimitiveSettings, REACH_MARGIN_M, Reach, ReplaySettings, Schedule,
@@ -103,8 +103,9 @@ fn nominal(kb: &KnowledgeBase) -> Isometry3<f64> {
     pose_isometry(&kb.world_from_stitch)
 }
 
-/// A force-controlled primitive drives on to 125 % of its line and back with its jaw held closed, its
-/// event opening the jaw at the recorded maximum force inside the primitive's window.
+/// A force-controlled primitive drives on to 125 % of its line and back with its jaw held closed; its
+/// events stop the tip at the recorded maximum force and open the jaw as long after the start as the
+/// demonstration's opened, or at that force if it comes later.
 #[test]
 fn a_force_controlled_primitive_goes_on_to_125_percent_and_comes_back_opening_at_the_recorded_force() {
     let (kb, demo) = learned(31);
@@ -115,12 +116,7 @@ fn a_force_controlled_primitive_goes_on_to_125_percent_and_comes_back_opening_at
         let Some(Primitive::Force(p)) = kb.primitive(name) else { panic!("{name} is force-controlled") };
         let slot = made.schedule.slot(name).expect("scheduled");
         let t = track(&made.skill, arm);
-        // The jaw opens when the recorded maximum force is reached, inside the primitive's window.
-        let event = t.events.iter().find(|e| e.name == name).expect("a force event");
-        assert_eq!(event.threshold_n, p.max_force_n);
-        assert_eq!((event.from_s, event.until_s), slot.new_s);
-        let ForceAction::OpenJaw { jaw_rad } = event.action else { panic!("the event opens the jaw") };
-        assert_eq!(jaw_rad, p.jaw.to_rad);
+        assert_force_events(t, p, slot.new_s);
         // Along the line from the start to where the demonstration came to rest: on to 125 %, back to 100 %.
         let world = nominal(&kb);
         let start = world * nalgebra::Point3::from(Vector3::from(p.start_pose.position_m));
@@ -146,7 +142,8 @@ fn a_force_controlled_primitive_goes_on_to_125_percent_and_comes_back_opening_at
 /// A force-controlled primitive whose demonstration held its pull before letting go (the shipped
 /// recording's R5 comes to rest with the knot snug and holds it there for seconds before the jaws
 /// open) goes on along its line as soon as the demonstrated movement comes to rest, while the other
-/// instruments still hold what they held, not after the hold; its jaws let go at the recorded force.
+/// instruments still hold what they held, not after the hold; it stops at the recorded force and
+/// lets go when the demonstration did.
 #[test]
 fn a_pull_held_before_letting_go_goes_on_from_its_rest() {
     let (kb, demo) = shipped_learned();
@@ -187,11 +184,23 @@ fn a_pull_held_before_letting_go_goes_on_from_its_rest() {
             settings.force_elongation
         );
     }
-    // The jaws let go at the recorded force, inside the slot.
-    let event = t.events.iter().find(|e| e.name == "R5").expect("a force event");
-    assert_eq!(event.threshold_n, p.max_force_n);
-    assert_eq!((event.from_s, event.until_s), slot.new_s);
-    assert_eq!(event.action, ForceAction::OpenJaw { jaw_rad: p.jaw.to_rad });
+    assert_force_events(t, p, slot.new_s);
+}
+
+/// `t`'s events for the force-controlled `p` in its slot `slot_s`: named `p`, the tip held from the
+/// recorded maximum force to the slot's end; `p` "lets go", the jaw opened from as long into the
+/// slot as the demonstration's opened, at that force or with the hold.
+fn assert_force_events(t: &Track, p: &ForcePrimitive, slot_s: (f64, f64)) {
+    let event = |name: &str| t.events.iter().find(|e| e.name == name).expect("a force event");
+    let hold = event(&p.name);
+    assert_eq!(hold.threshold_n, p.max_force_n);
+    assert_eq!((hold.from_s, hold.until_s), slot_s);
+    assert_eq!(hold.action, ForceAction::Hold);
+    let lets_go = event(&format!("{} lets go", p.name));
+    assert_eq!(lets_go.threshold_n, p.max_force_n);
+    assert_eq!((lets_go.from_s, lets_go.until_s), (slot_s.0 + p.jaw.at_s, slot_s.1));
+    assert_eq!(lets_go.fires_with.as_deref(), Some(p.name.as_str()));
+    assert_eq!(lets_go.action, ForceAction::OpenJaw { jaw_rad: p.jaw.to_rad });
 }
 
 /// An instrument that starts turned otherwise than the demonstration's first key, moved, turns it
