@@ -59,7 +59,9 @@ fn interpolate(samples: &Trajectory, time_s: f64) -> Joints {
 }
 
 /// The learned skill, previewed in the simulator, runs to its end on the lab's rig of emulators and
-/// commands the arms as the simulated run did, within one MELFA cycle's step per axis.
+/// commands the arms as the simulated run did, within one MELFA cycle's step per axis, up to the
+/// first force event the preview fired (the pull's stop at its set force: from there the commands
+/// follow the forces read, and the emulated force sensors read no thread).
 #[test]
 fn the_learned_skill_runs_on_the_lab_rig_of_emulators_as_in_the_simulator() {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
@@ -195,10 +197,15 @@ fn the_learned_skill_runs_on_the_lab_rig_of_emulators_as_in_the_simulator() {
 
     let duration_s = trial.skill.duration_s();
     assert!(lab.last().is_some_and(|(t, _)| *t >= duration_s - 0.01), "the lab run reached the skill's end");
+    let forced_s = trial.run.force_events.iter().map(|f| f.time_s).fold(f64::INFINITY, f64::min);
+    assert!(
+        forced_s > 20.0 && forced_s < duration_s,
+        "the preview's pull stopped at its force at {forced_s} s"
+    );
     let (mut worst, mut step) = ([[0.0_f64; 8]; 3], [[0.0_f64; 8]; 3]);
     let mut worst_at = [[0.0_f64; 8]; 3];
     for (k, (t, q)) in lab.iter().enumerate() {
-        if *t > duration_s {
+        if *t >= forced_s - 0.1 {
             break;
         }
         let s = interpolate(&sim, *t);

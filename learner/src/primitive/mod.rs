@@ -157,7 +157,7 @@ pub struct LinearPrimitive {
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct JawAction {
-    /// `open` (the jaws let go once the force is reached) or `hold`.
+    /// `open` (the jaws let go after the force is reached, when the demonstration's did) or `hold`.
     pub action: JawActionKind,
     /// The jaw angle before, rad.
     pub from_rad: f64,

@@ -1,7 +1,7 @@
 //! The rules of skill synthesis, on a synthetic demonstration learned with the shipped pattern: the
-//! force-controlled primitive goes on to 125 % of its line and comes back, with the jaw opening at the
-//! recorded force, and (on the shipped recording, whose pull is held before the jaws open) goes on as
-//! soon as it comes to rest; no primitive starts before the primitives it waits for are done, and a
+//! force-controlled primitive goes on to 125 % of its line and comes back, stopping at the recorded
+//! force and opening the jaw when the demonstration's opened, and (on the shipped recording, whose
+//! pull is held before the jaws open) goes on as soon as it comes to rest; no primitive starts before the primitives it waits for are done, and a
 //! longer one delays those that wait; a skill made at a moved stitch is the nominal one moved, and an
 //! instrument starting turned otherwise than its first key is turned by the way in; the fluid method
 //! regenerates the 2D primitive; the replay baseline plays the demonstration back.
