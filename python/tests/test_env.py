@@ -90,8 +90,8 @@ def test_the_demonstration_played_back_through_step_ties_the_knot():
     part in 1e9 leave it a millimetre higher or lower, and the verdict asks for 2 mm at most. So the
     actions as they are and two copies moved by a part in 1e9 (fixed draws) are each played back,
     and at least two of the three must tie the knot. With the shipped demonstration the actions as
-    they are leave it 2.15 mm over the tissue (knot_not_down); six moved copies all tied it, 0.3 to
-    1.5 mm over."""
+    they are and four moved copies (draws 1-4) all tie it, 0.1 to 1.0 mm over the tissue and 1.4 to
+    4.4 mm from the stitch."""
     env = knotlab.KnotTyingEnv(randomize=False)
     actions = knotlab.demonstration_actions(env=env)
     assert actions.shape == (768, 21) and np.abs(actions).max() <= 1.0
