@@ -9,29 +9,13 @@
 //!
 //! SCENE defaults to `scenarios/default.toml`.
 
-use knotlab_sim::scene::parse_scene;
-use knotlab_sim::validation::SutureUnderTest;
+mod common;
+
 use knotlab_sim::validation::creep::creep_m_per_s;
 
 fn main() {
     let path = std::env::args().nth(1).unwrap_or_else(|| "scenarios/default.toml".to_owned());
-    let text = match std::fs::read_to_string(&path) {
-        Ok(t) => t,
-        Err(e) => {
-            eprintln!("knot_creep: cannot read {path}: {e}");
-            std::process::exit(2);
-        }
-    };
-    let suture = match parse_scene(&text, &path)
-        .map_err(|e| e.to_string())
-        .and_then(|scene| SutureUnderTest::from_scene(&scene).map_err(|e| format!("{path}: {e}")))
-    {
-        Ok(s) => s,
-        Err(e) => {
-            eprintln!("knot_creep: {e}");
-            std::process::exit(2);
-        }
-    };
+    let suture = common::suture_of_scene(&path, "knot_creep");
     for both_ways in [false, true] {
         let mut suture = suture.clone();
         suture.params.contacts_both_ways = both_ways;

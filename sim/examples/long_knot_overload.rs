@@ -12,10 +12,10 @@
 //! SCENE defaults to `scenarios/default.toml`, TURNS to 2 (the surgeon's double throw), LOAD_N to
 //! 3 (the shipped expert's snug on each end).
 
+mod common;
+
 use knotlab_sim::knot::classify::classify;
 use knotlab_sim::rope::{RopeParams, Ropes};
-use knotlab_sim::scene::parse_scene;
-use knotlab_sim::validation::SutureUnderTest;
 use knotlab_sim::validation::long_knot::{N2H_OVER_E, law_n, open_long_knot};
 
 fn main() {
@@ -37,23 +37,7 @@ fn main() {
             std::process::exit(2);
         }
     };
-    let text = match std::fs::read_to_string(&path) {
-        Ok(t) => t,
-        Err(e) => {
-            eprintln!("long_knot_overload: cannot read {path}: {e}");
-            std::process::exit(2);
-        }
-    };
-    let suture = match parse_scene(&text, &path)
-        .map_err(|e| e.to_string())
-        .and_then(|scene| SutureUnderTest::from_scene(&scene).map_err(|e| format!("{path}: {e}")))
-    {
-        Ok(s) => s,
-        Err(e) => {
-            eprintln!("long_knot_overload: {e}");
-            std::process::exit(2);
-        }
-    };
+    let suture = common::suture_of_scene(&path, "long_knot_overload");
     let (h, b, mu) = (suture.params.radius_m, suture.bending_stiffness_n_m2(), suture.params.static_friction);
     let params = RopeParams { damping_per_s: 0.5, kinetic_friction: 0.8 * mu, ..suture.params };
     let mut ropes = Ropes::new(params);
