@@ -105,9 +105,9 @@ pub struct ThreadParams {
     #[serde(default)]
     pub rope_constraint_passes: Option<usize>,
     /// Whether the rope's contacts with itself are solved from either end in turn
-    /// ([`crate::rope::RopeParams::contacts_both_ways`]); left out, always from the needle end.
-    /// The chain ignores it.
-    #[serde(default)]
+    /// ([`crate::rope::RopeParams::contacts_both_ways`]); left out, they are. `false`: always from
+    /// the needle end, which drags a knot towards it. The chain ignores it.
+    #[serde(default = "contacts_both_ways")]
     pub rope_contacts_both_ways: bool,
 }
 
@@ -125,6 +125,10 @@ pub enum ThreadModel {
 }
 
 fn twist_free() -> bool {
+    true
+}
+
+fn contacts_both_ways() -> bool {
     true
 }
 
@@ -146,7 +150,7 @@ impl Default for ThreadParams {
             rope_radius_at_metal_m: None,
             rope_direct_bending: false,
             rope_constraint_passes: None,
-            rope_contacts_both_ways: false,
+            rope_contacts_both_ways: contacts_both_ways(),
             linear_damping_per_s: 1.0,
             twist_free: true,
             model: ThreadModel::Chain,

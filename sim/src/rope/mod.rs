@@ -185,9 +185,9 @@ pub struct RopeParams {
     /// always from the first, each contact starting from where the pairs before it left the
     /// particles, the solve pulls a knot along the rope towards the strand's first particle: the
     /// surgeon's double throw held by 1 N on each end creeps 15 mm/s that way and runs off the end
-    /// (`knotlab validate`'s `knot_creep`). Solved both ways it stays, and a rope's wraps and knots
-    /// hold less than the one-way solve held them (`docs/validation.md`, "A knot creeping along
-    /// its rope").
+    /// (`knotlab validate`'s `knot_creep`). Solved both ways (the default) it stays; a string's
+    /// wrap then needs more contact passes to hold what the capstan equation says it holds
+    /// (`docs/validation.md`, "A knot creeping along its rope").
     pub contacts_both_ways: bool,
     /// Velocity damping, 1/s.
     pub damping_per_s: f64,
@@ -233,7 +233,7 @@ impl Default for RopeParams {
             direct_bending: false,
             constraint_passes: 1,
             contact_passes: 1,
-            contacts_both_ways: false,
+            contacts_both_ways: true,
             damping_per_s: 100.0,
             contact_margin_m: 0.001,
             bending_stiffness_n_m2: 1e-7,

@@ -33,7 +33,7 @@ use crate::rope::Ropes;
 
 /// The knots the suite pulls, by their braids' turns, each with its ramp, s: the cinquefoil 5_1 (the
 /// surgeon's double throw), over a ramp slow enough that one four times as long moves its figure by
-/// 2.5 % (0.671 and 0.688 at 60 and 240 s on the nominal suture). The 7_1 (n = 3, 0.93 of the law
+/// 2.5 % (0.671 and 0.688 at 60 and 240 s on the nominal suture, its contacts solved one way). The 7_1 (n = 3, 0.93 of the law
 /// at 120-480 s) takes a metre of rope and two minutes on one core: the `long_knot_sweep` example
 /// pulls it.
 pub const KNOTS: [(usize, f64); 1] = [(2, 60.0)];
@@ -333,8 +333,8 @@ mod tests {
     }
 
     /// Guards the rope's friction in the surgeon's double throw pulled tight at its ends: it slides
-    /// at two thirds of the long-knot law's pull (measured 0.671 over a 60 s ramp at friction 0.5;
-    /// 0.688 over 240 s, 0.700 at half the spacing), sliding through most of the ramp, and ends the
+    /// at two thirds of the long-knot law's pull (measured 0.638 over a 60 s ramp at friction 0.5;
+    /// one way 0.671, 0.688 over 240 s, 0.700 at half the spacing), sliding through most of the ramp, and ends the
     /// knot it was laid as.
     #[test]
     fn the_double_throw_slides_at_two_thirds_of_the_long_knot_law() {
