@@ -1,9 +1,9 @@
 //! A surgeon's knot in a rope without bending stiffness, snugged tight over the stitch, gives the
-//! wound back most of its 4 mm rest gap once its free ends are let go (1.8-6.6 mm over six tight
+//! wound back most of its 4 mm rest gap once its free ends are let go (2.1-5.8 mm over six tight
 //! layouts), though it never comes undone: with its free ends slack a string's knot
 //! presses on itself only as hard as the loop pulls it, so friction holds too little. A rope as stiff
 //! as suture (EI = 1e-7 N m², below a 3-0 monofilament's) keeps its bends pressed together with no
-//! tension at all, and the same knot holds the wound within 0.2 mm (0.01-0.17 mm over the six
+//! tension at all, and the same knot holds the wound within 0.2 mm (0.00 mm in all six
 //! layouts). `cargo bench -p knotlab-lab --bench rope_knot` prints the table.
 
 use super::common;
