@@ -22,6 +22,20 @@ fn the_shipped_scene_loads() {
     assert_eq!(scene.trocars.left, [-0.08, 0.12, 1.02]);
 }
 
+/// The rope solves its contacts with itself from either end in turn unless the scene says `false`:
+/// left out, the key means both ways (the one-way solve drags a knot towards the needle end).
+#[test]
+fn a_rope_scene_solves_its_contacts_both_ways_unless_it_says_otherwise() {
+    let key = "rope_contacts_both_ways";
+    let shipped = parse_scene(DEFAULT, "default.toml").unwrap();
+    assert!(shipped.thread.rope_contacts_both_ways);
+    let line = DEFAULT.lines().find(|l| l.starts_with(key)).expect("the shipped scene sets it");
+    let left_out = parse_scene(&DEFAULT.replace(line, ""), "left-out.toml").unwrap();
+    assert!(left_out.thread.rope_contacts_both_ways);
+    let one_way = parse_scene(&DEFAULT.replace(line, &format!("{key} = false")), "one-way.toml").unwrap();
+    assert!(!one_way.thread.rope_contacts_both_ways);
+}
+
 /// A misspelt key is refused, not ignored, with the file, the line and the key's dotted path.
 #[test]
 fn an_unknown_key_is_named_with_its_path_and_line() {
