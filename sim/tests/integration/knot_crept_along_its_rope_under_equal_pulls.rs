@@ -1,8 +1,8 @@
 //! A knot pulled by equal loads on its two ends stays where it is along the rope where the rope's
 //! contacts are solved from either end in turn. Solved always from its first particle's end, they
 //! pull the surgeon's double throw along the rope towards that end (15 mm/s under 1 N), no
-//! strand passing through another, until it runs off the end and comes undone: the nominal
-//! scene's rope does, and `knotlab validate` fails it (`knot_creep`).
+//! strand passing through another, until it runs off the end and comes undone, and `knotlab
+//! validate` fails it (`knot_creep`). The nominal scene solves them both ways.
 
 use knotlab_sim::scene::parse_scene;
 use knotlab_sim::validation::SutureUnderTest;
@@ -15,7 +15,7 @@ fn nominal() -> SutureUnderTest {
 }
 
 /// Solved both ways, the nominal suture's double throw pulled 1 N on each end moves less than
-/// 1 mm/s along the rope once closed; solved one way (the nominal scene's), more than 10 mm/s
+/// 1 mm/s along the rope once closed (the nominal scene's); solved one way, more than 10 mm/s
 /// towards the first end (measured 15.1; both ways 0.095), still the double throw.
 #[test]
 fn a_knot_pulled_equally_at_both_ends_stays_where_the_contacts_are_solved_both_ways() {
