@@ -29,7 +29,7 @@
 //! Printed: how far each slid, in all and (in brackets) in the last half of the load, the reef's
 //! knot after, the wound's gap, and the wall time of each trial on one core.
 //!
-//! `cargo bench -p knotlab-lab --bench rope_knot` (about 16 minutes)
+//! `cargo bench -p knotlab-lab --bench rope_knot` (16 minutes on one core of a 2-core machine running two other jobs)
 
 use std::time::Instant;
 
