@@ -13,7 +13,8 @@
 //! bending stiffness.
 //!
 //! `scenarios/real-diameter.toml` is the nominal scene with the suture at its real diameter in its
-//! knots: its radius, and the rope's bending solve and constraint passes that diameter needs.
+//! knots: its radius, the rope's bending solve and constraint passes that diameter needs, and the
+//! rope's substeps and inertial mass as its table in docs/validation.md was measured.
 
 use knotlab_sim::scene::parse_scene;
 use knotlab_sim::thread::ThreadModel;
@@ -27,12 +28,12 @@ fn the_chain_scene_differs_from_the_nominal_one_only_in_the_suture() {
     assert_eq!(nominal.thread.model, ThreadModel::Rope);
     assert_eq!(nominal.thread.friction_on_itself, Some(0.5));
     assert_eq!((nominal.thread.length_m, nominal.stitch.slide_friction_n), (0.2, 0.6));
-    assert_eq!(nominal.thread.rope_substeps, Some(6));
+    assert_eq!(nominal.thread.rope_substeps, Some(12));
     assert_eq!(nominal.thread.rope_spacing_radii, Some(3.0));
     assert_eq!(nominal.thread.rope_radius_at_metal_m, Some(0.0001125));
     assert_eq!(
         (nominal.thread.rope_inertial_mass_kg_per_m, nominal.thread.rope_constraint_passes),
-        (Some(0.67), Some(1))
+        (Some(0.15), Some(2))
     );
     assert_eq!((nominal.solver.solver_iterations, nominal.solver.pgs_iterations_per_substep), (2, 1));
     assert_eq!(chain.thread.model, ThreadModel::Chain);
@@ -93,7 +94,7 @@ fn the_polypropylene_scene_differs_from_the_nominal_one_only_in_the_suture() {
 }
 
 /// `real-diameter.toml` differs from `default.toml` only in the thread's radius, the rope's bending
-/// solve and its constraint passes.
+/// solve, its constraint passes, substeps and inertial mass.
 #[test]
 fn the_real_diameter_scene_differs_from_the_nominal_one_only_in_the_suture() {
     let nominal = parse_scene(include_str!("../../default.toml"), "default.toml").expect("the shipped scene");
@@ -102,7 +103,10 @@ fn the_real_diameter_scene_differs_from_the_nominal_one_only_in_the_suture() {
     assert_eq!(real.thread.radius_m, 0.0001125);
     assert_eq!(real.thread.rope_radius_at_metal_m, Some(real.thread.radius_m));
     assert_eq!((real.thread.rope_direct_bending, real.thread.rope_constraint_passes), (true, Some(4)));
+    assert_eq!((real.thread.rope_substeps, real.thread.rope_inertial_mass_kg_per_m), (Some(6), Some(0.67)));
     real.thread.radius_m = nominal.thread.radius_m;
+    real.thread.rope_substeps = nominal.thread.rope_substeps;
+    real.thread.rope_inertial_mass_kg_per_m = nominal.thread.rope_inertial_mass_kg_per_m;
     real.thread.rope_direct_bending = nominal.thread.rope_direct_bending;
     real.thread.rope_constraint_passes = nominal.thread.rope_constraint_passes;
     real.description = nominal.description.clone();
