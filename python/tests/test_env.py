@@ -89,10 +89,7 @@ def test_the_demonstration_played_back_through_step_ties_the_knot():
     """Played back open loop, where the knot comes to rest is chaotic: actions that differ by a
     part in 1e9 leave it a millimetre higher or lower, and the verdict asks for 2 mm at most. So the
     actions as they are and two copies moved by a part in 1e9 (fixed draws) are each played back,
-    and at least two of the three must tie the knot. With the shipped demonstration the actions as
-    they are and three of four moved copies (draws 1, 2 and 4) tie it, within 0.6 mm of the tissue's
-    surface and 1.0 to 2.1 mm from the stitch; draw 3 leaves it 11 mm beside the stitch
-    (knot_not_down)."""
+    and at least two of the three must tie the knot."""
     env = knotlab.KnotTyingEnv(randomize=False)
     actions = knotlab.demonstration_actions(env=env)
     assert actions.shape == (768, 21) and np.abs(actions).max() <= 1.0
