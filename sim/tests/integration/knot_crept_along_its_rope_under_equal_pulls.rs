@@ -17,8 +17,9 @@ fn nominal() -> SutureUnderTest {
 /// Solved both ways, the nominal suture's double throw pulled 1 N on each end moves less than
 /// 1 mm/s along the rope once closed (the nominal scene's); solved one way, at the rope's default
 /// inertial mass (0.67 kg/m in one pass, 6 substeps), more than 10 mm/s towards the first end
-/// (measured 15.1; both ways 0.095), still the double throw. (One way at the nominal's 0.15 kg/m in
-/// two passes and 12 substeps the experiment finds no double throw left to time.)
+/// (measured 15.1; both ways at the nominal 0.022), still the double throw. (One way at the
+/// nominal's 0.15 kg/m in two passes and 12 substeps the experiment finds no double throw left to
+/// time.)
 #[test]
 fn a_knot_pulled_equally_at_both_ends_stays_where_the_contacts_are_solved_both_ways() {
     let mut suture = nominal();
