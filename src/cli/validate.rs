@@ -9,7 +9,7 @@ use std::process::ExitCode;
 use anyhow::Context;
 use clap::Args;
 
-use knotlab_sim::validation::{Check, SutureUnderTest, figure_text, run_all};
+use knotlab_sim::validation::{Check, EXPERIMENTS, Experiment, SutureUnderTest, figure_text};
 
 use super::output::{Output, outln};
 use knotlab_scenarios::shipped;
@@ -26,6 +26,14 @@ pub struct ValidateArgs {
     /// Print JSON instead of text.
     #[arg(long)]
     json: bool,
+    /// Run only this experiment (repeatable) [default: every experiment, in the table's order].
+    #[arg(long, value_name = "EXPERIMENT", value_parser = experiment_names())]
+    only: Vec<String>,
+}
+
+/// The names `--only` takes: the suite's experiments.
+fn experiment_names() -> clap::builder::PossibleValuesParser {
+    clap::builder::PossibleValuesParser::new(EXPERIMENTS.iter().map(|e| e.name()))
 }
 
 /// The checks as a Markdown table.
@@ -58,11 +66,16 @@ pub fn run(args: ValidateArgs, out: &mut Output) -> anyhow::Result<ExitCode> {
     let name = shipped::name(args.suture_from.as_deref(), &shipped::SCENE);
     let scene = shipped::scene(args.suture_from.as_deref(), &shipped::SCENE)?;
     let suture = SutureUnderTest::from_scene(&scene).map_err(|e| anyhow::anyhow!("{name}: {e}"))?;
-    let checks = run_all(&suture);
+    let chosen: Vec<&Experiment> = EXPERIMENTS
+        .iter()
+        .filter(|e| args.only.is_empty() || args.only.iter().any(|o| o == e.name()))
+        .collect();
+    let checks: Vec<Check> = chosen.iter().flat_map(|e| e.checks(&suture)).collect();
     let failed = checks.iter().filter(|c| c.passed == Some(false)).count();
     let judged = checks.iter().filter(|c| c.passed.is_some()).count();
     let report = serde_json::json!({
         "suture_from": name,
+        "experiments": chosen.iter().map(|e| e.name()).collect::<Vec<_>>(),
         "judged": judged,
         "failed": failed,
         "checks": checks,

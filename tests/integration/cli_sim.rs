@@ -110,10 +110,13 @@ fn validate_reports_every_check_and_exits_by_the_judged_ones() {
 }
 
 /// Guards `knotlab validate` against checking a rope a scene does not use: a chain scene is refused,
-/// naming the file and the field.
+/// naming the file and the field; an experiment `--only` does not know is refused, naming those it does.
 #[test]
 fn validate_refuses_a_scene_whose_suture_is_the_chain() {
     let (code, _, stderr) = knotlab(&["validate", "--suture-from", "scenarios/chain.toml"]);
     assert_ne!(code, 0);
     assert!(stderr.contains("scenarios/chain.toml") && stderr.contains("thread.model"), "{stderr}");
+    let (code, _, stderr) = knotlab(&["validate", "--only", "trefoil"]);
+    assert_ne!(code, 0);
+    assert!(stderr.contains("trefoil") && stderr.contains("long_knot"), "{stderr}");
 }

@@ -130,19 +130,42 @@ pub fn figure_text(x: f64) -> String {
     }
 }
 
+/// One experiment of the suite: its name (as `knotlab validate --only` takes it) and what it measures.
+#[derive(Clone, Copy)]
+pub struct Experiment {
+    name: &'static str,
+    checks: fn(&SutureUnderTest) -> Vec<Check>,
+}
+
+impl Experiment {
+    /// The name `knotlab validate --only` takes.
+    pub fn name(&self) -> &'static str {
+        self.name
+    }
+
+    /// The experiment's checks on `suture`.
+    pub fn checks(&self, suture: &SutureUnderTest) -> Vec<Check> {
+        (self.checks)(suture)
+    }
+}
+
+/// The suite's experiments, in the order the table lists them.
+pub const EXPERIMENTS: [Experiment; 10] = [
+    Experiment { name: "material", checks: material::checks },
+    Experiment { name: "stretch", checks: stretch::checks },
+    Experiment { name: "cantilever", checks: cantilever::checks },
+    Experiment { name: "capstan", checks: capstan::checks },
+    Experiment { name: "slide", checks: slide::checks },
+    Experiment { name: "grip", checks: grip::checks },
+    Experiment { name: "knot", checks: knot::checks },
+    Experiment { name: "long_knot", checks: long_knot::checks },
+    Experiment { name: "creep", checks: creep::checks },
+    Experiment { name: "dynamics", checks: dynamics::checks },
+];
+
 /// Every check of the suite on `suture`, in a fixed order.
 pub fn run_all(suture: &SutureUnderTest) -> Vec<Check> {
-    let mut checks = material::checks(suture);
-    checks.extend(stretch::checks(suture));
-    checks.extend(cantilever::checks(suture));
-    checks.extend(capstan::checks(suture));
-    checks.extend(slide::checks(suture));
-    checks.extend(grip::checks(suture));
-    checks.extend(knot::checks(suture));
-    checks.extend(long_knot::checks(suture));
-    checks.extend(creep::checks(suture));
-    checks.extend(dynamics::checks(suture));
-    checks
+    EXPERIMENTS.iter().flat_map(|e| e.checks(suture)).collect()
 }
 
 #[cfg(test)]
