@@ -4,6 +4,7 @@ method's own trial as a Monte Carlo run runs it."""
 
 import json
 import pickle
+from concurrent.futures import ThreadPoolExecutor
 
 import gymnasium as gym
 import numpy as np
@@ -44,12 +45,16 @@ def test_no_offset_is_the_methods_own_trial_of_a_monte_carlo_run(skill, tmp_path
 
 def test_an_offset_changes_the_trial(skill):
     """The right's winding (R2) moved 5 mm across the wound: the thread ends elsewhere."""
-    env = knotlab.KnotSkillEnv(skill=skill, until_s=12.0)
-    k = env.primitives.index("R2")
-    env.reset(seed=0)
-    _, _, _, _, still = env.step(np.zeros(env.action_space.shape))
-    action = np.zeros(env.action_space.shape)
+    k = knotlab.KnotSkillEnv(skill=skill, until_s=12.0).primitives.index("R2")
+    action = np.zeros(3 * len(skill.primitives()))
     action[3 * k + 1] = 1.0
-    env.reset(seed=0)
-    _, _, _, _, moved = env.step(action)
+
+    def episode(action):
+        env = knotlab.KnotSkillEnv(skill=skill, until_s=12.0)
+        env.reset(seed=0)
+        return env.step(action)[4]
+
+    # Both episodes at once, each in its own thread (a step lets go of the GIL while it simulates).
+    with ThreadPoolExecutor(max_workers=2) as pool:
+        still, moved = pool.map(episode, [np.zeros_like(action), action])
     assert still["report"]["thread_most_stretched"] != moved["report"]["thread_most_stretched"]
