@@ -70,7 +70,14 @@ pub fn run(args: ValidateArgs, out: &mut Output) -> anyhow::Result<ExitCode> {
         .iter()
         .filter(|e| args.only.is_empty() || args.only.iter().any(|o| o == e.name()))
         .collect();
-    let checks: Vec<Check> = chosen.iter().flat_map(|e| e.checks(&suture)).collect();
+    // Each experiment on its own thread (they share nothing), their checks in the table's order.
+    let checks: Vec<Check> = std::thread::scope(|scope| {
+        let running: Vec<_> = chosen.iter().map(|e| scope.spawn(|| e.checks(&suture))).collect();
+        running
+            .into_iter()
+            .flat_map(|run| run.join().unwrap_or_else(|panic| std::panic::resume_unwind(panic)))
+            .collect()
+    });
     let failed = checks.iter().filter(|c| c.passed == Some(false)).count();
     let judged = checks.iter().filter(|c| c.passed.is_some()).count();
     let report = serde_json::json!({

@@ -69,11 +69,28 @@ fn a_bad_scene_or_time_is_refused_clearly() {
     assert!(err.contains("--at"), "{err}");
 }
 
-/// Guards `knotlab validate`: every experiment reports measured, reference, tolerance and source; the
-/// exit status says whether a judged check failed; the rope's bending follows the elastica.
+/// Guards `knotlab validate`: it runs the ten experiments, names them, and each reports measured,
+/// reference, tolerance and source; the exit status says whether a judged check failed; the rope's
+/// bending follows the elastica.
 #[test]
 fn validate_reports_every_check_and_exits_by_the_judged_ones() {
     let (code, v) = json(&["validate", "--json"]);
+    assert_eq!(
+        v["experiments"],
+        serde_json::json!([
+            "material",
+            "stretch",
+            "cantilever",
+            "capstan",
+            "slide",
+            "grip",
+            "knot",
+            "long_knot",
+            "creep",
+            "dynamics"
+        ]),
+        "{v}"
+    );
     let checks = v["checks"].as_array().expect("checks");
     let experiments: std::collections::BTreeSet<&str> =
         checks.iter().filter_map(|c| c["experiment"].as_str()).collect();
