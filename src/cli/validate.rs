@@ -9,7 +9,7 @@ use std::process::ExitCode;
 use anyhow::Context;
 use clap::Args;
 
-use knotlab_sim::validation::{Check, EXPERIMENTS, Experiment, SutureUnderTest, figure_text};
+use knotlab_sim::validation::{self, Check, EXPERIMENTS, Experiment, SutureUnderTest, figure_text};
 
 use super::output::{Output, outln};
 use knotlab_scenarios::shipped;
@@ -66,18 +66,12 @@ pub fn run(args: ValidateArgs, out: &mut Output) -> anyhow::Result<ExitCode> {
     let name = shipped::name(args.suture_from.as_deref(), &shipped::SCENE);
     let scene = shipped::scene(args.suture_from.as_deref(), &shipped::SCENE)?;
     let suture = SutureUnderTest::from_scene(&scene).map_err(|e| anyhow::anyhow!("{name}: {e}"))?;
-    let chosen: Vec<&Experiment> = EXPERIMENTS
-        .iter()
+    let chosen: Vec<Experiment> = EXPERIMENTS
+        .into_iter()
         .filter(|e| args.only.is_empty() || args.only.iter().any(|o| o == e.name()))
         .collect();
-    // Each experiment on its own thread (they share nothing), their checks in the table's order.
-    let checks: Vec<Check> = std::thread::scope(|scope| {
-        let running: Vec<_> = chosen.iter().map(|e| scope.spawn(|| e.checks(&suture))).collect();
-        running
-            .into_iter()
-            .flat_map(|run| run.join().unwrap_or_else(|panic| std::panic::resume_unwind(panic)))
-            .collect()
-    });
+    // Side by side, their checks in the table's order.
+    let checks = validation::run(&suture, &chosen);
     let failed = checks.iter().filter(|c| c.passed == Some(false)).count();
     let judged = checks.iter().filter(|c| c.passed.is_some()).count();
     let report = serde_json::json!({

@@ -163,9 +163,28 @@ pub const EXPERIMENTS: [Experiment; 10] = [
     Experiment { name: "dynamics", checks: dynamics::checks },
 ];
 
-/// Every check of the suite on `suture`, in a fixed order.
+/// The experiment `knotlab validate --only` names `name`, if the suite has one.
+pub fn experiment(name: &str) -> Option<Experiment> {
+    EXPERIMENTS.iter().copied().find(|e| e.name == name)
+}
+
+/// The checks of `experiments` on `suture`, in the order given. Each experiment runs on its own
+/// thread (they share no state: each builds its own world from `suture`), so the suite finishes
+/// sooner on more cores with the same figures, bit for bit, as one after another; a panic in one is
+/// resumed on the caller's thread.
+pub fn run(suture: &SutureUnderTest, experiments: &[Experiment]) -> Vec<Check> {
+    std::thread::scope(|scope| {
+        let running: Vec<_> = experiments.iter().map(|e| scope.spawn(|| e.checks(suture))).collect();
+        running
+            .into_iter()
+            .flat_map(|run| run.join().unwrap_or_else(|panic| std::panic::resume_unwind(panic)))
+            .collect()
+    })
+}
+
+/// Every check of the suite on `suture`, in the table's order.
 pub fn run_all(suture: &SutureUnderTest) -> Vec<Check> {
-    EXPERIMENTS.iter().flat_map(|e| e.checks(suture)).collect()
+    run(suture, &EXPERIMENTS)
 }
 
 #[cfg(test)]
@@ -184,6 +203,28 @@ mod tests {
         let abs = |m| Check::new("x", "f", "m", m, 0.0, Tolerance::Absolute { by: 0.1 }, "s").passed;
         assert_eq!((abs(-0.05), abs(0.2)), (Some(true), Some(false)));
         assert_eq!(Check::new("x", "f", "1", 9.0, 1.0, Tolerance::Report, "s").passed, None);
+    }
+
+    /// Experiments run side by side give the checks, in the order asked, with the same bits as the
+    /// same experiments run one after another on the caller's thread.
+    #[test]
+    fn experiments_side_by_side_give_the_figures_they_give_one_after_another() {
+        let suture = suture::nominal();
+        let chosen: Vec<Experiment> =
+            ["stretch", "material", "slide"].iter().map(|n| experiment(n).expect("in the suite")).collect();
+        let serial: Vec<Check> = chosen.iter().flat_map(|e| e.checks(&suture)).collect();
+        let threaded = run(&suture, &chosen);
+        let bits = |checks: &[Check]| -> Vec<(&'static str, String, u64, u64)> {
+            checks
+                .iter()
+                .map(|c| (c.experiment, c.figure.clone(), c.measured.to_bits(), c.reference.to_bits()))
+                .collect()
+        };
+        assert_eq!(bits(&threaded), bits(&serial));
+        let experiments: Vec<&str> = threaded.iter().map(|c| c.experiment).collect();
+        assert_eq!(experiments.first(), Some(&"stretch"), "{experiments:?}");
+        assert!(experiments.contains(&"material") && experiments.last() == Some(&"slide_on_suture"));
+        assert!(experiment("trefoil").is_none());
     }
 
     /// Printed figures keep four significant digits, plain or in exponent form, from 6.25e-8 to 50000 and 0.
