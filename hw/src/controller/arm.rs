@@ -21,6 +21,38 @@ pub(super) struct EventState {
     above_since_s: Option<f64>,
     /// The tip target when it fired (for [`ForceAction::Hold`]).
     hold: Option<TipTarget>,
+    /// How far the tip has given way from its track, world frame, m, and the skill time that was
+    /// last updated, s (for [`ForceAction::Give`]).
+    given_m: Vector3<f64>,
+    given_at_s: Option<f64>,
+}
+
+impl EventState {
+    /// One cycle of a [`ForceAction::Give`] at `time_s` under `world_force_n`: where the tip's offset
+    /// from its track would go, m (taken by [`EventState::gave`] if the arm reaches it).
+    fn give(
+        &mut self,
+        time_s: f64,
+        world_force_n: &Vector3<f64>,
+        set_force_n: f64,
+        rate: f64,
+    ) -> Vector3<f64> {
+        let dt_s = self.given_at_s.map_or(0.0, |last| (time_s - last).max(0.0));
+        self.given_at_s = Some(time_s);
+        let force_n = world_force_n.norm();
+        if force_n > set_force_n {
+            self.given_m + world_force_n / force_n * (rate * (force_n - set_force_n) * dt_s)
+        } else {
+            let back_m = rate * (set_force_n - force_n) * dt_s;
+            let given = self.given_m.norm();
+            if given <= back_m { Vector3::zeros() } else { self.given_m * (1.0 - back_m / given) }
+        }
+    }
+
+    /// The tip gave to `given_m` from its track.
+    fn gave(&mut self, given_m: Vector3<f64>) {
+        self.given_m = given_m;
+    }
 }
 
 /// One arm in the controller.
@@ -187,6 +219,7 @@ impl ArmRuntime {
     ) -> Result<(), ControllerError> {
         let arm = self.name();
         let force_n = self.shaft_force_n.norm();
+        let world_force_n = self.record.world_force_n;
         let mut target = track.target_at(time_s);
         let mut jaw = track.jaw_at(time_s);
         for (i, (event, state)) in track.events.iter().zip(&mut self.events).enumerate() {
@@ -213,6 +246,24 @@ impl ArmRuntime {
                 match event.action {
                     ForceAction::OpenJaw { jaw_rad } => jaw = Some(jaw_rad),
                     ForceAction::Hold => target = state.hold.or(target),
+                    ForceAction::Give { set_force_n, rate_m_per_n_s } => {
+                        // The tip gives only as far as the arm reaches: beyond, it stays given
+                        // where it was.
+                        let wanted_m = state.give(time_s, &world_force_n, set_force_n, rate_m_per_n_s);
+                        if let Some(t) = &mut target {
+                            let mut given = *t;
+                            given.world_position_m += wanted_m;
+                            if self
+                                .setup
+                                .model
+                                .solve_tip(&given, &self.setup.world_trocar_m, &self.command)
+                                .is_ok()
+                            {
+                                state.gave(wanted_m);
+                            }
+                            t.world_position_m += state.given_m;
+                        }
+                    }
                 }
             }
         }

@@ -160,6 +160,20 @@ impl Skill {
                 {
                     p.add(format!("{ep}.action.jaw_rad"), format!("{jaw_rad} is not an opening (rad >= 0)"));
                 }
+                if let ForceAction::Give { set_force_n, rate_m_per_n_s } = event.action {
+                    if !(set_force_n.is_finite() && set_force_n > 0.0) {
+                        p.add(
+                            format!("{ep}.action.set_force_n"),
+                            format!("{set_force_n} is not a force above zero (N)"),
+                        );
+                    }
+                    if !(rate_m_per_n_s.is_finite() && rate_m_per_n_s > 0.0) {
+                        p.add(
+                            format!("{ep}.action.rate_m_per_n_s"),
+                            format!("{rate_m_per_n_s} is not a rate above zero (m/(N s))"),
+                        );
+                    }
+                }
             }
         }
         if p.0.is_empty() { Ok(()) } else { Err(SkillError { name: self.name.clone(), problems: p.0 }) }

@@ -423,6 +423,74 @@ fn a_hold_event_stops_the_tip_until_its_window_closes() {
     assert!((held.z - (start.z - 0.02 * 0.3)).abs() < 1e-9 + 0.02 * PERIOD_S, "{held:?}");
 }
 
+/// A give event moves the tip off its track along the force while the gauge reads more than the set
+/// force, at the rate per newton over it, and back towards the track while it reads less; once the
+/// window closes, or the offset is spent, the target is the track's again. (The track holds still
+/// from 1 s; the pull is 1.5 N from 1.0 to 1.3 s against a set force of 0.5 N.)
+#[test]
+fn a_give_event_yields_along_the_pull_over_its_set_force_and_comes_back_under_it() {
+    let arm = ArmName::Left;
+    let (_, start) = parked(arm);
+    let (mut controller, _, force) = dummy_controller(arm, PERIOD_S, ControllerParams::default());
+    let (set_force_n, rate_m_per_n_s) = (0.5, 0.01);
+    let event = ForceEvent {
+        name: "keep the tension".into(),
+        from_s: 0.0,
+        until_s: 2.5,
+        threshold_n: set_force_n,
+        sustain_s: 0.0,
+        fires_with: None,
+        action: ForceAction::Give { set_force_n, rate_m_per_n_s },
+    };
+    let mut skill = hold_still_skill(arm, start, vec![event]);
+    let track = start + Vector3::new(0.0, 0.0, -0.02);
+    let last = skill.tracks[0].poses[1];
+    skill.tracks[0].poses.push(PoseKey { time_s: 3.0, ..last });
+    controller.load_skill(skill).unwrap();
+    let mut pull_world = None;
+    // How far the tip is off its track along the last pull read, and across it, m.
+    let along_pull = |given_m: Vector3<f64>, pull: Option<Vector3<f64>>| {
+        let pull = pull.expect("the pull was read").normalize();
+        let along = given_m.dot(&pull);
+        (along, (given_m - pull * along).norm())
+    };
+    let mut checked = 0;
+    for cycle in 0..=3000 {
+        let t = cycle as f64 * PERIOD_S;
+        let pulling = (1.0..1.3).contains(&(t + 1e-9));
+        force.set(if pulling { Vector3::new(1.5, 0.0, 0.0) } else { Vector3::zeros() });
+        let record = controller.step().unwrap();
+        let arm_record = record.arm(arm).unwrap();
+        if pulling {
+            pull_world = Some(arm_record.world_force_n);
+        }
+        let given_m = arm_record.target.expect("a target").world_position_m - track;
+        let time_s = record.skill_time_s;
+        if (time_s - 1.3).abs() < 1e-9 {
+            // 0.3 s at 1.0 N over: 3 mm along the pull (the first cycle's pull starts the clock).
+            let (along, across) = along_pull(given_m, pull_world);
+            assert!((along - 0.003).abs() < 2.0 * rate_m_per_n_s * PERIOD_S, "{along} m at {time_s} s");
+            // (The shaft pivots in its trocar as the tip gives: the pull, fixed in the shaft's
+            // frame, turns with it, a few percent over 3 mm.)
+            assert!(across < 0.05 * along, "{across} m across the pull");
+            checked += 1;
+        }
+        if (time_s - 1.6).abs() < 1e-9 {
+            // Coming back at 0.5 N under: 5 mm/s, half way after 0.3 s.
+            let (along, _) = along_pull(given_m, pull_world);
+            assert!((along - 0.0015).abs() < 2.0 * rate_m_per_n_s * PERIOD_S, "{along} m at {time_s} s");
+            checked += 1;
+        }
+        if time_s > 1.95 {
+            // Back on its track, inside the window and after it.
+            assert!(given_m.norm() < 1e-9, "{} m off at {time_s} s", given_m.norm());
+            checked += 1;
+        }
+    }
+    assert!(checked > 1000, "{checked} cycles checked");
+    assert_eq!(controller.fired_events().len(), 1, "fires once");
+}
+
 /// Both instruments of the surgeon's pulls on dummy devices, each with its own force handle.
 fn two_arm_controller() -> (Controller, [ForceHandle; 2]) {
     let sensors = [DummyForceSensor::new(), DummyForceSensor::new()];
@@ -573,6 +641,18 @@ fn skills_the_rig_cannot_run_are_refused() {
     };
     let text = controller.load_skill(hold_still_skill(arm, start, vec![event])).unwrap_err().to_string();
     assert!(text.contains("tracks[0].events[0].sustain_s: -0.1 is not a duration"), "{text}");
+    // A give that never gives: its rate named.
+    let event = ForceEvent {
+        name: String::new(),
+        from_s: 0.0,
+        until_s: 0.5,
+        threshold_n: 1.0,
+        sustain_s: 0.0,
+        fires_with: None,
+        action: ForceAction::Give { set_force_n: 1.0, rate_m_per_n_s: 0.0 },
+    };
+    let text = controller.load_skill(hold_still_skill(arm, start, vec![event])).unwrap_err().to_string();
+    assert!(text.contains("tracks[0].events[0].action.rate_m_per_n_s: 0 is not a rate above zero"), "{text}");
     // Keys out of order: the path of the bad field is named.
     let mut bad = reach_skill(arm, start, Vector3::zeros(), 0.1);
     bad.tracks[0].poses[3].time_s = 0.0;
