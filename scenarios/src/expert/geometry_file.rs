@@ -105,6 +105,11 @@ fn range_problems(g: &TieGeometry) -> Vec<(String, String)> {
     c.range("winding_turns", g.winding_turns, 0.0, 5.0);
     c.range("take_tail_jaw_rad", g.take_tail_jaw_rad, 0.0, 1.6);
     c.range("winding_jaw_rad", g.winding_jaw_rad, 0.0, 1.6);
+    if let Some(f) = g.winding_give_force_n {
+        c.range("winding_give_force_n", f, 0.001, 5.0);
+    }
+    c.range("winding_give_rate_m_per_n_s", g.winding_give_rate_m_per_n_s, 1e-4, 1.0);
+    c.range("winding_give_after_s", g.winding_give_after_s, 0.0, 10.0);
     c.range("speed_fraction", g.speed_fraction, 0.01, 1.0);
     c.range("pull_force_n", g.pull_force_n, 0.01, 10.0);
     if let Some(f) = g.tail_pull_force_n {

@@ -20,8 +20,8 @@ pub mod variation;
 pub use geometry::{LeftFetch, SecondThrow, TieGeometry};
 pub use geometry_file::{GeometryFileError, load_tie_geometry, parse_tie_geometry};
 pub use plan::{
-    Planner, plan_instrument_tie, plan_second_tail_take, plan_second_throw, plan_tail_hand_over,
-    plan_tail_take,
+    Planner, plan_after_wind, plan_instrument_tie, plan_second_tail_take, plan_second_throw,
+    plan_tail_hand_over, plan_tail_take,
 };
 pub use record::{DemoRun, ExpertError, RecordOptions, demonstrate, demonstrate_with, record_demonstration};
 pub use variation::Variation;

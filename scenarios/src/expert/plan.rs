@@ -15,6 +15,7 @@ use knotlab_hw::skill::Skill;
 use knotlab_sim::world::SimWorld;
 
 use super::geometry::{SecondThrow, TieGeometry};
+use super::phases::approach::Winding;
 use super::phases::approach::approach;
 use super::phases::assist_lets_go::assist_lets_go;
 use super::phases::draw::draw;
@@ -25,7 +26,7 @@ use super::phases::pull::{pull_and_hold, pull_and_let_go};
 use super::phases::run_down::run_down;
 use super::phases::second_start::{SecondStart, second_start};
 use super::phases::take_as_it_lies::take_as_it_lies;
-use super::phases::wind::wind;
+use super::phases::wind::{Wound, wind};
 use super::phases::{Hands, Setting};
 use super::variation::Variation;
 
@@ -39,6 +40,12 @@ enum Stage {
     /// free end (then draws it to `to_m`, stitch frame, if set), and the left lets go and rises clear
     /// ([`plan_tail_hand_over`]).
     HandOver { from_end_m: f64, to_m: Option<[f64; 3]> },
+    /// The rest of the first throw once the right has wound the long end keeping its tension
+    /// ([`TieGeometry::winding_give_force_n`]), planned from the world as the wind left it: the right's
+    /// tip is where it gave to, not on its circle. The left fetches the tail (to the look, if it
+    /// looks: [`Stage::Take`] follows) or the assist presents it, and the throw goes on as
+    /// [`Stage::First`] with `keep_hold`.
+    Wound { keep_hold: bool },
     /// The rest of a throw, planned from the world once the left's jaws are over the tail (a fetch
     /// that [`super::LeftFetch::looks`]): the left closes on the tail where it lies, and the throw
     /// goes on as [`Stage::First`] with `keep_hold`, or, with `second` set, as that [`Stage::Second`].
@@ -59,9 +66,12 @@ impl Stage {
         let assist_holds = matches!(self, Stage::Second { start: SecondStart::LeftRetakes { .. } });
         let left_holds = matches!(self, Stage::HandOver { .. }) || (second && !assist_holds);
         let jaw = |holds: bool| if holds { 0.0 } else { open };
-        let left =
-            if matches!(self, Stage::Take { .. }) { geometry.take_tail_jaw_rad } else { jaw(left_holds) };
-        let first = matches!(self, Stage::First { .. } | Stage::Take { .. });
+        let left = match self {
+            Stage::Take { .. } => geometry.take_tail_jaw_rad,
+            Stage::Wound { .. } => geometry.winding_jaw_rad,
+            _ => jaw(left_holds),
+        };
+        let first = matches!(self, Stage::First { .. } | Stage::Take { .. } | Stage::Wound { .. });
         let assist = if first { 0.0 } else { jaw(assist_holds) };
         [left, 0.0, assist]
     }
@@ -70,7 +80,10 @@ impl Stage {
     /// second throw's where the left takes the tail from the assist as in the first (where the left
     /// and the assist swap parts, the left presents the tail rather than fetching it).
     fn looks_at_take(self) -> bool {
-        matches!(self, Stage::First { .. } | Stage::Second { start: SecondStart::AssistTakes(_) })
+        matches!(
+            self,
+            Stage::First { .. } | Stage::Wound { .. } | Stage::Second { start: SecondStart::AssistTakes(_) }
+        )
     }
 }
 
@@ -82,6 +95,16 @@ pub fn plan_instrument_tie(world: &SimWorld, geometry: &TieGeometry, variation: 
 
 /// A plan of part of the knot, from the world as it stands (`None`: the geometry asks for none).
 pub type Planner = fn(&SimWorld, &TieGeometry, &Variation) -> Option<Skill>;
+
+/// The rest of the first throw once the right has wound the long end keeping its tension (`None`
+/// unless [`TieGeometry::winding_give_force_n`] is set and the left fetches the tail): from the
+/// world the wind left.
+pub fn plan_after_wind(world: &SimWorld, geometry: &TieGeometry, variation: &Variation) -> Option<Skill> {
+    geometry.winding_give_force_n?;
+    geometry.fetch()?;
+    let stage = Stage::Wound { keep_hold: geometry.second_throw.is_some() };
+    Some(plan_throw(world, geometry, variation, stage))
+}
 
 /// The rest of the first throw once the left's jaws are over the tail (`None` unless the left
 /// fetches the tail and [`super::LeftFetch::looks`]): it closes on the tail where it lies now.
@@ -147,6 +170,11 @@ fn plan_throw(world: &SimWorld, geometry: &TieGeometry, variation: &Variation, s
             hand_over(&s, &mut hands, from_end_m, to_m);
             return hands.skill("instrument tie: surgeon's knot, the tail handed to the assist");
         }
+        Stage::Wound { keep_hold } => {
+            // The tension was kept to the wind's end only: kept on while the left fetches the tail,
+            // the right drew the coils off its jaws.
+            return fetch_or_present(&s, hands, &Wound::done(), None, Stage::First { keep_hold }, stage);
+        }
         Stage::First { .. } => None,
         Stage::Second { start } => Some(start),
     };
@@ -155,27 +183,60 @@ fn plan_throw(world: &SimWorld, geometry: &TieGeometry, variation: &Variation, s
     }
     let left_keeps_tail = start == Some(SecondStart::LeftKeepsTail);
     let winding = approach(&s, &mut hands, (!left_keeps_tail).then_some(geometry.winding_jaw_rad));
-    let wound_s = wind(&s, &mut hands, &winding);
+    let wound = wind(&s, &mut hands, &winding);
     if left_keeps_tail {
         // The left holds the tail already: the turn lies round its jaws behind the tail.
-        hands.left.wait_until(wound_s + s.pause(3));
-    } else if let Some(left_fetch) = geometry.fetch() {
-        let on_tail = fetch(&s, &mut hands, &winding, wound_s, left_fetch);
-        if left_fetch.looks && stage.looks_at_take() {
+        hands.left.wait_until(wound.wound_s + s.pause(3));
+        wound.keep_tension(&s, &mut hands, wound.wound_s + geometry.winding_give_after_s);
+        return finish_throw(&s, hands, stage);
+    }
+    if geometry.winding_give_force_n.is_some()
+        && geometry.fetch().is_some()
+        && matches!(stage, Stage::First { .. })
+    {
+        // The right's tip is where it gave to: the rest is planned from there ([`Stage::Wound`]).
+        hands.wait_until(hands.latest_s());
+        let end_s = hands.latest_s();
+        wound.keep_tension(&s, &mut hands, end_s);
+        return hands.skill("instrument tie: surgeon's knot, the long end wound");
+    }
+    fetch_or_present(&s, hands, &wound, Some(&winding), stage, stage)
+}
+
+/// Once the coils are wound (at `wound_s`): the left fetches the tail (stopping over it, if it
+/// looks, where `looking` [`Stage::looks_at_take`]) or the assist presents it at the `winding`
+/// (needs the winding as the approach placed it); then the rest of the throw as `stage`. Where the
+/// right keeps the long end's tension while it winds ([`wind::Wound::keep_tension`]), it does so
+/// to the plan's end if it stops at the look, or for `winding_give_after_s` after the wind.
+fn fetch_or_present(
+    s: &Setting,
+    mut hands: Hands,
+    wound: &Wound,
+    winding: Option<&Winding>,
+    stage: Stage,
+    looking: Stage,
+) -> Skill {
+    let (geometry, wound_s) = (s.geometry, wound.wound_s);
+    if let Some(left_fetch) = geometry.fetch() {
+        let on_tail = fetch(s, &mut hands, wound_s, left_fetch);
+        if left_fetch.looks && looking.looks_at_take() {
             // The left looks where the tail lies before it closes on it: the rest from there
             // ([`plan_tail_take`]).
             hands.wait_until(hands.latest_s());
-            return hands.skill(if start.is_some() {
+            let end_s = hands.latest_s();
+            wound.keep_tension(s, &mut hands, end_s);
+            return hands.skill(if matches!(stage, Stage::Second { .. }) {
                 "instrument tie: surgeon's knot, second throw, the turn to the tail"
             } else {
                 "instrument tie: surgeon's knot, the coils to the tail"
             });
         }
-        close_on_tail(&s, &mut hands, on_tail, left_fetch);
-    } else {
-        present(&s, &mut hands, &winding, wound_s);
+        close_on_tail(s, &mut hands, on_tail, left_fetch);
+    } else if let Some(winding) = winding {
+        present(s, &mut hands, winding, wound_s);
     }
-    finish_throw(&s, hands, stage)
+    wound.keep_tension(s, &mut hands, wound_s + geometry.winding_give_after_s);
+    finish_throw(s, hands, stage)
 }
 
 /// The rest of a throw once the left has closed on the tail: the assist lets go and retreats, the

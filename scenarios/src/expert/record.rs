@@ -437,10 +437,12 @@ pub fn demonstrate_with(
     let rate_hz = 1.0 / (world.config().solver.dt_s * options.cycles_per_sample.max(1) as f64);
     let metadata = expert_metadata(&world, scene_name, Some(seed), rate_hz);
     // After the first plan, each of these in turn, planned from the world as it stands then, those
-    // a geometry does not ask for skipped: the rest of the first throw once the left's jaws are over
+    // a geometry does not ask for skipped: the rest of the first throw once the right has wound
+    // keeping the long end's tension, the rest once the left's jaws are over
     // the tail (if it looks before it takes it), the tail's hand-over to the assist, the second
     // throw, and its rest once the left's jaws are over the tail.
-    let planners: [super::Planner; 4] = [
+    let planners: [super::Planner; 5] = [
+        super::plan_after_wind,
         super::plan_tail_take,
         super::plan_tail_hand_over,
         super::plan_second_throw,

@@ -2,7 +2,8 @@
 //! by side): each module guards what its doc comment says.
 //!
 //! - The scripted expert: [`expert_ties_a_knot`], [`expert_recording`], [`expert_looks_where_the_tail_lies`],
-//!   [`every_expert_file_loads`], [`jaws_turned_the_opposite_way_gave_poses_with_nan`].
+//!   [`expert_winds_keeping_the_tension`], [`every_expert_file_loads`],
+//!   [`jaws_turned_the_opposite_way_gave_poses_with_nan`].
 //! - Its second throw: [`expert_second_throw_goes_on_from_the_first`], [`expert_second_throw_keeps_the_tail`],
 //!   [`expert_second_throw_of_the_other_hand`], [`expert_second_throw_on_the_assists_jaws`],
 //!   [`expert_second_throw_takes_the_tail_by_its_end`], [`draw_through_sees_the_first_throw`].
@@ -32,6 +33,7 @@ mod expert_second_throw_of_the_other_hand;
 mod expert_second_throw_on_the_assists_jaws;
 mod expert_second_throw_takes_the_tail_by_its_end;
 mod expert_ties_a_knot;
+mod expert_winds_keeping_the_tension;
 mod jaws_turned_the_opposite_way_gave_poses_with_nan;
 mod lab_session;
 mod scene_determinism;

@@ -51,6 +51,20 @@ pub struct TieGeometry {
     pub winding_s: f64,
     /// Turns of the winding (a surgeon's knot: 2).
     pub winding_turns: f64,
+    /// If set, the right keeps the long end's tension while it winds: its tip gives way along the
+    /// thread when its gauge reads more than this, and comes back towards the circle when less, N
+    /// ([`knotlab_hw::skill::ForceAction::Give`]). A suture at its real weight does not drape over
+    /// the jaws as a heavy one does; what lays it on them is the tension the winding keeps, and a
+    /// circle that asks for more thread than the long end has tears the tail from the assist
+    /// unless the right gives. Where the left fetches the tail, the plan then ends with the coils
+    /// wound and the fetch is planned from the world the wind leaves ([`super::plan_after_wind`]).
+    pub winding_give_force_n: Option<f64>,
+    /// ... giving (and coming back) this fast per newton over (under) it, m/(N s).
+    pub winding_give_rate_m_per_n_s: f64,
+    /// ... and, where the throw goes on in the same plan (the assist presents the tail, or a second
+    /// throw's left holds it already), kept this long after the wind, s: then the track takes over
+    /// at once.
+    pub winding_give_after_s: f64,
     /// The left's jaws are open this far while the long end is wound round them, rad: coils wound
     /// tight round closed jaws are stretched when the jaws open to take the tail.
     pub winding_jaw_rad: f64,
@@ -203,6 +217,9 @@ impl Default for TieGeometry {
             winding_s: 8.0,
             winding_turns: 2.0,
             winding_jaw_rad: 0.0,
+            winding_give_force_n: None,
+            winding_give_rate_m_per_n_s: 0.05,
+            winding_give_after_s: 1.0,
             tail_ahead_m: 0.012,
             tail_take_short_m: 0.0,
             tail_end_offered_m: None,

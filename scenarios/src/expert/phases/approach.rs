@@ -23,8 +23,6 @@ pub(crate) struct Winding {
     pub hinge: Unit<Vector3<f64>>,
     /// Where the thread enters the tissue (the tail's flap), m.
     pub entry_m: Vector3<f64>,
-    /// Where it leaves it (the long end's flap), m.
-    pub exit_m: Vector3<f64>,
     /// The point ahead of the left's jaws where the tail is taken, m.
     pub tail_point_m: Vector3<f64>,
 }
@@ -46,7 +44,7 @@ pub(crate) fn approach(s: &Setting, hands: &mut Hands, left_jaw_rad: Option<f64>
     let across = |d: Vector3<f64>| Unit::try_new(d - axis.into_inner() * d.dot(&axis), 1e-9);
     // The winding starts opposite the exit point, so that the long end already lies across the
     // left's jaws, a little before the point where it would run straight over them.
-    let exit = world.tissue().hole_m(world.physics(), Flap::B);
+    let exit = s.hole_m(Flap::B);
     // (With the exit on the jaw axis, any side will do: the one at right angles to `towards`.)
     let towards = across(s.dir(geometry.winding_towards))
         .or_else(|| across(Vector3::x()))
@@ -60,7 +58,7 @@ pub(crate) fn approach(s: &Setting, hands: &mut Hands, left_jaw_rad: Option<f64>
     let centre = winding_point - jaws.into_inner() * geometry.winding_behind_m;
     // The jaws' hinge lies across the line from the entry point to where the tail will be held, so
     // that the tail then runs between the open jaws.
-    let entry = world.tissue().hole_m(world.physics(), Flap::A);
+    let entry = s.hole_m(Flap::A);
     let tail_point = winding_point + jaws.into_inner() * geometry.tail_ahead_m;
     let hinge = across(tail_point - entry).unwrap_or(towards);
     let left_frame = nalgebra::Rotation3::from_basis_unchecked(&[
@@ -104,14 +102,5 @@ pub(crate) fn approach(s: &Setting, hands: &mut Hands, left_jaw_rad: Option<f64>
             left.wait_until(left.time_s() + s.d(0.3) + s.pause(1));
         }
     }
-    Winding {
-        centre_m: centre,
-        axis,
-        jaws,
-        advance_m,
-        hinge,
-        entry_m: entry,
-        exit_m: exit,
-        tail_point_m: tail_point,
-    }
+    Winding { centre_m: centre, axis, jaws, advance_m, hinge, entry_m: entry, tail_point_m: tail_point }
 }

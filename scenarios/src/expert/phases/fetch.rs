@@ -4,7 +4,6 @@
 
 use nalgebra::{Unit, Vector3};
 
-use super::approach::Winding;
 use super::{Hands, Setting};
 use crate::expert::geometry::LeftFetch;
 use crate::expert::motion::Path;
@@ -13,16 +12,10 @@ use knotlab_sim::tissue::Flap;
 
 /// The left's coils to behind the tail, jaws open, once the coils are wound (`wound_s`); returns
 /// the tail's point the jaws are aimed at (world frame, m).
-pub(crate) fn fetch(
-    s: &Setting,
-    hands: &mut Hands,
-    winding: &Winding,
-    wound_s: f64,
-    fetch: &LeftFetch,
-) -> Vector3<f64> {
+pub(crate) fn fetch(s: &Setting, hands: &mut Hands, wound_s: f64, fetch: &LeftFetch) -> Vector3<f64> {
     let (world, geometry) = (s.world, s.geometry);
     let Hands { left, right, assist } = hands;
-    let (entry, exit) = (winding.entry_m, winding.exit_m);
+    let (entry, exit) = (s.hole_m(Flap::A), s.hole_m(Flap::B));
     let tail_hold = assist.position_m();
     let jaws_to = s.dir(fetch.jaw_direction).normalize();
     // No further out than the long end reaches with the turns round the jaws.

@@ -72,6 +72,12 @@ impl<'a> Setting<'a> {
         self.variation.pauses_s[i]
     }
 
+    /// Where the thread passes through `flap`'s surface, as the tissue lies now (world frame, m):
+    /// the entry point in flap A (the tail's), the exit in flap B (the long end's).
+    pub fn hole_m(&self, flap: knotlab_sim::tissue::Flap) -> Vector3<f64> {
+        self.world.tissue().hole_m(self.world.physics(), flap)
+    }
+
     /// The tissue's normal, out of it (world frame).
     pub fn up(&self) -> Vector3<f64> {
         self.world_from_stitch.rotation * Vector3::z()

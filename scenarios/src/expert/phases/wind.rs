@@ -2,17 +2,57 @@
 //! towards the jaws' hinge; the assist gives the winding thread meanwhile.
 
 use knotlab_hw::rig::ArmName;
+use knotlab_hw::skill::{ForceAction, ForceEvent};
 
 use super::approach::Winding;
 use super::{Hands, Setting};
 use crate::expert::motion::Path;
 
-/// The winding, after the left is at the winding point; returns when the coils are wound, s.
-pub(crate) fn wind(s: &Setting, hands: &mut Hands, winding: &Winding) -> f64 {
+/// The winding as planned: when the right starts to circle and when the coils are wound, s.
+pub(crate) struct Wound {
+    pub from_s: f64,
+    pub wound_s: f64,
+    /// Wound in an earlier plan: no tension to keep in this one.
+    done: bool,
+}
+
+impl Wound {
+    /// A winding done before the plan starts (its tension kept no further).
+    pub fn done() -> Self {
+        Self { from_s: 0.0, wound_s: 0.0, done: true }
+    }
+
+    /// The right keeping the long end's tension from the winding's start to `until_s`, if the plan
+    /// asks for it ([`crate::expert::geometry::TieGeometry::winding_give_force_n`]). Where the stage
+    /// is planned on from the world as it then stands, the tension is kept to the stage's end: the
+    /// next stage starts from where the right's tip gave to; cut short, the tip would go back to
+    /// its track at once and jerk the taut thread.
+    pub fn keep_tension(&self, s: &Setting, hands: &mut Hands, until_s: f64) {
+        let geometry = s.geometry;
+        if let Some(set_force_n) = geometry.winding_give_force_n.filter(|_| !self.done) {
+            hands.right.event(ForceEvent {
+                name: "winding tension".into(),
+                from_s: self.from_s,
+                until_s,
+                threshold_n: set_force_n,
+                sustain_s: 0.0,
+                fires_with: None,
+                action: ForceAction::Give {
+                    set_force_n,
+                    rate_m_per_n_s: geometry.winding_give_rate_m_per_n_s,
+                },
+            });
+        }
+    }
+}
+
+/// The winding, after the left is at the winding point.
+pub(crate) fn wind(s: &Setting, hands: &mut Hands, winding: &Winding) -> Wound {
     let geometry = s.geometry;
     let Hands { left, right, assist } = hands;
     let (centre, axis, advance_m) = (winding.centre_m, winding.axis, winding.advance_m);
     right.wait_until(left.time_s() + s.pause(2));
+    let winding_from_s = right.time_s();
     right.go(
         Path::Around { centre_m: centre, axis, turns: geometry.winding_turns, pitch_m: advance_m },
         s.d(geometry.winding_s),
@@ -35,5 +75,5 @@ pub(crate) fn wind(s: &Setting, hands: &mut Hands, winding: &Winding) -> f64 {
         let to = s.at(to_m);
         assist.go_pointing(Path::To(to), s.d(1.5), to - s.trocar_m(ArmName::Assist));
     }
-    wound_s
+    Wound { from_s: winding_from_s, wound_s, done: false }
 }
