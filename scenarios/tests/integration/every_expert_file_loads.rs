@@ -28,6 +28,7 @@ fn every_expert_file_loads() {
     for expected in [
         "base.toml",
         "instrument-tie.toml",
+        "keeps-the-tension.toml",
         "two-throws-tail-end.toml",
         "two-throws-drawn-ahead.toml",
         "two-throws-on-the-assist.toml",
@@ -77,6 +78,19 @@ fn every_expert_file_loads() {
         ..cinches.clone()
     };
     assert_eq!(both, expected);
+    // The plan for the suture at its real weight: the shipped one winding slower and keeping the long
+    // end's tension, its draw and run-down asking less thread of 12 cm.
+    let keeps = load_tie_geometry(&expert_path("keeps-the-tension.toml")).unwrap();
+    let expected = knotlab_scenarios::expert::TieGeometry {
+        winding_give_force_n: Some(0.5),
+        winding_give_rate_m_per_n_s: 0.03,
+        winding_s: 24.0,
+        draw_back_m: 0.02,
+        left_run_down_to_m: [0.0, 0.03, 0.035],
+        right_run_down_to_m: [0.0, -0.008, 0.008],
+        ..both.clone()
+    };
+    assert_eq!(keeps, expected);
     // The cinched two-throw recipe: that first throw (its pulls on 0.12 m), the left letting go of it.
     let cinched = load_tie_geometry(&expert_path("two-throws-cinched.toml")).unwrap();
     let second = cinched.second_throw.clone().expect("a second throw");

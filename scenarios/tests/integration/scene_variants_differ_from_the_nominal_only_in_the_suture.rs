@@ -12,6 +12,9 @@
 //! substeps, inertial mass, constraint passes and bending solve (as its own table in docs/validation.md was measured), and the randomization's
 //! bending stiffness.
 //!
+//! `scenarios/real-weight.toml` is the nominal scene with 12 cm of suture at a 3-0 suture's weight:
+//! its length, segments (of the nominal's length) and mass.
+//!
 //! `scenarios/real-diameter.toml` is the nominal scene with the suture at its real diameter in its
 //! knots: its radius, the rope's bending solve and constraint passes that diameter needs, and the
 //! rope's substeps and inertial mass as its table in docs/validation.md was measured.
@@ -111,4 +114,22 @@ fn the_real_diameter_scene_differs_from_the_nominal_one_only_in_the_suture() {
     real.thread.rope_constraint_passes = nominal.thread.rope_constraint_passes;
     real.description = nominal.description.clone();
     assert_eq!(real, nominal, "every other setting as in default.toml");
+}
+
+/// `real-weight.toml` differs from `default.toml` only in the thread's length (its segments as long as
+/// the nominal's) and its weight, 47.5 mg/m.
+#[test]
+fn the_real_weight_scene_differs_from_the_nominal_one_only_in_the_suture() {
+    let nominal = parse_scene(include_str!("../../default.toml"), "default.toml").expect("the shipped scene");
+    let mut light = parse_scene(include_str!("../../real-weight.toml"), "real-weight.toml")
+        .expect("the real-weight scene");
+    assert_eq!((light.thread.length_m, light.thread.segments), (0.12, 48));
+    assert_eq!(light.thread.segment_length_m(), nominal.thread.segment_length_m());
+    let weight_kg_per_m = light.thread.mass_kg / light.thread.length_m;
+    assert!((weight_kg_per_m - 4.75e-5).abs() < 1e-12, "{weight_kg_per_m} kg/m");
+    light.thread.length_m = nominal.thread.length_m;
+    light.thread.segments = nominal.thread.segments;
+    light.thread.mass_kg = nominal.thread.mass_kg;
+    light.description = nominal.description.clone();
+    assert_eq!(light, nominal, "every other setting as in default.toml");
 }
