@@ -45,8 +45,8 @@ pub enum ForceAction {
     /// Keep a thread's tension: while the gauge reads more than `set_force_n` the tip gives way
     /// along the force, at `rate_m_per_n_s` for each newton over it, and while it reads less, the tip
     /// comes back towards its track at the same rate per newton under it (an admittance about the
-    /// track, one-sided: never further on than the track). A wind at a suture's real weight keeps the
-    /// long end taut round the jaws this way without tearing the tail out of another instrument.
+    /// track, one-sided: never further on than the track), as far as the arm reaches. For a thread
+    /// kept taut without tearing it from another instrument's jaws, as in a wind round the jaws.
     Give {
         /// The force the tip gives above, N.
         set_force_n: f64,

@@ -43,8 +43,7 @@ enum Stage {
     /// The rest of the first throw once the right has wound the long end keeping its tension
     /// ([`TieGeometry::winding_give_force_n`]), planned from the world as the wind left it: the right's
     /// tip is where it gave to, not on its circle. The left fetches the tail (to the look, if it
-    /// looks: [`Stage::Take`] follows) or the assist presents it, and the throw goes on as
-    /// [`Stage::First`] with `keep_hold`.
+    /// looks: [`Stage::Take`] follows), and the throw goes on as [`Stage::First`] with `keep_hold`.
     Wound { keep_hold: bool },
     /// The rest of a throw, planned from the world once the left's jaws are over the tail (a fetch
     /// that [`super::LeftFetch::looks`]): the left closes on the tail where it lies, and the throw
