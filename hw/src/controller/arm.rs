@@ -247,19 +247,23 @@ impl ArmRuntime {
                     ForceAction::OpenJaw { jaw_rad } => jaw = Some(jaw_rad),
                     ForceAction::Hold => target = state.hold.or(target),
                     ForceAction::Give { set_force_n, rate_m_per_n_s } => {
-                        // The tip gives only as far as the arm reaches: beyond, it stays given
-                        // where it was.
+                        // The tip gives only as far as the arm reaches: where the track and the
+                        // offset wanted lie beyond, it stops where it was (giving no further and
+                        // going no further along its track) until the pull eases.
                         let wanted_m = state.give(time_s, &world_force_n, set_force_n, rate_m_per_n_s);
                         if let Some(t) = &mut target {
                             let mut given = *t;
                             given.world_position_m += wanted_m;
-                            if self
+                            let reaches = self
                                 .setup
                                 .model
                                 .solve_tip(&given, &self.setup.world_trocar_m, &self.command)
-                                .is_ok()
-                            {
-                                state.gave(wanted_m);
+                                .is_ok();
+                            match self.last_target {
+                                Some(last) if !reaches => {
+                                    state.gave(last.world_position_m - t.world_position_m)
+                                }
+                                _ => state.gave(wanted_m),
                             }
                             t.world_position_m += state.given_m;
                         }

@@ -491,6 +491,58 @@ fn a_give_event_yields_along_the_pull_over_its_set_force_and_comes_back_under_it
     assert_eq!(controller.fired_events().len(), 1, "fires once");
 }
 
+/// A give never takes the tip past the arm's reach: pulled deeper along its shaft far harder than its
+/// set force while its track goes down too, the tip gives as deep as the instrument reaches and stops
+/// there, its track held as well, instead of faulting the run; once the pull stops it comes back up
+/// to its track.
+#[test]
+fn a_give_stops_at_the_arms_reach_and_comes_back() {
+    let arm = ArmName::Left;
+    let (_, start) = parked(arm);
+    let (mut controller, _, force) = dummy_controller(arm, PERIOD_S, ControllerParams::default());
+    let (set_force_n, rate_m_per_n_s) = (2.0, 0.05);
+    let event = ForceEvent {
+        name: "keep the tension".into(),
+        from_s: 0.0,
+        until_s: 6.0,
+        threshold_n: set_force_n,
+        sustain_s: 0.0,
+        fires_with: None,
+        action: ForceAction::Give { set_force_n, rate_m_per_n_s },
+    };
+    // The track goes 2 cm down in the first second, then holds.
+    let mut skill = hold_still_skill(arm, start, vec![event]);
+    let track = start + Vector3::new(0.0, 0.0, -0.02);
+    let last = skill.tracks[0].poses[1];
+    skill.tracks[0].poses.push(PoseKey { time_s: 6.0, ..last });
+    controller.load_skill(skill).unwrap();
+    let deeper = (track - trocar(arm)).normalize();
+    let mut deepest_m: f64 = 0.0;
+    for cycle in 0..=6000 {
+        let t = cycle as f64 * PERIOD_S;
+        // 10 N along the shaft from 0.1 s to 2 s: 0.4 m/s of give, 0.76 m in all were it free, at
+        // the reach's end while the track still goes down.
+        let pulling = (0.1..2.0).contains(&(t + 1e-9));
+        force.set(if pulling { Vector3::new(0.0, 0.0, 10.0) } else { Vector3::zeros() });
+        let record = controller.step().expect("no fault: the give stops at the reach");
+        let arm_record = record.arm(arm).unwrap();
+        let target = arm_record.target.expect("a target").world_position_m;
+        if pulling && t > 0.2 {
+            let shaft = (arm_record.world_from_tip.translation.vector - trocar(arm)).normalize();
+            let along = arm_record.world_force_n.normalize().dot(&shaft);
+            assert!(along > 0.9, "the pull is along the shaft, deeper ({along} at {t} s)");
+        }
+        if t > 1.0 {
+            deepest_m = deepest_m.max((target - track).dot(&deeper));
+        }
+        if t > 5.9 {
+            // 2 N under the set force: 0.1 m/s back, on the track within 2 s.
+            assert!((target - track).norm() < 1e-9, "{} m off its track at {t} s", (target - track).norm());
+        }
+    }
+    assert!(deepest_m > 0.05, "gave only {deepest_m} m");
+}
+
 /// Both instruments of the surgeon's pulls on dummy devices, each with its own force handle.
 fn two_arm_controller() -> (Controller, [ForceHandle; 2]) {
     let sensors = [DummyForceSensor::new(), DummyForceSensor::new()];
