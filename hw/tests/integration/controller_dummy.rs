@@ -423,6 +423,31 @@ fn a_hold_event_stops_the_tip_until_its_window_closes() {
     assert!((held.z - (start.z - 0.02 * 0.3)).abs() < 1e-9 + 0.02 * PERIOD_S, "{held:?}");
 }
 
+/// [`hold_still_skill`] held on to `end_s`, with one give event from the start to `until_s`; and
+/// where its track holds still from 1 s.
+fn give_skill(
+    arm: ArmName,
+    start: Vector3<f64>,
+    set_force_n: f64,
+    rate_m_per_n_s: f64,
+    until_s: f64,
+    end_s: f64,
+) -> (Skill, Vector3<f64>) {
+    let event = ForceEvent {
+        name: "keep the tension".into(),
+        from_s: 0.0,
+        until_s,
+        threshold_n: set_force_n,
+        sustain_s: 0.0,
+        fires_with: None,
+        action: ForceAction::Give { set_force_n, rate_m_per_n_s },
+    };
+    let mut skill = hold_still_skill(arm, start, vec![event]);
+    let last = skill.tracks[0].poses[1];
+    skill.tracks[0].poses.push(PoseKey { time_s: end_s, ..last });
+    (skill, start + Vector3::new(0.0, 0.0, -0.02))
+}
+
 /// A give event moves the tip off its track along the force while the gauge reads more than the set
 /// force, at the rate per newton over it, and back towards the track while it reads less; once the
 /// window closes, or the offset is spent, the target is the track's again. (The track holds still
@@ -433,19 +458,7 @@ fn a_give_event_yields_along_the_pull_over_its_set_force_and_comes_back_under_it
     let (_, start) = parked(arm);
     let (mut controller, _, force) = dummy_controller(arm, PERIOD_S, ControllerParams::default());
     let (set_force_n, rate_m_per_n_s) = (0.5, 0.01);
-    let event = ForceEvent {
-        name: "keep the tension".into(),
-        from_s: 0.0,
-        until_s: 2.5,
-        threshold_n: set_force_n,
-        sustain_s: 0.0,
-        fires_with: None,
-        action: ForceAction::Give { set_force_n, rate_m_per_n_s },
-    };
-    let mut skill = hold_still_skill(arm, start, vec![event]);
-    let track = start + Vector3::new(0.0, 0.0, -0.02);
-    let last = skill.tracks[0].poses[1];
-    skill.tracks[0].poses.push(PoseKey { time_s: 3.0, ..last });
+    let (skill, track) = give_skill(arm, start, set_force_n, rate_m_per_n_s, 2.5, 3.0);
     controller.load_skill(skill).unwrap();
     let mut pull_world = None;
     // How far the tip is off its track along the last pull read, and across it, m.
@@ -500,21 +513,8 @@ fn a_give_stops_at_the_arms_reach_and_comes_back() {
     let arm = ArmName::Left;
     let (_, start) = parked(arm);
     let (mut controller, _, force) = dummy_controller(arm, PERIOD_S, ControllerParams::default());
-    let (set_force_n, rate_m_per_n_s) = (2.0, 0.05);
-    let event = ForceEvent {
-        name: "keep the tension".into(),
-        from_s: 0.0,
-        until_s: 6.0,
-        threshold_n: set_force_n,
-        sustain_s: 0.0,
-        fires_with: None,
-        action: ForceAction::Give { set_force_n, rate_m_per_n_s },
-    };
     // The track goes 2 cm down in the first second, then holds.
-    let mut skill = hold_still_skill(arm, start, vec![event]);
-    let track = start + Vector3::new(0.0, 0.0, -0.02);
-    let last = skill.tracks[0].poses[1];
-    skill.tracks[0].poses.push(PoseKey { time_s: 6.0, ..last });
+    let (skill, track) = give_skill(arm, start, 2.0, 0.05, 6.0, 6.0);
     controller.load_skill(skill).unwrap();
     let deeper = (track - trocar(arm)).normalize();
     let mut deepest_m: f64 = 0.0;
