@@ -395,6 +395,14 @@ mod tests {
         };
         let keys: Vec<&str> = problems.iter().map(|(k, _)| k.as_str()).collect();
         assert_eq!(keys, ["left_pull_to_m.y", "winding_towards", "pull_force_n"], "{problems:?}");
+        // The wind that keeps the tension: a force that is none and a rate that never gives.
+        let Err(GeometryFileError::Invalid { problems, .. }) =
+            parse_tie_geometry("winding_give_force_n = 0.0\nwinding_give_rate_m_per_n_s = 0.0\n", "bad.toml")
+        else {
+            panic!("a give of no force accepted");
+        };
+        let keys: Vec<&str> = problems.iter().map(|(k, _)| k.as_str()).collect();
+        assert_eq!(keys, ["winding_give_force_n", "winding_give_rate_m_per_n_s"], "{problems:?}");
         let Err(GeometryFileError::Invalid { problems, .. }) =
             parse_tie_geometry("[second_throw]\ntail_hold_along = 1.5\n", "bad.toml")
         else {
